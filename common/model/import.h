@@ -1,0 +1,63 @@
+#pragma once
+// Loading model files into the HDS. OBJ, STL (ascii and binary), PLY, OFF,
+// DXF, glTF 2, 3DS, COLLADA and the other formats assimp reads go through
+// assimp; Open Inventor (.iv) and VRML (.wrl), the formats of the paper's
+// pipeline that assimp 5.2 cannot read, go through Coin3D.
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "common/hds/haptic_object.h"
+#include "common/hds/material.h"
+
+namespace hs {
+
+struct ImportOptions {
+  /// Metres per file unit (0.001 for a file in millimetres). Finite and > 0.
+  double unit_scale = 1.0;
+  /// Vertices closer than this times the model's bounding-box diagonal are
+  /// welded into one. Finite and >= 0; 0 welds exact duplicates only.
+  double weld_relative_tolerance = 1e-6;
+  /// Haptic parameters given to every material of the file; its name is used
+  /// when the file has no material.
+  Material default_material;
+};
+
+/// What cleaning changed between the file and the HDS.
+struct CleaningReport {
+  int input_vertices = 0;
+  /// Polygons of the file (a triangle counts as one polygon).
+  int input_polygons = 0;
+  /// Triangles after triangulating the polygons, before cleaning.
+  int input_triangles = 0;
+  /// Vertices merged into another one by welding.
+  int welded_vertices = 0;
+  /// Vertices no kept triangle uses, dropped.
+  int dropped_unreferenced_vertices = 0;
+  /// Triangles of zero area (after welding), dropped.
+  int dropped_degenerate_triangles = 0;
+  /// Triangles over the same three vertices as an earlier one, dropped.
+  int dropped_duplicate_triangles = 0;
+};
+
+struct ImportedModel {
+  HapticObject object;
+  CleaningReport cleaning;
+  /// The reader that read the file: "assimp" or "coin3d".
+  std::string reader;
+};
+
+/// Reads the model file at `path` into one HapticObject named after the file.
+/// Every mesh of the file is merged, with the file's node transforms applied;
+/// each material of the file becomes one HDS material; each face keeps the id
+/// of the file polygon it was triangulated from.
+/// Errors (the message names the file and the reason):
+///   NOT_FOUND           the file does not exist;
+///   INVALID_ARGUMENT    bad options, or the file is unreadable, truncated,
+///                       malformed, has non-finite coordinates or out-of-range
+///                       indices, or has no triangle left after cleaning;
+///   PERMISSION_DENIED   the file cannot be opened for reading.
+absl::StatusOr<ImportedModel> ImportModel(const std::string& path,
+                                          const ImportOptions& options = {});
+
+}  // namespace hs
