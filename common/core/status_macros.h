@@ -8,12 +8,11 @@
 #define HS_STATUS_CONCAT(a, b) HS_STATUS_CONCAT_INNER(a, b)
 
 /// Returns the status from the enclosing function when `expr` is not OK.
-#define HS_RETURN_IF_ERROR(expr)              \
-  do {                                        \
-    if (absl::Status hs_status_ = (expr);     \
-        !hs_status_.ok()) {                   \
-      return hs_status_;                      \
-    }                                         \
+#define HS_RETURN_IF_ERROR(expr)                              \
+  do {                                                        \
+    if (absl::Status hs_status_ = (expr); !hs_status_.ok()) { \
+      return hs_status_;                                      \
+    }                                                         \
   } while (false)
 
 /// Declares or assigns `lhs` from a StatusOr, returning its status when not OK.

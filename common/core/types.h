@@ -1,7 +1,8 @@
 #pragma once
 // Vocabulary shared by every layer: Eigen aliases and feature ids.
 // Units across the project are SI: metres, seconds, kilograms, newtons. A model
-// file's own unit is converted to metres at import (see model/import_options.h).
+// file's own unit is converted to metres at import (ImportOptions::unit_scale in
+// common/model/import.h).
 
 #include <Eigen/Geometry>
 #include <algorithm>

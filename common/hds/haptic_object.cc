@@ -44,8 +44,8 @@ absl::Status ValidateInput(const MeshInput& input) {
     const FaceInput& face = input.faces[f];
     for (VertexId v : face.vertices) {
       if (v < 0 || v >= num_vertices) {
-        return absl::InvalidArgumentError(absl::StrCat("face ", f, " names vertex ", v,
-                                                       " but there are ", num_vertices));
+        return absl::InvalidArgumentError(
+            absl::StrCat("face ", f, " names vertex ", v, " but there are ", num_vertices));
       }
     }
     const auto& v = face.vertices;
@@ -160,13 +160,13 @@ std::vector<FaceId> HapticObject::FacesChangedSince(uint64_t since) const {
 absl::Status HapticObject::MoveVertices(std::span<const VertexId> ids,
                                         std::span<const Vector3d> positions) {
   if (ids.size() != positions.size()) {
-    return absl::InvalidArgumentError(absl::StrCat("MoveVertices: ", ids.size(), " ids but ",
-                                                   positions.size(), " positions"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("MoveVertices: ", ids.size(), " ids but ", positions.size(), " positions"));
   }
   for (size_t i = 0; i < ids.size(); ++i) {
     if (ids[i] < 0 || ids[i] >= num_vertices()) {
-      return absl::InvalidArgumentError(absl::StrCat("MoveVertices: vertex ", ids[i],
-                                                     " out of range [0, ", num_vertices(), ")"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("MoveVertices: vertex ", ids[i], " out of range [0, ", num_vertices(), ")"));
     }
     if (!positions[i].allFinite()) {
       return absl::InvalidArgumentError(

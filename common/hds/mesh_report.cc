@@ -38,7 +38,8 @@ MeshReport InspectMesh(const HapticObject& object, double relative_tolerance) {
   MeshReport report;
   for (FaceId f = 0; f < object.num_faces(); ++f) {
     const auto& v = object.face(f).vertices;
-    if (IsDegenerateTriangle(object.position(v[0]), object.position(v[1]), object.position(v[2]))) report.degenerate_faces.push_back(f);
+    if (IsDegenerateTriangle(object.position(v[0]), object.position(v[1]), object.position(v[2])))
+      report.degenerate_faces.push_back(f);
   }
   const double tolerance = relative_tolerance * object.bounding_box().diagonal().norm();
   const std::vector<VertexId> targets = FindWeldTargets(object.positions(), tolerance);

@@ -15,9 +15,7 @@ struct CellHash {
   }
 };
 struct CellEqual {
-  bool operator()(const Eigen::Array3i& a, const Eigen::Array3i& b) const {
-    return (a == b).all();
-  }
+  bool operator()(const Eigen::Array3i& a, const Eigen::Array3i& b) const { return (a == b).all(); }
 };
 
 }  // namespace
@@ -32,23 +30,21 @@ std::vector<VertexId> FindWeldTargets(std::span<const Vector3d> positions, doubl
   // never smaller than 1e-6 of the extent so that cell indices fit an int.
   AlignedBox3d box;
   for (const Vector3d& p : positions) box.extend(p);
-  const double cell = std::max({tolerance, box.sizes().maxCoeff() * 1e-6,
-                                std::numeric_limits<double>::min()});
+  const double cell =
+      std::max({tolerance, box.sizes().maxCoeff() * 1e-6, std::numeric_limits<double>::min()});
   std::unordered_map<Eigen::Array3i, std::vector<VertexId>, CellHash, CellEqual> grid;
   grid.reserve(n);
   for (VertexId v = 0; v < n; ++v) {
     const Eigen::Array3i c = ((positions[v] - box.min()) / cell).array().floor().cast<int>();
+    // Only kept vertices are in the grid; the smallest one in reach wins.
     target[v] = v;
-    for (int dx = -1; dx <= 1 && target[v] == v; ++dx) {
-      for (int dy = -1; dy <= 1 && target[v] == v; ++dy) {
-        for (int dz = -1; dz <= 1 && target[v] == v; ++dz) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
           auto it = grid.find(c + Eigen::Array3i(dx, dy, dz));
           if (it == grid.end()) continue;
           for (VertexId u : it->second) {
-            if ((positions[u] - positions[v]).norm() <= tolerance) {
-              target[v] = target[u];
-              break;
-            }
+            if (u < target[v] && (positions[u] - positions[v]).norm() <= tolerance) target[v] = u;
           }
         }
       }

@@ -9,9 +9,9 @@
 
 namespace hs {
 
-/// For each vertex, the smallest id of a vertex within `tolerance` (metres,
-/// Euclidean) of it, following chains: result[v] == v for the vertices that
-/// are kept, result[v] < v for those that duplicate an earlier one.
+/// For each vertex in id order: itself when no earlier kept vertex lies
+/// within `tolerance` (metres, Euclidean), else the smallest such kept
+/// vertex. result[v] == v marks the kept vertices.
 /// tolerance == 0 finds exact duplicates. Positions must be finite.
 std::vector<VertexId> FindWeldTargets(std::span<const Vector3d> positions, double tolerance);
 

@@ -12,6 +12,7 @@
 
 namespace hs {
 
+/// How to read a model file into the HDS.
 struct ImportOptions {
   /// Metres per file unit (0.001 for a file in millimetres). Finite and > 0.
   double unit_scale = 1.0;
@@ -23,8 +24,12 @@ struct ImportOptions {
   Material default_material;
 };
 
-/// What cleaning changed between the file and the HDS.
+/// What cleaning changed between the file and the HDS. The vertex counts add
+/// up: input_vertices == welded_vertices + dropped_unreferenced_vertices +
+/// the object's vertices.
 struct CleaningReport {
+  /// Vertices as the reader delivered them. assimp gives OBJ, STL and DXF
+  /// one vertex per face corner; Coin one per distinct point of each shape.
   int input_vertices = 0;
   /// Polygons of the file (a triangle counts as one polygon).
   int input_polygons = 0;
@@ -34,12 +39,13 @@ struct CleaningReport {
   int welded_vertices = 0;
   /// Vertices no kept triangle uses, dropped.
   int dropped_unreferenced_vertices = 0;
-  /// Triangles of zero area (after welding), dropped.
+  /// Triangles of zero area after welding (collapsed ones included), dropped.
   int dropped_degenerate_triangles = 0;
   /// Triangles over the same three vertices as an earlier one, dropped.
   int dropped_duplicate_triangles = 0;
 };
 
+/// One model file in the HDS and how it got there.
 struct ImportedModel {
   HapticObject object;
   CleaningReport cleaning;
@@ -47,10 +53,17 @@ struct ImportedModel {
   std::string reader;
 };
 
-/// Reads the model file at `path` into one HapticObject named after the file.
-/// Every mesh of the file is merged, with the file's node transforms applied;
-/// each material of the file becomes one HDS material; each face keeps the id
-/// of the file polygon it was triangulated from.
+/// Reads the model file at `path` into one HapticObject named after the file
+/// (its stem). The reader is chosen by extension, in any case: .iv and .wrl
+/// go to Coin3D, everything else to assimp. Every mesh of the file is merged,
+/// with the file's node transforms applied, in the file's coordinates times
+/// options.unit_scale; polygons are triangulated (concave ones included) and
+/// each face keeps the id of the file polygon it was cut from; faces are
+/// counter-clockwise seen from outside when the file's are. Each material
+/// name of the file that a kept face uses becomes one HDS material with the
+/// haptic parameters of options.default_material. Cleaning (welding,
+/// dropping degenerate and duplicate faces and unused vertices) is reported
+/// in ImportedModel::cleaning. Thread-safe; never throws.
 /// Errors (the message names the file and the reason):
 ///   NOT_FOUND           the file does not exist;
 ///   INVALID_ARGUMENT    bad options, or the file is unreadable, truncated,

@@ -1,0 +1,20 @@
+// hapticctl: the command-line client of the haptic simulation service.
+// Only wiring: each subcommand lives in its own *_command.cc.
+
+#include "CLI/CLI.hpp"
+#include "client/exit_codes.h"
+#include "client/inspect_command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"hapticctl: client of the haptic simulation service"};
+  app.require_subcommand(1);
+  int exit_code = hs::cli::kExitOk;
+  hs::cli::AddInspectCommand(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int parse_code = app.exit(e);
+    return parse_code == 0 ? hs::cli::kExitOk : hs::cli::kExitUsage;
+  }
+  return exit_code;
+}

@@ -1,0 +1,40 @@
+#pragma once
+// Triangle-triangle tests by the separating axis theorem (SAT): the lean
+// leaf test of the BVH traversal, and the exact sweep interval of the 3D
+// contact method (shared/ALGORITHM.md).
+//
+// Axes: both face normals, the 9 cross products of edge pairs, and the 6
+// in-plane edge normals (face normal x edge), which separate coplanar
+// triangles. Any axis is a sound separation witness, and these 17 are
+// complete for two non-degenerate triangles, so the tests are exact up to
+// rounding. Near-zero axes (parallel edges, degenerate faces) are skipped.
+
+#include <array>
+#include <limits>
+
+#include "common/core/types.h"
+
+namespace hs {
+
+using Triangle3d = std::array<Vector3d, 3>;
+
+/// A closed interval of a real parameter; empty when lo > hi.
+struct Interval {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  bool empty() const { return lo > hi; }
+  bool Contains(double t) const { return lo <= t && t <= hi; }
+};
+
+/// True when triangles `a` and `b` (same frame) intersect or are closer than
+/// `margin` (metres, >= 0) along every axis: touching counts as intersecting.
+bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin);
+
+/// The set of t for which `a` translated by -t * `direction` intersects `b`
+/// (within `margin`). Always one closed interval (a line through the convex
+/// Minkowski difference); unbounded ends are +-inf. `direction` need not be
+/// unit: t is in units of its length.
+Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
+                           double margin);
+
+}  // namespace hs
