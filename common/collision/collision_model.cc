@@ -1,0 +1,133 @@
+#include "common/collision/collision_model.h"
+
+#include <utility>
+
+#include "common/collision/fcl_bvh.h"
+#include "common/core/check.h"
+#include "common/hds/triangle.h"
+
+namespace hs {
+namespace {
+
+// Growing each volume by the margin keeps it a bound of everything within
+// the margin of its triangles.
+void Grow(fcl::OBBd& bv, double m) { bv.extent.array() += m; }
+void Grow(fcl::RSSd& bv, double m) { bv.r += m; }
+void Grow(fcl::OBBRSSd& bv, double m) {
+  Grow(bv.obb, m);
+  Grow(bv.rss, m);
+}
+void Grow(fcl::kIOSd& bv, double m) {
+  for (unsigned i = 0; i < bv.num_spheres; ++i) bv.spheres[i].r += m;
+  Grow(bv.obb, m);
+}
+void Grow(fcl::AABBd& bv, double m) {
+  bv.min_.array() -= m;
+  bv.max_.array() += m;
+}
+
+template <typename BV>
+void GrowAll(fcl::BVHModel<BV>& model, double margin) {
+  for (int i = 0; i < model.getNumBVs(); ++i) Grow(model.getBV(i).bv, margin);
+  model.computeLocalAABB();
+  model.aabb_local.min_.array() -= margin;
+  model.aabb_local.max_.array() += margin;
+  model.aabb_radius += margin;
+}
+
+std::vector<fcl::Vector3d> Vertices(const HapticObject& object) {
+  return std::vector<fcl::Vector3d>(object.positions().begin(), object.positions().end());
+}
+
+std::vector<bool> DegenerateFaces(const HapticObject& object) {
+  std::vector<bool> degenerate(object.num_faces());
+  for (FaceId f = 0; f < object.num_faces(); ++f) {
+    const auto& v = object.face(f).vertices;
+    degenerate[f] =
+        IsDegenerateTriangle(object.position(v[0]), object.position(v[1]), object.position(v[2]));
+  }
+  return degenerate;
+}
+
+template <typename BV>
+BvhPtr<BV> Build(const HapticObject& object, double margin) {
+  auto model = std::make_shared<fcl::BVHModel<BV>>();
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(object.num_faces());
+  for (const Face& f : object.faces()) {
+    triangles.emplace_back(f.vertices[0], f.vertices[1], f.vertices[2]);
+  }
+  HS_CHECK(model->beginModel(object.num_faces(), object.num_vertices()) == fcl::BVH_OK);
+  HS_CHECK(model->addSubModel(Vertices(object), triangles) == fcl::BVH_OK);
+  HS_CHECK(model->endModel() == fcl::BVH_OK);
+  GrowAll(*model, margin);
+  return model;
+}
+
+AnyBvh BuildAny(const HapticObject& object, BvType type, double margin) {
+  switch (type) {
+    case BvType::kObbRss:
+      return Build<fcl::OBBRSSd>(object, margin);
+    case BvType::kObb:
+      return Build<fcl::OBBd>(object, margin);
+    case BvType::kRss:
+      return Build<fcl::RSSd>(object, margin);
+    case BvType::kKios:
+      return Build<fcl::kIOSd>(object, margin);
+    case BvType::kAabb:
+      return Build<fcl::AABBd>(object, margin);
+  }
+  HS_CHECK(false);
+}
+
+}  // namespace
+
+std::shared_ptr<fcl::CollisionGeometryd> CollisionModel::Impl::geometry() const {
+  return std::visit([](const auto& m) -> std::shared_ptr<fcl::CollisionGeometryd> { return m; },
+                    bvh);
+}
+
+Triangle3d CollisionModel::Impl::triangle(int f) const {
+  return std::visit(
+      [f](const auto& m) {
+        const fcl::Triangle& t = m->tri_indices[f];
+        return Triangle3d{m->vertices[t[0]], m->vertices[t[1]], m->vertices[t[2]]};
+      },
+      bvh);
+}
+
+CollisionModel::CollisionModel(const HapticObject& object, BvType type, double margin_m)
+    : impl_(std::make_unique<Impl>()) {
+  HS_CHECK(margin_m >= 0);
+  impl_->type = type;
+  impl_->margin_m = margin_m;
+  impl_->geometry_version = object.geometry_version();
+  impl_->bvh = BuildAny(object, type, margin_m);
+  impl_->degenerate = DegenerateFaces(object);
+}
+
+CollisionModel::~CollisionModel() = default;
+CollisionModel::CollisionModel(CollisionModel&&) noexcept = default;
+CollisionModel& CollisionModel::operator=(CollisionModel&&) noexcept = default;
+
+BvType CollisionModel::bv_type() const { return impl_->type; }
+double CollisionModel::margin_m() const { return impl_->margin_m; }
+uint64_t CollisionModel::geometry_version() const { return impl_->geometry_version; }
+
+bool CollisionModel::Sync(const HapticObject& object) {
+  if (object.geometry_version() == impl_->geometry_version) return false;
+  std::visit(
+      [&](auto& model) {
+        HS_CHECK(model->num_vertices == object.num_vertices());
+        HS_CHECK(model->beginUpdateModel() == fcl::BVH_OK);
+        HS_CHECK(model->updateSubModel(Vertices(object)) == fcl::BVH_OK);
+        HS_CHECK(model->endUpdateModel(/*refit=*/true, /*bottomup=*/true) == fcl::BVH_OK);
+        GrowAll(*model, impl_->margin_m);
+      },
+      impl_->bvh);
+  impl_->degenerate = DegenerateFaces(object);
+  impl_->geometry_version = object.geometry_version();
+  return true;
+}
+
+}  // namespace hs

@@ -1,0 +1,47 @@
+#pragma once
+// Internal to common/collision: the FCL side of CollisionModel. No header
+// outside common/collision includes this one.
+
+// BVH_model.h uses fit() without including it: keep this block first.
+#include <fcl/math/bv/utility.h>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kIOS.h>
+
+#include <memory>
+#include <variant>
+#include <vector>
+
+#include "common/collision/collision_model.h"
+#include "common/collision/triangle_sat.h"
+
+namespace hs {
+
+template <typename BV>
+using BvhPtr = std::shared_ptr<fcl::BVHModel<BV>>;
+
+/// One hierarchy of whichever bounding volume the model was built with.
+using AnyBvh = std::variant<BvhPtr<fcl::OBBRSSd>, BvhPtr<fcl::OBBd>, BvhPtr<fcl::RSSd>,
+                            BvhPtr<fcl::kIOSd>, BvhPtr<fcl::AABBd>>;
+
+struct CollisionModel::Impl {
+  BvType type = BvType::kObbRss;
+  double margin_m = 0;
+  uint64_t geometry_version = 0;
+  AnyBvh bvh;
+  /// Per face: zero area, so skipped by the leaf test (a flat triangle has
+  /// no normal and SAT cannot separate it reliably; in a closed mesh its
+  /// neighbours carry the contact).
+  std::vector<bool> degenerate;
+
+  /// The hierarchy as FCL's generic geometry, for the broad phase.
+  std::shared_ptr<fcl::CollisionGeometryd> geometry() const;
+  /// Triangle `f` in the object frame.
+  Triangle3d triangle(int f) const;
+};
+
+}  // namespace hs

@@ -1,0 +1,29 @@
+#pragma once
+// Narrow phase: every pair of faces of two objects that intersect.
+
+#include <vector>
+
+#include "common/collision/collision_model.h"
+#include "common/core/types.h"
+
+namespace hs {
+
+/// A face of object A and a face of object B that intersect or touch.
+struct TrianglePair {
+  FaceId a = 0;
+  FaceId b = 0;
+  bool operator==(const TrianglePair&) const = default;
+  auto operator<=>(const TrianglePair&) const = default;
+};
+
+/// Appends to `pairs` every face pair of `a` posed at X_WA and `b` posed at
+/// X_WB (world frame, metres) that intersect or are closer than `margin_m`
+/// along every separating axis, in no particular order. Both models must
+/// share a bounding volume type, and `margin_m` must not exceed the sum of
+/// their margins (else pairs within it could be culled). Returns the number
+/// of bounding-volume tests made.
+int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
+                                  const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
+                                  std::vector<TrianglePair>& pairs);
+
+}  // namespace hs
