@@ -121,7 +121,10 @@ bool CollisionModel::Sync(const HapticObject& object) {
         HS_CHECK(model->num_vertices == object.num_vertices());
         HS_CHECK(model->beginUpdateModel() == fcl::BVH_OK);
         HS_CHECK(model->updateSubModel(Vertices(object)) == fcl::BVH_OK);
-        HS_CHECK(model->endUpdateModel(/*refit=*/true, /*bottomup=*/true) == fcl::BVH_OK);
+        // Top-down: FCL 0.7's bottom-up refit merges RSS children into volumes
+        // that miss triangles (triangle_pairs_test caught it); top-down fits
+        // every node to its own triangles, O(n log n) instead of O(n).
+        HS_CHECK(model->endUpdateModel(/*refit=*/true, /*bottomup=*/false) == fcl::BVH_OK);
         GrowAll(*model, impl_->margin_m);
       },
       impl_->bvh);

@@ -1,0 +1,131 @@
+#include "common/collision/triangle_pairs.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "common/collision/triangle_sat.h"
+#include "common/model/procedural.h"
+
+namespace hs {
+namespace {
+
+HapticObject Torus(double major, double minor) {
+  return *HapticObject::Create("torus", MakeTorus(major, minor, 24, 12));
+}
+
+Isometry3d RandomPose(std::mt19937& rng, double reach) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Isometry3d X = Isometry3d::Identity();
+  X.translate(reach * Vector3d(u(rng), u(rng), u(rng)));
+  X.rotate(Eigen::AngleAxisd(3.0 * u(rng), Vector3d(u(rng), u(rng), u(rng)).normalized()));
+  return X;
+}
+
+// The oracle: every face pair through the same SAT leaf test (itself checked
+// against CGAL's exact predicate in triangle_sat_test).
+std::vector<TrianglePair> BruteForce(const HapticObject& a, const Isometry3d& X_WA,
+                                     const HapticObject& b, const Isometry3d& X_WB, double margin) {
+  std::vector<TrianglePair> pairs;
+  auto world = [](const HapticObject& o, const Isometry3d& X, FaceId f) {
+    const auto& v = o.face(f).vertices;
+    return Triangle3d{X * o.position(v[0]), X * o.position(v[1]), X * o.position(v[2])};
+  };
+  for (FaceId fa = 0; fa < a.num_faces(); ++fa) {
+    for (FaceId fb = 0; fb < b.num_faces(); ++fb) {
+      if (TrianglesIntersect(world(a, X_WA, fa), world(b, X_WB, fb), margin)) {
+        pairs.push_back({fa, fb});
+      }
+    }
+  }
+  return pairs;
+}
+
+std::vector<TrianglePair> Traversal(const CollisionModel& ma, const Isometry3d& X_WA,
+                                    const CollisionModel& mb, const Isometry3d& X_WB,
+                                    double margin) {
+  std::vector<TrianglePair> pairs;
+  FindIntersectingTriangles(ma, X_WA, mb, X_WB, margin, pairs);
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+class TrianglePairsTest : public testing::TestWithParam<BvType> {};
+
+// For every bounding volume type the BVH traversal finds exactly the pairs
+// of the all-pairs oracle, on random poses of two interlocking tori.
+TEST_P(TrianglePairsTest, MatchesBruteForceOnRandomPoses) {
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25);
+  const double margin = 1e-9;
+  const CollisionModel ma(a, GetParam(), margin), mb(b, GetParam(), margin);
+  std::mt19937 rng(21);
+  int colliding_poses = 0;
+  for (int i = 0; i < 40; ++i) {
+    const Isometry3d X_WA = RandomPose(rng, 0.5), X_WB = RandomPose(rng, 0.5);
+    const auto expected = BruteForce(a, X_WA, b, X_WB, margin);
+    ASSERT_EQ(Traversal(ma, X_WA, mb, X_WB, margin), expected) << "pose " << i;
+    colliding_poses += !expected.empty();
+  }
+  EXPECT_GT(colliding_poses, 20);
+}
+
+// After vertices move, Sync refits the hierarchy and the traversal again
+// matches the oracle on the moved geometry.
+TEST_P(TrianglePairsTest, SyncRefitsAfterVerticesMove) {
+  HapticObject a = Torus(1.0, 0.3);
+  const HapticObject b = Torus(0.8, 0.25);
+  CollisionModel ma(a, GetParam(), 1e-9);
+  const CollisionModel mb(b, GetParam(), 1e-9);
+  std::mt19937 rng(22);
+  std::normal_distribution<double> noise(0, 0.05);
+  std::vector<VertexId> ids;
+  std::vector<Vector3d> moved;
+  for (VertexId v = 0; v < a.num_vertices(); v += 3) {
+    ids.push_back(v);
+    moved.push_back(a.position(v) + Vector3d(noise(rng), noise(rng), noise(rng)));
+  }
+  ASSERT_TRUE(a.MoveVertices(ids, moved).ok());
+  EXPECT_TRUE(ma.Sync(a));
+  EXPECT_FALSE(ma.Sync(a));
+  EXPECT_EQ(ma.geometry_version(), a.geometry_version());
+  for (int i = 0; i < 20; ++i) {
+    const Isometry3d X_WA = RandomPose(rng, 0.5), X_WB = RandomPose(rng, 0.5);
+    ASSERT_EQ(Traversal(ma, X_WA, mb, X_WB, 1e-9), BruteForce(a, X_WA, b, X_WB, 1e-9))
+        << "pose " << i;
+  }
+}
+
+// Two boxes resting face on face (exactly touching, gap 0) are found
+// touching at every scale thanks to the grown volumes.
+TEST_P(TrianglePairsTest, TouchingBoxesAreFoundAtEveryScale) {
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    SCOPED_TRACE(scale);
+    const HapticObject box = *HapticObject::Create("box", MakeBox(Vector3d::Constant(scale)));
+    const double margin = 1e-9 * scale;
+    const CollisionModel m(box, GetParam(), margin);
+    Isometry3d X_WB = Isometry3d::Identity();
+    X_WB.translation() = Vector3d(0.3 * scale, 0.2 * scale, scale);
+    const auto pairs = Traversal(m, Isometry3d::Identity(), m, X_WB, margin);
+    EXPECT_EQ(pairs, BruteForce(box, Isometry3d::Identity(), box, X_WB, margin));
+    EXPECT_FALSE(pairs.empty());
+    X_WB.translation().z() += 1e-6 * scale;
+    EXPECT_TRUE(Traversal(m, Isometry3d::Identity(), m, X_WB, margin).empty());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllBvTypes, TrianglePairsTest,
+                         testing::Values(BvType::kObbRss, BvType::kObb, BvType::kRss, BvType::kKios,
+                                         BvType::kAabb),
+                         [](const auto& info) { return std::string(BvTypeName(info.param)); });
+
+// Names round-trip and unknown names are rejected.
+TEST(BvTypeTest, ParseAndName) {
+  for (BvType t : {BvType::kObbRss, BvType::kObb, BvType::kRss, BvType::kKios, BvType::kAabb}) {
+    EXPECT_EQ(*ParseBvType(BvTypeName(t)), t);
+  }
+  EXPECT_EQ(ParseBvType("sphere").status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace hs

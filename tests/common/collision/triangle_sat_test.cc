@@ -1,0 +1,105 @@
+#include "common/collision/triangle_sat.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace hs {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+
+Kernel::Triangle_3 ToCgal(const Triangle3d& t) {
+  auto p = [](const Vector3d& v) { return Kernel::Point_3(v.x(), v.y(), v.z()); };
+  return Kernel::Triangle_3(p(t[0]), p(t[1]), p(t[2]));
+}
+
+// Triangles with small integer corners: every product in the SAT is exact in
+// double, and the grid makes touching, coplanar and parallel-edge cases common.
+Triangle3d RandomGridTriangle(std::mt19937& rng) {
+  std::uniform_int_distribution<int> c(-2, 2);
+  while (true) {
+    Triangle3d t;
+    for (Vector3d& p : t) p = Vector3d(c(rng), c(rng), c(rng));
+    if ((t[1] - t[0]).cross(t[2] - t[0]).squaredNorm() > 0) return t;
+  }
+}
+
+// With zero margin the SAT test agrees exactly with CGAL's exact predicate
+// on 20,000 grid triangle pairs, touching and coplanar ones included.
+TEST(TriangleSatTest, AgreesWithCgalExactPredicate) {
+  std::mt19937 rng(11);
+  int intersecting = 0, touching_or_coplanar = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Triangle3d a = RandomGridTriangle(rng), b = RandomGridTriangle(rng);
+    const bool exact = CGAL::do_intersect(ToCgal(a), ToCgal(b));
+    ASSERT_EQ(TrianglesIntersect(a, b, 0.0), exact) << "pair " << i;
+    intersecting += exact;
+    const Vector3d na = (a[1] - a[0]).cross(a[2] - a[0]);
+    touching_or_coplanar += exact && na.dot(b[0] - a[0]) == 0;
+  }
+  // The sample must exercise both answers and the coplanar/touching case.
+  EXPECT_GT(intersecting, 2000);
+  EXPECT_LT(intersecting, 18000);
+  EXPECT_GT(touching_or_coplanar, 200);
+}
+
+// The sweep interval says where a translated triangle meets the other:
+// inside it the static test (CGAL, exact) says intersect, outside it not.
+TEST(TriangleSatTest, SweptIntervalMatchesStaticTests) {
+  std::mt19937 rng(12);
+  std::uniform_int_distribution<int> c(-2, 2);
+  int nonempty = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Triangle3d a = RandomGridTriangle(rng), b = RandomGridTriangle(rng);
+    Vector3d d(c(rng), c(rng), c(rng));
+    if (d.isZero()) d = Vector3d::UnitX();
+    const Interval interval = SweptIntersection(a, b, d, 0.0);
+    nonempty += !interval.empty();
+    // Sample t on a grid of quarters: a - t d stays exactly representable.
+    for (int k = -24; k <= 24; ++k) {
+      const double t = k / 4.0;
+      Triangle3d moved = a;
+      for (Vector3d& p : moved) p -= t * d;
+      const bool exact = CGAL::do_intersect(ToCgal(moved), ToCgal(b));
+      // Endpoints are computed with one rounding; give them 1e-9 of slack.
+      if (std::abs(t - interval.lo) < 1e-9 || std::abs(t - interval.hi) < 1e-9) continue;
+      ASSERT_EQ(interval.Contains(t), exact) << "pair " << i << " t " << t << " interval ["
+                                             << interval.lo << ", " << interval.hi << "]";
+    }
+  }
+  EXPECT_GT(nonempty, 500);
+}
+
+// A margin makes triangles a small gap apart count, and only within it.
+TEST(TriangleSatTest, MarginCountsNearMisses) {
+  const Triangle3d a = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    SCOPED_TRACE(scale);
+    Triangle3d s = a, b = a;
+    for (Vector3d& p : s) p *= scale;
+    for (Vector3d& p : b) p = p * scale + Vector3d(0, 0, 1e-9 * scale);
+    EXPECT_FALSE(TrianglesIntersect(s, b, 0.5e-9 * scale));
+    EXPECT_TRUE(TrianglesIntersect(s, b, 2e-9 * scale));
+  }
+}
+
+// A direction parallel to the separating gap never closes it: the interval
+// is empty, and a zero direction gives all t or none.
+TEST(TriangleSatTest, SweepParallelToGapIsEmpty) {
+  const Triangle3d a = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  Triangle3d b = a;
+  for (Vector3d& p : b) p.z() += 1;
+  EXPECT_TRUE(SweptIntersection(a, b, Vector3d(1, 0, 0), 0).empty());
+  EXPECT_TRUE(SweptIntersection(a, b, Vector3d::Zero(), 0).empty());
+  const Interval all = SweptIntersection(a, a, Vector3d::Zero(), 0);
+  EXPECT_TRUE(all.Contains(-1e300) && all.Contains(1e300));
+  const Interval down = SweptIntersection(a, b, Vector3d(0, 0, -1), 0);
+  EXPECT_DOUBLE_EQ(down.lo, 1.0);
+  EXPECT_DOUBLE_EQ(down.hi, 1.0);
+}
+
+}  // namespace
+}  // namespace hs
