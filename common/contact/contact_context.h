@@ -1,0 +1,35 @@
+#pragma once
+// Internal to common/contact: what every reconstruction method starts from.
+// Everything is in the fixed object's frame F (shared/ALGORITHM.md).
+
+#include <vector>
+
+#include "common/collision/collision_model.h"
+#include "common/collision/triangle_pairs.h"
+#include "common/collision/triangle_sat.h"
+#include "common/hds/haptic_object.h"
+
+namespace hs {
+
+struct ContactContext {
+  const HapticObject& moving;
+  const CollisionModel& moving_model;
+  const HapticObject& fixed;
+  const CollisionModel& fixed_model;
+  /// Pose of the moving object M in F's frame.
+  Isometry3d X_FM;
+  /// Unit direction of M's motion relative to F, in F's frame.
+  Vector3d direction_F;
+  /// Touching distance, metres.
+  double tolerance_m = 0;
+  /// Face pairs (a: face of M, b: face of F) intersecting within the
+  /// tolerance at the current pose; not empty.
+  std::vector<TrianglePair> pairs;
+
+  /// Face `f` of M, in F's frame, at the current pose.
+  Triangle3d MovingTriangle(FaceId f) const;
+  /// Face `f` of F, in F's frame.
+  Triangle3d FixedTriangle(FaceId f) const;
+};
+
+}  // namespace hs

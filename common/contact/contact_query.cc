@@ -1,0 +1,120 @@
+#include "common/contact/contact_query.h"
+
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "common/collision/triangle_pairs.h"
+#include "common/contact/contact_context.h"
+#include "common/contact/paper_method.h"
+#include "common/contact/sweep_method.h"
+#include "common/core/check.h"
+#include "common/core/status_macros.h"
+
+namespace hs {
+namespace {
+
+absl::Status ValidatePose(const Isometry3d& X, const char* name) {
+  if (!X.matrix().allFinite()) {
+    return absl::InvalidArgumentError(absl::StrCat(name, " pose is not finite"));
+  }
+  const Matrix3d R = X.linear();
+  if (!(R.transpose() * R).isIdentity(1e-9) || R.determinant() < 0) {
+    return absl::InvalidArgumentError(absl::StrCat(name, " pose rotation is not a rotation"));
+  }
+  return absl::OkStatus();
+}
+
+AlignedBox3d WorldBox(const PosedObject& o) {
+  AlignedBox3d world;
+  const AlignedBox3d& local = o.object->bounding_box();
+  for (int corner = 0; corner < 8; ++corner) {
+    world.extend(o.X_WO * local.corner(static_cast<AlignedBox3d::CornerType>(corner)));
+  }
+  return world;
+}
+
+// With no motion to reverse, push back against the fixed faces the moving
+// object is in: D points into F, opposite their mean outward normal; failing
+// that, from M's centre toward F's.
+Vector3d FallbackDirection(const ContactContext& c) {
+  Vector3d sum = Vector3d::Zero();
+  for (const TrianglePair& pair : c.pairs) {
+    const Triangle3d t = c.FixedTriangle(pair.b);
+    const Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+    if (n.squaredNorm() > 0) sum -= n.normalized();
+  }
+  if (sum.squaredNorm() > 1e-24) return sum.normalized();
+  const Vector3d towards = c.fixed.bounding_box().center() - c.X_FM * c.moving.bounding_box().center();
+  return towards.squaredNorm() > 0 ? towards.normalized() : Vector3d::UnitZ();
+}
+
+ContactSet ToWorld(ContactSet set, const Isometry3d& X_WF) {
+  const Matrix3d R = X_WF.linear();
+  set.direction_W = R * set.direction_W;
+  set.reversing_vector_W = R * set.reversing_vector_W;
+  set.normal_W = R * set.normal_W;
+  for (ContactPoint& p : set.points) p.p_WC = X_WF * p.p_WC;
+  return set;
+}
+
+}  // namespace
+
+Triangle3d ContactContext::MovingTriangle(FaceId f) const {
+  const auto& v = moving.face(f).vertices;
+  return {X_FM * moving.position(v[0]), X_FM * moving.position(v[1]),
+          X_FM * moving.position(v[2])};
+}
+
+Triangle3d ContactContext::FixedTriangle(FaceId f) const {
+  const auto& v = fixed.face(f).vertices;
+  return {fixed.position(v[0]), fixed.position(v[1]), fixed.position(v[2])};
+}
+
+absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
+                                          const ContactQuery& query) {
+  HS_CHECK(moving.object && moving.model && fixed.object && fixed.model);
+  HS_RETURN_IF_ERROR(ValidatePose(moving.X_WO, "moving object"));
+  HS_RETURN_IF_ERROR(ValidatePose(fixed.X_WO, "fixed object"));
+  if (!query.direction_W.allFinite()) {
+    return absl::InvalidArgumentError("direction is not finite");
+  }
+  if (!(std::isfinite(query.relative_tolerance) && query.relative_tolerance >= 0)) {
+    return absl::InvalidArgumentError("relative tolerance must be finite and >= 0");
+  }
+  if (moving.model->bv_type() != fixed.model->bv_type()) {
+    return absl::InvalidArgumentError("the two collision models use different bounding volumes");
+  }
+  AlignedBox3d pair_box = WorldBox(moving);
+  pair_box.extend(WorldBox(fixed));
+  const double tolerance = query.relative_tolerance * pair_box.diagonal().norm();
+  if (tolerance > moving.model->margin_m() + fixed.model->margin_m()) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "tolerance ", tolerance, " m exceeds the collision models' margins (",
+        moving.model->margin_m() + fixed.model->margin_m(), " m); build them with larger ones"));
+  }
+
+  const Isometry3d X_FW = fixed.X_WO.inverse();
+  ContactContext context{*moving.object, *moving.model, *fixed.object, *fixed.model,
+                         X_FW * moving.X_WO, Vector3d::Zero(), tolerance, {}};
+  FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
+                            tolerance, context.pairs);
+  const Vector3d direction_F = X_FW.linear() * query.direction_W;
+  // Shorter than this, the square of the length underflows: no direction.
+  const bool no_direction = !(direction_F.squaredNorm() > 1e-300);
+  ContactSet set;
+  set.method = query.method;
+  set.tolerance_m = tolerance;
+  if (context.pairs.empty()) {
+    set.direction_W = no_direction ? Vector3d::Zero() : query.direction_W.normalized();
+    return set;
+  }
+  context.direction_F = no_direction ? FallbackDirection(context) : direction_F.normalized();
+  set = query.method == ContactMethod::kPaper2d ? ReconstructByProjection(context)
+                                                : ReconstructBySweep(context);
+  set.method = query.method;
+  set.tolerance_m = tolerance;
+  set.fallback = set.fallback || no_direction;
+  return ToWorld(std::move(set), fixed.X_WO);
+}
+
+}  // namespace hs

@@ -1,0 +1,39 @@
+#pragma once
+// Contact reconstruction for one moving and one fixed object.
+
+#include "absl/status/statusor.h"
+#include "common/collision/collision_model.h"
+#include "common/contact/contact_set.h"
+#include "common/hds/haptic_object.h"
+
+namespace hs {
+
+/// One object as contact reconstruction sees it: its HDS, its hierarchy
+/// (built from that HDS and in sync with it), and its pose in the world.
+struct PosedObject {
+  const HapticObject* object = nullptr;
+  const CollisionModel* model = nullptr;
+  /// X_WO: object frame to world, metres.
+  Isometry3d X_WO = Isometry3d::Identity();
+};
+
+struct ContactQuery {
+  /// Direction of the moving object's motion relative to the fixed one over
+  /// the last step, world frame. Any length (it is normalized); zero makes
+  /// the reconstruction estimate one and set ContactSet::fallback.
+  Vector3d direction_W = Vector3d::Zero();
+  ContactMethod method = ContactMethod::kSweep3d;
+  /// Touching tolerance relative to the diagonal of the pair's bounding box.
+  /// Finite, >= 0, and within what the collision models were built for.
+  double relative_tolerance = 1e-9;
+};
+
+/// Reconstructs the contact of `moving` with `fixed` along the query's
+/// direction. colliding == false when they neither touch nor penetrate.
+/// INVALID_ARGUMENT when a pose or the direction is not finite, a rotation
+/// is not orthonormal, the tolerance is out of range, or the two models do
+/// not share a bounding volume type.
+absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
+                                          const ContactQuery& query);
+
+}  // namespace hs

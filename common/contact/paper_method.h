@@ -1,0 +1,15 @@
+#pragma once
+// Internal to common/contact: the paper's contact reconstruction by
+// projection onto the xy, yz and xz planes (s.4 and appendix), as
+// shared/ALGORITHM.md reads it.
+
+#include "common/contact/contact_context.h"
+#include "common/contact/contact_set.h"
+
+namespace hs {
+
+/// Runs the paper's method on `context` and returns its ContactSet with every
+/// vector and point in F's frame (the caller maps them to world).
+ContactSet ReconstructByProjection(const ContactContext& context);
+
+}  // namespace hs
