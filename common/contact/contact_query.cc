@@ -44,7 +44,8 @@ Vector3d FallbackDirection(const ContactContext& c) {
     if (n.squaredNorm() > 0) sum -= n.normalized();
   }
   if (sum.squaredNorm() > 1e-24) return sum.normalized();
-  const Vector3d towards = c.fixed.bounding_box().center() - c.X_FM * c.moving.bounding_box().center();
+  const Vector3d towards =
+      c.fixed.bounding_box().center() - c.X_FM * c.moving.bounding_box().center();
   return towards.squaredNorm() > 0 ? towards.normalized() : Vector3d::UnitZ();
 }
 
@@ -61,8 +62,7 @@ ContactSet ToWorld(ContactSet set, const Isometry3d& X_WF) {
 
 Triangle3d ContactContext::MovingTriangle(FaceId f) const {
   const auto& v = moving.face(f).vertices;
-  return {X_FM * moving.position(v[0]), X_FM * moving.position(v[1]),
-          X_FM * moving.position(v[2])};
+  return {X_FM * moving.position(v[0]), X_FM * moving.position(v[1]), X_FM * moving.position(v[2])};
 }
 
 Triangle3d ContactContext::FixedTriangle(FaceId f) const {
@@ -94,8 +94,8 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   }
 
   const Isometry3d X_FW = fixed.X_WO.inverse();
-  ContactContext context{*moving.object, *moving.model, *fixed.object, *fixed.model,
-                         X_FW * moving.X_WO, Vector3d::Zero(), tolerance, {}};
+  ContactContext context{*moving.object,     *moving.model,    *fixed.object, *fixed.model,
+                         X_FW * moving.X_WO, Vector3d::Zero(), tolerance,     {}};
   FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
                             tolerance, context.pairs);
   const Vector3d direction_F = X_FW.linear() * query.direction_W;

@@ -1,12 +1,81 @@
 #include "common/contact/sweep_method.h"
 
-namespace hs {
+#include <algorithm>
+#include <set>
 
-// Placeholder until the method lands: reports touching with zero depth.
-ContactSet ReconstructBySweep(const ContactContext& context) {
+#include "common/collision/triangle_pairs.h"
+#include "common/contact/contact_features.h"
+
+namespace hs {
+namespace {
+
+// A query finds new pairs only while the cover grows; each round adds at
+// least one pair, and real scenes settle in two or three rounds.
+constexpr int kMaxRounds = 64;
+
+Isometry3d MovedBack(const ContactContext& c, double t) {
+  Isometry3d X = c.X_FM;
+  X.pretranslate(-t * c.direction_F);
+  return X;
+}
+
+}  // namespace
+
+ContactSet ReconstructBySweep(const ContactContext& c) {
+  const Vector3d& D = c.direction_F;
+  // t* = the end of the run of sweep intervals that covers t = 0, where
+  // pair (a, b) intersects over the interval of t in which a - t D meets b.
+  // Intervals are exact (zero margin); runs may chain across gaps below the
+  // tolerance, which count as touching.
+  std::set<TrianglePair> known;
+  std::vector<Interval> intervals;
+  auto add_pairs = [&](const std::vector<TrianglePair>& pairs) {
+    for (const TrianglePair& pair : pairs) {
+      if (!known.insert(pair).second) continue;
+      const auto& v = c.moving.face(pair.a).vertices;
+      // Sweep intervals are translation-invariant, so take a at t = 0.
+      const Triangle3d a = {c.X_FM * c.moving.position(v[0]), c.X_FM * c.moving.position(v[1]),
+                            c.X_FM * c.moving.position(v[2])};
+      const Interval interval = SweptIntersection(a, c.FixedTriangle(pair.b), D, 0.0);
+      if (!interval.empty()) intervals.push_back(interval);
+    }
+  };
+  add_pairs(c.pairs);
+
+  double t_star = 0;
+  std::vector<TrianglePair> at_t_star = c.pairs;
+  bool settled = false;
+  for (int round = 0; round < kMaxRounds && !settled; ++round) {
+    std::sort(intervals.begin(), intervals.end(),
+              [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
+    const double before = t_star;
+    for (const Interval& interval : intervals) {
+      if (interval.lo <= t_star + c.tolerance_m && interval.hi > t_star) t_star = interval.hi;
+    }
+    if (round > 0 && t_star == before) {
+      settled = true;
+      break;
+    }
+    at_t_star.clear();
+    FindIntersectingTriangles(c.moving_model, MovedBack(c, t_star), c.fixed_model,
+                              Isometry3d::Identity(), c.tolerance_m, at_t_star);
+    const size_t known_before = known.size();
+    add_pairs(at_t_star);
+    settled = known.size() == known_before;
+  }
+
   ContactSet set;
   set.colliding = true;
-  set.direction_W = context.direction_F;
+  set.depth_m = t_star;
+  set.penetrating = t_star > c.tolerance_m;
+  set.direction_W = D;
+  set.reversing_vector_W = -t_star * D;
+  set.fallback = !settled;
+  const LocatedContacts located = LocateContacts(c, MovedBack(c, t_star), at_t_star);
+  set.moving = located.moving;
+  set.fixed = located.fixed;
+  set.points = located.points;
+  set.normal_W = located.normal_F;
   return set;
 }
 

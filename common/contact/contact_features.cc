@@ -1,0 +1,130 @@
+#include "common/contact/contact_features.h"
+
+#include <algorithm>
+#include <map>
+
+#include "common/contact/closest_points.h"
+#include "common/contact/side_contact.h"
+
+namespace hs {
+namespace {
+
+// One object's face in F's frame, with its ids.
+struct PosedFace {
+  const HapticObject* object;
+  FaceId id;
+  Triangle3d corners;
+
+  VertexId vertex(int i) const { return object->face(id).vertices[i]; }
+  // Edge i joins corners i and i + 1.
+  EdgeId edge(int i) const { return object->face(id).edges[i]; }
+};
+
+Vector3d UnitNormal(const Triangle3d& t) {
+  const Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+  return n.squaredNorm() > 0 ? n.normalized() : Vector3d::Zero();
+}
+
+// The lowest-dimensional feature of `face` within `tolerance` of point `p`
+// lying on (within tolerance of) it.
+Feature FeatureHolding(const PosedFace& face, const Vector3d& p, double tolerance) {
+  for (int i = 0; i < 3; ++i) {
+    if ((face.corners[i] - p).norm() <= tolerance) return {FeatureKind::kVertex, face.vertex(i)};
+  }
+  for (int i = 0; i < 3; ++i) {
+    const Vector3d q = ClosestPointOnSegment(p, face.corners[i], face.corners[(i + 1) % 3]);
+    if ((q - p).norm() <= tolerance) return {FeatureKind::kEdge, face.edge(i)};
+  }
+  return {FeatureKind::kFace, face.id};
+}
+
+class Locator {
+ public:
+  Locator(const ContactContext& c, const Isometry3d& X_FM) : c_(c), X_FM_(X_FM) {}
+
+  void AddPair(const TrianglePair& pair) {
+    const auto& mv = c_.moving.face(pair.a).vertices;
+    const PosedFace m{&c_.moving,
+                      pair.a,
+                      {X_FM_ * c_.moving.position(mv[0]), X_FM_ * c_.moving.position(mv[1]),
+                       X_FM_ * c_.moving.position(mv[2])}};
+    const PosedFace f{&c_.fixed, pair.b, c_.FixedTriangle(pair.b)};
+    const double tol = c_.tolerance_m;
+    for (int i = 0; i < 3; ++i) {
+      const Vector3d& p = m.corners[i];
+      const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
+      if ((q - p).norm() <= tol) {
+        Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol),
+            UnitNormal(f.corners));
+      }
+    }
+    for (int j = 0; j < 3; ++j) {
+      const Vector3d& p = f.corners[j];
+      const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
+      if ((q - p).norm() <= tol) {
+        Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)},
+            -UnitNormal(m.corners));
+      }
+    }
+    for (int i = 0; i < 3; ++i) {
+      const Vector3d &p1 = m.corners[i], &q1 = m.corners[(i + 1) % 3];
+      for (int j = 0; j < 3; ++j) {
+        const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
+        const SegmentClosest s = ClosestPointsOfSegments(p1, q1, p2, q2);
+        if ((s.on_first - s.on_second).norm() > tol) continue;
+        // Ends within the tolerance are vertex contacts, found above.
+        if (std::min(s.s, 1 - s.s) * (q1 - p1).norm() <= tol) continue;
+        if (std::min(s.t, 1 - s.t) * (q2 - p2).norm() <= tol) continue;
+        const Vector3d n = (q1 - p1).cross(q2 - p2);
+        Add((s.on_first + s.on_second) / 2, {FeatureKind::kEdge, m.edge(i)},
+            {FeatureKind::kEdge, f.edge(j)}, n.squaredNorm() > 0 ? n.normalized() : n);
+      }
+    }
+  }
+
+  LocatedContacts Finish() const {
+    LocatedContacts out;
+    std::vector<VertexId> vertices[2];
+    std::vector<EdgeId> edges[2];
+    std::vector<FaceId> faces[2];
+    auto collect = [&](int side, const Feature& feature) {
+      if (feature.kind == FeatureKind::kVertex) vertices[side].push_back(feature.id);
+      if (feature.kind == FeatureKind::kEdge) edges[side].push_back(feature.id);
+      if (feature.kind == FeatureKind::kFace) faces[side].push_back(feature.id);
+    };
+    Vector3d normal_sum = Vector3d::Zero();
+    for (const auto& [features, entry] : points_) {
+      out.points.push_back(ContactPoint{entry.first, features.first, features.second});
+      collect(0, features.first);
+      collect(1, features.second);
+      normal_sum += entry.second;
+    }
+    out.moving = AggregateSide(c_.moving, vertices[0], edges[0], faces[0]);
+    out.fixed = AggregateSide(c_.fixed, vertices[1], edges[1], faces[1]);
+    out.normal_F = normal_sum.squaredNorm() > 1e-24 ? normal_sum.normalized() : -c_.direction_F;
+    return out;
+  }
+
+ private:
+  // Keeps the first point of each feature pair; normals are turned to
+  // oppose the motion (a soup has no reliable outside).
+  void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, Vector3d normal) {
+    if (normal.dot(c_.direction_F) > 0) normal = -normal;
+    points_.try_emplace({moving, fixed}, p, normal);
+  }
+
+  const ContactContext& c_;
+  const Isometry3d X_FM_;
+  std::map<std::pair<Feature, Feature>, std::pair<Vector3d, Vector3d>> points_;
+};
+
+}  // namespace
+
+LocatedContacts LocateContacts(const ContactContext& context, const Isometry3d& X_FM,
+                               std::span<const TrianglePair> pairs) {
+  Locator locator(context, X_FM);
+  for (const TrianglePair& pair : pairs) locator.AddPair(pair);
+  return locator.Finish();
+}
+
+}  // namespace hs
