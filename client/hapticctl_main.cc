@@ -2,6 +2,7 @@
 // Only wiring: each subcommand lives in its own *_command.cc.
 
 #include "CLI/CLI.hpp"
+#include "client/contact_command.h"
 #include "client/exit_codes.h"
 #include "client/inspect_command.h"
 
@@ -10,6 +11,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = hs::cli::kExitOk;
   hs::cli::AddInspectCommand(app, exit_code);
+  hs::cli::AddContactCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
