@@ -28,14 +28,54 @@ bool Overlap(const Matrix3d& R, const Vector3d& T, const fcl::AABBd& bv_a, const
   return a.overlap(b);
 }
 
+// A volume holding everything `bv` sweeps through when moved by -v for a
+// parameter in [0, 1]: moved by -v/2 and grown by half of v (exactly along
+// box axes, by |v|/2 for spheres and swept rectangles).
+fcl::OBBd Swept(const fcl::OBBd& bv, const Vector3d& v) {
+  fcl::OBBd out = bv;
+  out.To -= v / 2;
+  out.extent += (bv.axis.transpose() * v).cwiseAbs() / 2;
+  return out;
+}
+fcl::RSSd Swept(const fcl::RSSd& bv, const Vector3d& v) {
+  fcl::RSSd out = bv;
+  out.To -= v / 2;
+  out.r += v.norm() / 2;
+  return out;
+}
+fcl::OBBRSSd Swept(const fcl::OBBRSSd& bv, const Vector3d& v) {
+  fcl::OBBRSSd out;
+  out.obb = Swept(bv.obb, v);
+  out.rss = Swept(bv.rss, v);
+  return out;
+}
+fcl::kIOSd Swept(const fcl::kIOSd& bv, const Vector3d& v) {
+  fcl::kIOSd out = bv;
+  for (unsigned i = 0; i < out.num_spheres; ++i) {
+    out.spheres[i].o -= v / 2;
+    out.spheres[i].r += v.norm() / 2;
+  }
+  out.obb = Swept(bv.obb, v);
+  return out;
+}
+fcl::AABBd Swept(const fcl::AABBd& bv, const Vector3d& v) {
+  fcl::AABBd out = bv;
+  out.min_ = bv.min_.cwiseMin(bv.min_ - v);
+  out.max_ = bv.max_.cwiseMax(bv.max_ - v);
+  return out;
+}
+
 // FCL's traversal nodes dispatch every test through virtual calls and, for
 // AABB hierarchies, copy both models on each query; this loop walks the
 // same FCL hierarchies with the same FCL volume tests, without either cost,
-// and with our exact SAT triangle test at the leaves.
+// and with our exact SAT triangle test at the leaves. With a `sweep_A`
+// (A's motion in A's frame), A's volumes are swept along it and the leaf
+// test asks whether the sweep interval meets the motion.
 template <typename BV>
 int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
                  const fcl::BVHModel<BV>& mb, const CollisionModel::Impl& ib,
-                 const Isometry3d& X_AB, double margin, std::vector<TrianglePair>& pairs) {
+                 const Isometry3d& X_AB, const Vector3d* sweep_A, double margin,
+                 std::vector<TrianglePair>& pairs) {
   const Matrix3d R = X_AB.linear();
   const Vector3d T = X_AB.translation();
   int64_t tests = 0;
@@ -49,14 +89,19 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     const fcl::BVNode<BV>& na = ma.getBV(i);
     const fcl::BVNode<BV>& nb = mb.getBV(j);
     ++tests;
-    if (!Overlap(R, T, na.bv, nb.bv)) continue;
+    if (!(sweep_A ? Overlap(R, T, Swept(na.bv, *sweep_A), nb.bv) : Overlap(R, T, na.bv, nb.bv))) {
+      continue;
+    }
     const bool leaf_a = na.isLeaf(), leaf_b = nb.isLeaf();
     if (leaf_a && leaf_b) {
       const int fa = na.primitiveId(), fb = nb.primitiveId();
       if (ia.degenerate[fa] || ib.degenerate[fb]) continue;
       Triangle3d tb = ib.triangle(fb);
       for (Vector3d& p : tb) p = X_AB * p;
-      if (TrianglesIntersect(ia.triangle(fa), tb, margin)) pairs.push_back({fa, fb});
+      const Triangle3d ta = ia.triangle(fa);
+      const bool hit = sweep_A ? SweptIntersection(ta, tb, *sweep_A, margin).Overlaps(0, 1)
+                               : TrianglesIntersect(ta, tb, margin);
+      if (hit) pairs.push_back({fa, fb});
       continue;
     }
     if (leaf_b || (!leaf_a && na.bv.size() >= nb.bv.size())) {
@@ -70,23 +115,37 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
   return tests;
 }
 
-}  // namespace
-
-int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
-                                  const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
-                                  std::vector<TrianglePair>& pairs) {
+int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sweep_W,
+             const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
+             std::vector<TrianglePair>& pairs) {
   HS_CHECK(a.bv_type() == b.bv_type());
   HS_CHECK(margin_m <= a.margin_m() + b.margin_m());
   const Isometry3d X_AB = X_WA.inverse() * X_WB;
+  const Vector3d sweep_A = sweep_W ? Vector3d(X_WA.linear().transpose() * *sweep_W) : Vector3d();
   const CollisionModel::Impl& ia = a.impl();
   const CollisionModel::Impl& ib = b.impl();
   return std::visit(
       [&](const auto& ma) -> int64_t {
         using Model = typename std::decay_t<decltype(ma)>::element_type;
         const auto& mb = std::get<std::shared_ptr<Model>>(ib.bvh);
-        return Traverse(*ma, ia, *mb, ib, X_AB, margin_m, pairs);
+        return Traverse(*ma, ia, *mb, ib, X_AB, sweep_W ? &sweep_A : nullptr, margin_m, pairs);
       },
       ia.bvh);
+}
+
+}  // namespace
+
+int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
+                                  const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
+                                  std::vector<TrianglePair>& pairs) {
+  return Find(a, X_WA, nullptr, b, X_WB, margin_m, pairs);
+}
+
+int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
+                               const Vector3d& sweep_W, const CollisionModel& b,
+                               const Isometry3d& X_WB, double margin_m,
+                               std::vector<TrianglePair>& pairs) {
+  return Find(a, X_WA, &sweep_W, b, X_WB, margin_m, pairs);
 }
 
 }  // namespace hs

@@ -26,4 +26,14 @@ int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_W
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
                                   std::vector<TrianglePair>& pairs);
 
+/// Like FindIntersectingTriangles for a translating A: appends every face
+/// pair that intersects (within `margin_m`) at some instant while A moves in
+/// a straight line from X_WA translated by -sweep_W to X_WA (sweep_W: world
+/// frame, metres). Exact for the motion, so a thin object passed through in
+/// one step is found. Returns the number of bounding-volume tests made.
+int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
+                               const Vector3d& sweep_W, const CollisionModel& b,
+                               const Isometry3d& X_WB, double margin_m,
+                               std::vector<TrianglePair>& pairs);
+
 }  // namespace hs

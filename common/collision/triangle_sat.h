@@ -24,6 +24,8 @@ struct Interval {
   double hi = -std::numeric_limits<double>::infinity();
   bool empty() const { return lo > hi; }
   bool Contains(double t) const { return lo <= t && t <= hi; }
+  /// True when the interval shares a point with [from, to].
+  bool Overlaps(double from, double to) const { return lo <= to && from <= hi && !empty(); }
 };
 
 /// True when triangles `a` and `b` (same frame) intersect or are closer than

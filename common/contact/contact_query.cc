@@ -49,6 +49,23 @@ Vector3d FallbackDirection(const ContactContext& c) {
   return towards.squaredNorm() > 0 ? towards.normalized() : Vector3d::UnitZ();
 }
 
+// The largest t in [0, 1] at which a pair of `swept` (found for M moving by
+// `step_F` into its current pose) intersects: M touched F first at the
+// fraction 1 - t of the step. Exact intervals (zero margin), so that M
+// moved back by t touches F within any tolerance; none when only near
+// misses were found.
+std::optional<double> LatestTouchBack(const ContactContext& c,
+                                      const std::vector<TrianglePair>& swept,
+                                      const Vector3d& step_F) {
+  std::optional<double> latest;
+  for (const TrianglePair& pair : swept) {
+    const Interval i =
+        SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), step_F, 0.0);
+    if (i.Overlaps(0, 1)) latest = std::max(latest.value_or(0.0), std::min(i.hi, 1.0));
+  }
+  return latest;
+}
+
 ContactSet ToWorld(ContactSet set, const Isometry3d& X_WF) {
   const Matrix3d R = X_WF.linear();
   set.direction_W = R * set.direction_W;
@@ -104,6 +121,26 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   ContactSet set;
   set.method = query.method;
   set.tolerance_m = tolerance;
+  // Continuous: look along the whole step for a first touch.
+  double back = 0;  // fraction of the step to move back to the first touch
+  std::optional<double> time_of_impact;
+  if (query.continuous && !no_direction) {
+    std::vector<TrianglePair> swept;
+    FindSweptTrianglePairs(*moving.model, context.X_FM, direction_F, *fixed.model,
+                           Isometry3d::Identity(), tolerance, swept);
+    if (const std::optional<double> latest = LatestTouchBack(context, swept, direction_F)) {
+      back = *latest;
+      time_of_impact = 1 - back;
+    }
+  }
+  if (context.pairs.empty() && time_of_impact) {
+    // Passed through: reconstruct where it first touched.
+    context.X_FM.pretranslate(-back * direction_F);
+    FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
+                              tolerance, context.pairs);
+  } else {
+    back = 0;
+  }
   if (context.pairs.empty()) {
     set.direction_W = no_direction ? Vector3d::Zero() : query.direction_W.normalized();
     return set;
@@ -111,6 +148,11 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   context.direction_F = no_direction ? FallbackDirection(context) : direction_F.normalized();
   set = query.method == ContactMethod::kPaper2d ? ReconstructByProjection(context)
                                                 : ReconstructBySweep(context);
+  const double extra = back * direction_F.norm();
+  set.depth_m += extra;
+  set.reversing_vector_W -= extra * context.direction_F;
+  set.penetrating = set.penetrating || extra > tolerance;
+  set.time_of_impact = time_of_impact;
   set.method = query.method;
   set.tolerance_m = tolerance;
   set.fallback = set.fallback || no_direction;

@@ -23,6 +23,11 @@ struct ContactQuery {
   /// the reconstruction estimate one and set ContactSet::fallback.
   Vector3d direction_W = Vector3d::Zero();
   ContactMethod method = ContactMethod::kSweep3d;
+  /// Continuous collision: direction_W is then the whole relative motion of
+  /// the last step (its length in metres matters), and contact anywhere
+  /// along it is found, so a thin object passed through in one step is
+  /// caught (paper fig. 3 c) and the time of impact reported.
+  bool continuous = false;
   /// Touching tolerance relative to the diagonal of the pair's bounding box.
   /// Finite, >= 0, and within what the collision models were built for.
   double relative_tolerance = 1e-9;

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "common/core/types.h"
@@ -79,6 +80,11 @@ struct ContactSet {
   bool singular_case = false;
   /// The direction was zero, so an estimated one was used.
   bool fallback = false;
+  /// Continuous queries: the fraction of the last step, in [0, 1], at which
+  /// M first touched F. When M touched F during the step but no longer does
+  /// (it passed through), depth and reversing vector lead back to that
+  /// first touch. Unset when not continuous or no touch during the step.
+  std::optional<double> time_of_impact;
   /// Paper method: the reversing distance found in each projection plane
   /// (xy, yz, xz), metres; +inf where the plane was unusable or found none.
   std::array<double, 3> plane_depths_m = {std::numeric_limits<double>::infinity(),

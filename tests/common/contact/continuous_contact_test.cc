@@ -1,0 +1,69 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "common/contact/contact_query.h"
+#include "common/model/procedural.h"
+#include "tests/common/contact/contact_test_bodies.h"
+
+namespace hs {
+namespace {
+
+using testing_bodies::MakeBody;
+using testing_bodies::Translation;
+
+// A 0.1 m cube steps from z = 0.5 to z = -0.5 through a 0.01 m plate
+// (paper fig. 3 c). A discrete query sees nothing; a continuous one finds
+// the first touch at 0.445 of the step (bottom at 0.055 - 0.05 = 0.005, the
+// plate's top) and leads the cube back to it, face on face.
+TEST(ContinuousContactTest, ThinPlatePassedThroughInOneStep) {
+  const auto cube = MakeBody(MakeBox(Vector3d(0.1, 0.1, 0.1)), Translation(0.3, 0.2, -0.5));
+  const auto plate = MakeBody(MakeBox(Vector3d(2, 2, 0.01)));
+  const Vector3d step(0, 0, -1);
+  ContactQuery query{.direction_W = step};
+  const ContactSet discrete = *ComputeContact(cube->posed(), plate->posed(), query);
+  EXPECT_FALSE(discrete.colliding);
+  query.continuous = true;
+  const ContactSet set = *ComputeContact(cube->posed(), plate->posed(), query);
+  ASSERT_TRUE(set.colliding);
+  EXPECT_TRUE(set.penetrating);
+  ASSERT_TRUE(set.time_of_impact.has_value());
+  // Exact up to roundings of coordinates of size 1.
+  EXPECT_NEAR(*set.time_of_impact, 0.445, 1e-12);
+  EXPECT_NEAR(set.depth_m, 0.555, 1e-12);
+  EXPECT_TRUE(set.reversing_vector_W.isApprox(Vector3d(0, 0, 0.555), 1e-12));
+  EXPECT_EQ(set.moving.kind, FeatureKind::kFace);
+  EXPECT_THAT(set.moving.faces, ::testing::ElementsAre(0, 1));  // the cube's bottom side
+  EXPECT_EQ(set.fixed.kind, FeatureKind::kFace);
+}
+
+// When the objects already penetrate at the end of the step, the continuous
+// query keeps the discrete depth and adds the time of first touch.
+TEST(ContinuousContactTest, PenetratingStepReportsTimeOfImpact) {
+  const auto cube =
+      MakeBody(MakeBox(Vector3d(0.1, 0.1, 0.1)), Translation(0, 0, 0.05 + 0.005 - 0.02));
+  const auto plate = MakeBody(MakeBox(Vector3d(2, 2, 0.01)));
+  const ContactQuery discrete{.direction_W = Vector3d(0, 0, -0.1)};
+  ContactQuery continuous = discrete;
+  continuous.continuous = true;
+  const ContactSet a = *ComputeContact(cube->posed(), plate->posed(), discrete);
+  const ContactSet b = *ComputeContact(cube->posed(), plate->posed(), continuous);
+  EXPECT_NEAR(a.depth_m, 0.02, 1e-12);
+  EXPECT_EQ(a.depth_m, b.depth_m);
+  EXPECT_FALSE(a.time_of_impact.has_value());
+  // It touched after 0.08 of the 0.1 m step.
+  EXPECT_NEAR(*b.time_of_impact, 0.8, 1e-12);
+}
+
+// A step that never reaches the object reports no contact and no time.
+TEST(ContinuousContactTest, MissIsNoContact) {
+  const auto cube = MakeBody(MakeBox(Vector3d(0.1, 0.1, 0.1)), Translation(3, 0, -0.5));
+  const auto plate = MakeBody(MakeBox(Vector3d(2, 2, 0.01)));
+  const ContactSet set =
+      *ComputeContact(cube->posed(), plate->posed(),
+                      ContactQuery{.direction_W = Vector3d(0, 0, -1), .continuous = true});
+  EXPECT_FALSE(set.colliding);
+  EXPECT_FALSE(set.time_of_impact.has_value());
+}
+
+}  // namespace
+}  // namespace hs
