@@ -41,6 +41,7 @@ absl::StatusOr<ContactSet> Compute(const ContactArgs& args) {
   query.direction_W = *direction;
   query.method = args.method == "paper" ? ContactMethod::kPaper2d : ContactMethod::kSweep3d;
   query.relative_tolerance = args.relative_tolerance;
+  query.continuous = args.continuous;
   return ComputeContact({&moving->object, &moving_model, *X_WM},
                         {&fixed->object, &fixed_model, *X_WF}, query);
 }
@@ -59,6 +60,7 @@ void PrintText(const ContactSet& set, std::ostream& out) {
       << " vertices, " << set.fixed.edges.size() << " edges, " << set.fixed.faces.size()
       << " faces)\n"
       << "points: " << set.points.size() << "\n";
+  if (set.time_of_impact) out << "time_of_impact: " << *set.time_of_impact << "\n";
   if (set.singular_case) out << "singular case: yes\n";
   if (set.fallback) out << "fallback: yes\n";
 }
@@ -97,6 +99,8 @@ void AddContactCommand(CLI::App& app, int& exit_code) {
                   "Touching tolerance relative to the pair's box diagonal (<= 1e-6)");
   cmd->add_option("--unit-scale", args->unit_scale, "Metres per file unit")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--continuous", args->continuous,
+                "The direction is the whole last step (m): find contact along it");
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->callback([args, &exit_code] { exit_code = RunContact(*args, std::cout, std::cerr); });
 }

@@ -22,6 +22,8 @@ struct ContactArgs {
   /// Bounding volume name (obbrss, obb, rss, kios, aabb).
   std::string bv = "obbrss";
   double relative_tolerance = 1e-9;
+  /// Treat the direction as the whole last step and look along it.
+  bool continuous = false;
   double unit_scale = 1.0;
   bool json = false;
 };

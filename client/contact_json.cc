@@ -55,6 +55,8 @@ nlohmann::ordered_json ContactSetToJson(const ContactSet& set) {
           {"tolerance_m", set.tolerance_m},
           {"singular_case", set.singular_case},
           {"fallback", set.fallback},
+          {"time_of_impact",
+           set.time_of_impact ? nlohmann::ordered_json(*set.time_of_impact) : nullptr},
           {"plane_depths_m", plane_depths},
           {"moving", Side(set.moving)},
           {"fixed", Side(set.fixed)},

@@ -38,6 +38,22 @@ TEST(ContactCommandTest, CubeOnCubeJson) {
   }
 }
 
+// --continuous treats the direction as the whole step: a cube stepping 3 m
+// down through another from 1.5 m above first touches it after 1/6 of it.
+TEST(ContactCommandTest, ContinuousReportsTimeOfImpact) {
+  std::ostringstream out, err;
+  ContactArgs args{.moving_file = kCube,
+                   .fixed_file = kCube,
+                   .pose_moving = "0.2,0.3,-1.5,0,0,0",
+                   .direction = "0,0,-3",
+                   .continuous = true,
+                   .json = true};
+  ASSERT_EQ(RunContact(args, out, err), kExitOk) << err.str();
+  const auto j = nlohmann::json::parse(out.str());
+  EXPECT_NEAR(j["time_of_impact"].get<double>(), 1.0 / 6, 1e-12);
+  EXPECT_NEAR(j["depth_m"].get<double>(), 2.5, 1e-12);
+}
+
 // Bad numbers and unknown files fail with a message, never a crash.
 TEST(ContactCommandTest, BadInputFails) {
   auto run = [](ContactArgs args) {
