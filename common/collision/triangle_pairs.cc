@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "common/collision/fcl_bvh.h"
+#include "common/collision/obb_overlap.h"
 #include "common/core/check.h"
 
 namespace hs {
@@ -65,6 +66,43 @@ fcl::AABBd Swept(const fcl::AABBd& bv, const Vector3d& v) {
   return out;
 }
 
+// The box that carries each volume's culling test, for the fast path.
+const fcl::OBBd& CullingBox(const fcl::OBBd& bv) { return bv; }
+const fcl::OBBd& CullingBox(const fcl::OBBRSSd& bv) { return bv.obb; }
+
+// The volume test of one traversal: oriented boxes (OBB, OBBRSS) take the
+// lean cached path, the other volumes FCL's own tests.
+template <typename BV>
+class VolumeTest {
+ public:
+  VolumeTest(const fcl::BVHModel<BV>& mb, const Matrix3d& R, const Vector3d& T,
+             const Vector3d* sweep_A)
+      : R_(R), T_(T), sweep_A_(sweep_A) {
+    if (kFast && !sweep_A) cache().Start(mb.getNumBVs(), R, T);
+  }
+
+  bool Overlap(const BV& a, int j, const BV& b) const {
+    if (sweep_A_) return hs::Overlap(R_, T_, Swept(a, *sweep_A_), b);
+    if constexpr (kFast) {
+      const fcl::OBBd& box_a = CullingBox(a);
+      return !BoxesDisjoint(box_a, box_a.extent.norm(), cache().Get(j, CullingBox(b)));
+    } else {
+      return hs::Overlap(R_, T_, a, b);
+    }
+  }
+
+ private:
+  static constexpr bool kFast = std::is_same_v<BV, fcl::OBBd> || std::is_same_v<BV, fcl::OBBRSSd>;
+  static PlacedBoxCache& cache() {
+    thread_local PlacedBoxCache c;
+    return c;
+  }
+
+  const Matrix3d R_;
+  const Vector3d T_;
+  const Vector3d* sweep_A_;
+};
+
 // FCL's traversal nodes dispatch every test through virtual calls and, for
 // AABB hierarchies, copy both models on each query; this loop walks the
 // same FCL hierarchies with the same FCL volume tests, without either cost,
@@ -78,6 +116,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
                  std::vector<TrianglePair>& pairs) {
   const Matrix3d R = X_AB.linear();
   const Vector3d T = X_AB.translation();
+  const VolumeTest<BV> volumes(mb, R, T, sweep_A);
   int64_t tests = 0;
   // Reused across calls so that a steady stream of queries does not allocate.
   thread_local std::vector<std::pair<int, int>> stack;
@@ -89,9 +128,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     const fcl::BVNode<BV>& na = ma.getBV(i);
     const fcl::BVNode<BV>& nb = mb.getBV(j);
     ++tests;
-    if (!(sweep_A ? Overlap(R, T, Swept(na.bv, *sweep_A), nb.bv) : Overlap(R, T, na.bv, nb.bv))) {
-      continue;
-    }
+    if (!volumes.Overlap(na.bv, j, nb.bv)) continue;
     const bool leaf_a = na.isLeaf(), leaf_b = nb.isLeaf();
     if (leaf_a && leaf_b) {
       const int fa = na.primitiveId(), fb = nb.primitiveId();

@@ -10,7 +10,7 @@ namespace {
 // is a rounding artefact of parallel edges or a flat face, and is skipped.
 constexpr double kAxisRelativeFloor = 1e-12;
 
-// Calls visit(axis, axis_norm) for every usable SAT axis of the pair; stops
+// Calls visit(axis, squared_axis_norm) for every usable SAT axis of the pair; stops
 // early and returns false when visit returns false.
 template <typename Visit>
 bool ForEachAxis(const Triangle3d& a, const Triangle3d& b, Visit&& visit) {
@@ -21,7 +21,7 @@ bool ForEachAxis(const Triangle3d& a, const Triangle3d& b, Visit&& visit) {
   auto try_axis = [&](const Vector3d& axis, double scale_sq) {
     const double norm_sq = axis.squaredNorm();
     if (norm_sq <= kAxisRelativeFloor * kAxisRelativeFloor * scale_sq || norm_sq == 0) return true;
-    return visit(axis, std::sqrt(norm_sq));
+    return visit(axis, norm_sq);
   };
   const double la[3] = {ea[0].squaredNorm(), ea[1].squaredNorm(), ea[2].squaredNorm()};
   const double lb[3] = {eb[0].squaredNorm(), eb[1].squaredNorm(), eb[2].squaredNorm()};
@@ -47,15 +47,36 @@ void Project(const Triangle3d& t, const Vector3d& axis, double& lo, double& hi) 
   hi = std::max({p0, p1, p2});
 }
 
+// True when the gap between [a_lo, a_hi] and [b_lo, b_hi] along an axis of
+// squared length `norm_sq` exceeds `margin` (in metres, so scaled by the
+// axis length); squares avoid a square root per axis.
+bool SeparatedAlong(double a_lo, double a_hi, double b_lo, double b_hi, double norm_sq,
+                    double margin) {
+  const double gap = std::max(a_lo - b_hi, b_lo - a_hi);
+  return gap > 0 && gap * gap > margin * margin * norm_sq;
+}
+
+// Whether all of `t` lies beyond `margin` on one side of the plane through
+// `origin` with normal `n`: the cheap first test of the leaf, which rejects
+// most candidate pairs before the full axis set is built.
+bool BeyondPlane(const Triangle3d& t, const Vector3d& origin, const Vector3d& n, double margin) {
+  const double norm_sq = n.squaredNorm();
+  if (norm_sq == 0) return false;
+  const double d0 = n.dot(t[0] - origin), d1 = n.dot(t[1] - origin), d2 = n.dot(t[2] - origin);
+  const double lo = std::min({d0, d1, d2}), hi = std::max({d0, d1, d2});
+  return SeparatedAlong(lo, hi, 0.0, 0.0, norm_sq, margin);
+}
+
 }  // namespace
 
 bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin) {
-  return ForEachAxis(a, b, [&](const Vector3d& axis, double axis_norm) {
+  if (BeyondPlane(b, a[0], (a[1] - a[0]).cross(a[2] - a[0]), margin)) return false;
+  if (BeyondPlane(a, b[0], (b[1] - b[0]).cross(b[2] - b[0]), margin)) return false;
+  return ForEachAxis(a, b, [&](const Vector3d& axis, double norm_sq) {
     double a_lo, a_hi, b_lo, b_hi;
     Project(a, axis, a_lo, a_hi);
     Project(b, axis, b_lo, b_hi);
-    const double slack = margin * axis_norm;
-    return a_lo <= b_hi + slack && b_lo <= a_hi + slack;
+    return !SeparatedAlong(a_lo, a_hi, b_lo, b_hi, norm_sq, margin);
   });
 }
 
@@ -63,11 +84,11 @@ Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vecto
                            double margin) {
   Interval result{-std::numeric_limits<double>::infinity(),
                   std::numeric_limits<double>::infinity()};
-  ForEachAxis(a, b, [&](const Vector3d& axis, double axis_norm) {
+  ForEachAxis(a, b, [&](const Vector3d& axis, double norm_sq) {
     double a_lo, a_hi, b_lo, b_hi;
     Project(a, axis, a_lo, a_hi);
     Project(b, axis, b_lo, b_hi);
-    const double slack = margin * axis_norm;
+    const double slack = margin * std::sqrt(norm_sq);
     // Along the axis, a(t) spans [a_lo - t*s, a_hi - t*s] with s = axis.D.
     // They overlap while a_lo - t*s <= b_hi + slack and b_lo <= a_hi - t*s + slack.
     const double s = axis.dot(direction);

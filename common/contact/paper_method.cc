@@ -1,13 +1,393 @@
 #include "common/contact/paper_method.h"
 
-namespace hs {
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <vector>
 
-// Placeholder until the method lands: reports touching with zero depth.
-ContactSet ReconstructByProjection(const ContactContext& context) {
+#include "common/contact/projection_options.h"
+#include "common/contact/side_contact.h"
+
+// The paper's method (s.4, fig. 5 and 6, appendix), as shared/ALGORITHM.md
+// reads it, with one reading changed (see PenetrationTest in
+// projection_options.h): for each plane xy, yz, xz of F's frame, project the
+// candidate features, back every penetrating vertex of M along the projected
+// direction past every candidate edge of F behind it (d_maxm), do the same
+// with F's vertices against M's edges (the singular case, d_maxf), and turn
+// the larger into a 3D distance along D. The smallest over the planes is the
+// depth: separating the projections in one plane separates the objects.
+//
+// How the tolerance tau = context.tolerance_m (metres) is used. Projection
+// drops one coordinate, so it moves no point by more than it moves in 3D:
+// in-plane lengths are metres and a 3D tolerance of tau is a 2D tolerance of
+// tau. Every in-plane comparison therefore uses tau itself:
+//  - a candidate edge meets the line through a vertex when an endpoint is
+//    within tau of the line or the endpoints are on opposite sides of it
+//    ("P on the segment, within the tolerance");
+//  - a crossing is behind the vertex when d >= -tau (touching counts, and
+//    its depth is clamped to 0);
+//  - a vertex is a contact vertex when its d_i is within tau of the plane's
+//    d_plane.
+// Only the choice between planes compares 3D distances t = d / |D_p|, with
+// tau again (ties between planes are within tau of each other).
+
+namespace hs {
+namespace {
+
+using Vector2d = Eigen::Vector2d;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// D is unit, so |D_p| is the sine of the angle between D and the plane's
+// normal. Below this the plane is skipped (depth +inf): t = d / |D_p| blows up
+// as D turns perpendicular to the plane, multiplying the in-plane rounding
+// (~1e-16 x size) by 1 / |D_p|; at 1e-6 that is still ~1e-10 x size, well
+// under the default tolerance of 1e-9 x size. Closer to perpendicular the
+// plane cannot separate anything along D anyway: the projections barely move.
+constexpr double kMinProjectedDirection = 1e-6;
+
+// The two coordinates each plane keeps, in ContactSet::plane_depths_m order:
+// xy drops z, yz drops x, xz drops y.
+constexpr int kPlaneAxes[3][2] = {{0, 1}, {1, 2}, {0, 2}};
+
+Vector2d Project(const Vector3d& p, int plane) {
+  return {p[kPlaneAxes[plane][0]], p[kPlaneAxes[plane][1]]};
+}
+
+double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// A candidate vertex or edge. Positions are in F's frame relative to an
+// anchor point near the contact, so that objects far from F's origin do not
+// lose the contact's digits to cancellation in the 2D cross products.
+struct CandidateVertex {
+  VertexId id;
+  Vector3d p;
+};
+struct CandidateEdge {
+  EdgeId id;
+  VertexId va, vb;
+  Vector3d a, b;
+};
+
+// One side's candidates: the vertices, edges and triangles of its faces that
+// appear in the intersecting pairs, each once, in id order.
+struct Candidates {
+  std::vector<CandidateVertex> vertices;
+  std::vector<CandidateEdge> edges;
+  std::vector<Triangle3d> triangles;
+};
+
+template <typename T>
+void SortUnique(std::vector<T>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+template <typename PositionOf>
+Candidates Gather(const HapticObject& object, std::vector<FaceId> faces, PositionOf position_of) {
+  SortUnique(faces);
+  std::vector<VertexId> vertices;
+  std::vector<EdgeId> edges;
+  Candidates c;
+  c.triangles.reserve(faces.size());
+  for (FaceId f : faces) {
+    const Face& face = object.face(f);
+    vertices.insert(vertices.end(), face.vertices.begin(), face.vertices.end());
+    edges.insert(edges.end(), face.edges.begin(), face.edges.end());
+    c.triangles.push_back(Triangle3d{position_of(face.vertices[0]), position_of(face.vertices[1]),
+                                     position_of(face.vertices[2])});
+  }
+  SortUnique(vertices);
+  SortUnique(edges);
+  c.vertices.reserve(vertices.size());
+  for (VertexId v : vertices) c.vertices.push_back({v, position_of(v)});
+  c.edges.reserve(edges.size());
+  for (EdgeId e : edges) {
+    const Edge& edge = object.edge(e);
+    c.edges.push_back({e, edge.vertices[0], edge.vertices[1], position_of(edge.vertices[0]),
+                       position_of(edge.vertices[1])});
+  }
+  return c;
+}
+
+// Where the line through a vertex meets a segment: d_ij, and whether that
+// point P is within the tolerance of the segment's ends.
+struct Crossing {
+  double d;
+  bool at_a;
+  bool at_b;
+};
+
+// The paper's d_ij for vertex v and segment [a, b] in one plane: the largest
+// (v - P).u over the points P of the segment on the line through v along u
+// (u unit). Points within `tol` of the line count, so an endpoint grazed
+// within the tolerance is a crossing, and an edge running along the line
+// (parallel, or projected to a point) contributes its endpoints: the limit
+// of the crossing as the edge turns parallel, which also keeps the answer
+// when the neighbouring edges that would cover those endpoints are not
+// candidates. Nothing when the line misses the segment.
+std::optional<Crossing> CrossingDepth(const Vector2d& v, const Vector2d& u, const Vector2d& a,
+                                      const Vector2d& b, double tol) {
+  const Vector2d va = a - v, vb = b - v;
+  // Signed distances of the endpoints from the line, and their positions
+  // behind v along it; no division, so no blow-up near parallel.
+  const double ha = Cross(u, va), hb = Cross(u, vb);
+  const double ga = -u.dot(va), gb = -u.dot(vb);
+  double best = -kInf;
+  double r_best = 0;  // where along [a, b] the best point lies
+  if (std::abs(ha) <= tol && ga > best) best = ga, r_best = 0;
+  if (std::abs(hb) <= tol && gb > best) best = gb, r_best = 1;
+  if ((ha < 0 && hb > 0) || (ha > 0 && hb < 0)) {
+    const double r = ha / (ha - hb);  // in [0, 1]: the endpoints straddle the line
+    const double g = ga + r * (gb - ga);
+    if (g > best) best = g, r_best = r;
+  }
+  if (best == -kInf) return std::nullopt;
+  const double length = (b - a).norm();
+  return Crossing{best, r_best * length <= tol, (1 - r_best) * length <= tol};
+}
+
+double SegmentDistance(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
+  const Vector2d ab = b - a;
+  const double len_sq = ab.squaredNorm();
+  const double r = len_sq > 0 ? std::clamp((p - a).dot(ab) / len_sq, 0.0, 1.0) : 0.0;
+  return (a + r * ab - p).norm();
+}
+
+// Whether p lies in the closed triangle t, or within `tol` of it. A
+// triangle seen edge-on (zero projected area) is a segment: only the
+// distance test can hold.
+bool InsideTriangle(const Vector2d& p, const std::array<Vector2d, 3>& t, double tol) {
+  const double area2 = Cross(t[1] - t[0], t[2] - t[0]);
+  if (area2 != 0) {
+    const double s0 = Cross(t[1] - t[0], p - t[0]);
+    const double s1 = Cross(t[2] - t[1], p - t[1]);
+    const double s2 = Cross(t[0] - t[2], p - t[2]);
+    if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return true;
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (SegmentDistance(p, t[k], t[(k + 1) % 3]) <= tol) return true;
+  }
+  return false;
+}
+
+// A crossing kept by a pass: vertex and edge are indices into the pass's
+// candidate arrays; d in plane metres, >= -tol.
+struct Hit {
+  int vertex;
+  int edge;
+  double d;
+  bool at_a, at_b;  // the crossing is at (within tol of) the edge's ends
+};
+
+// One pass of one plane: the paper's loop of vertices of one object against
+// the edges of the other.
+struct PassResult {
+  std::vector<Hit> hits;
+  /// Largest d over the hits, clamped to >= 0 (touching is depth 0);
+  /// -inf when no vertex penetrates.
+  double d_max = -kInf;
+};
+
+// Vertices of one side against edges of the other, the line through each
+// vertex along `u`: d_ij = (V - P_ij).u, kept when >= -tol.
+PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, int plane,
+                   const Vector2d& u, double tol, PenetrationTest test) {
+  std::vector<std::array<Vector2d, 2>> segments;
+  segments.reserve(edge_side.edges.size());
+  for (const CandidateEdge& e : edge_side.edges) {
+    segments.push_back({Project(e.a, plane), Project(e.b, plane)});
+  }
+  std::vector<std::array<Vector2d, 3>> triangles;
+  if (test == PenetrationTest::kInsideTriangle) {
+    triangles.reserve(edge_side.triangles.size());
+    for (const Triangle3d& t : edge_side.triangles) {
+      triangles.push_back({Project(t[0], plane), Project(t[1], plane), Project(t[2], plane)});
+    }
+  }
+  PassResult result;
+  for (int i = 0; i < static_cast<int>(vertex_side.vertices.size()); ++i) {
+    const Vector2d v = Project(vertex_side.vertices[i].p, plane);
+    if (test == PenetrationTest::kInsideTriangle &&
+        std::none_of(triangles.begin(), triangles.end(),
+                     [&](const auto& t) { return InsideTriangle(v, t, tol); })) {
+      continue;
+    }
+    for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
+      const std::optional<Crossing> c = CrossingDepth(v, u, segments[j][0], segments[j][1], tol);
+      if (!c || c->d < -tol) continue;
+      result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
+      result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
+    }
+  }
+  return result;
+}
+
+struct PlaneResult {
+  bool found = false;
+  /// |D_p|.
+  double projected_direction = 0;
+  /// d_plane = max(d_maxm, d_maxf), plane metres.
+  double d_plane = 0;
+  /// t_plane = d_plane / |D_p|, metres along D.
+  double t = kInf;
+  PassResult moving;  // M's vertices against F's edges, along u_p
+  PassResult fixed;   // F's vertices against M's edges, along -u_p (fig. 6)
+};
+
+// The contact vertices of one pass: those whose d_i reaches d_plane within
+// tol, in id order, each with the candidate index of its deepest edge
+// (lowest id on ties) for its contact point.
+struct PassContacts {
+  std::vector<VertexId> vertices;
+  std::vector<std::pair<int, int>> vertex_edge;  // candidate indices
+};
+
+PassContacts Contacts(const PassResult& pass, const Candidates& vertex_side, double d_plane,
+                      double tol) {
+  std::vector<int> best(vertex_side.vertices.size(), -1);
+  for (int h = 0; h < static_cast<int>(pass.hits.size()); ++h) {
+    const Hit& hit = pass.hits[h];
+    if (hit.d < d_plane - tol) continue;
+    // Edges come in id order, so a strict > keeps the lowest id on ties.
+    if (best[hit.vertex] < 0 || hit.d > pass.hits[best[hit.vertex]].d) best[hit.vertex] = h;
+  }
+  PassContacts c;
+  for (int i = 0; i < static_cast<int>(best.size()); ++i) {
+    if (best[i] < 0) continue;
+    c.vertices.push_back(vertex_side.vertices[i].id);
+    c.vertex_edge.emplace_back(i, pass.hits[best[i]].edge);
+  }
+  return c;
+}
+
+// The edges of `edge_side` that produced the pass's maxima: the paper's
+// contact line segments. An edge met only at an end that is itself a
+// contact vertex of its side is left out: that contact is vertex to vertex
+// (or the edge lies along the line), the vertex already reports it, and
+// AggregateSide adds the edge back when both its ends are contacts. Without
+// this, a tie between the two passes would list every edge around a contact
+// vertex, as they all project through the same point.
+std::vector<EdgeId> TouchedEdges(const PassResult& pass, const Candidates& edge_side,
+                                 std::span<const VertexId> edge_side_contacts, double d_plane,
+                                 double tol) {
+  auto is_contact = [&](VertexId v) {
+    return std::binary_search(edge_side_contacts.begin(), edge_side_contacts.end(), v);
+  };
+  std::vector<EdgeId> edges;
+  for (const Hit& hit : pass.hits) {
+    if (hit.d < d_plane - tol) continue;
+    const CandidateEdge& e = edge_side.edges[hit.edge];
+    if ((hit.at_a && is_contact(e.va)) || (hit.at_b && is_contact(e.vb))) continue;
+    edges.push_back(e.id);
+  }
+  return edges;
+}
+
+}  // namespace
+
+ContactSet ReconstructByProjection(const ContactContext& context,
+                                   const ProjectionOptions& options) {
+  const double tol = context.tolerance_m;
+  const Vector3d& D = context.direction_F;
+
+  std::vector<FaceId> moving_faces, fixed_faces;
+  moving_faces.reserve(context.pairs.size());
+  fixed_faces.reserve(context.pairs.size());
+  for (const TrianglePair& pair : context.pairs) {
+    moving_faces.push_back(pair.a);
+    fixed_faces.push_back(pair.b);
+  }
+  const Vector3d anchor =
+      fixed_faces.empty() ? Vector3d::Zero()
+                          : context.fixed.position(context.fixed.face(fixed_faces[0]).vertices[0]);
+  const Candidates moving = Gather(context.moving, std::move(moving_faces), [&](VertexId v) {
+    return Vector3d(context.X_FM * context.moving.position(v) - anchor);
+  });
+  const Candidates fixed = Gather(context.fixed, std::move(fixed_faces), [&](VertexId v) {
+    return Vector3d(context.fixed.position(v) - anchor);
+  });
+
   ContactSet set;
+  set.method = ContactMethod::kPaper2d;
+  // The caller only reconstructs pairs that intersect or touch.
   set.colliding = true;
-  set.direction_W = context.direction_F;
+  set.direction_W = D;
+  // The paper defines no contact normal; the reversing direction -D is the
+  // direction it pushes M out of F, so it stands in for one.
+  set.normal_W = -D;
+
+  std::array<PlaneResult, 3> planes;
+  for (int plane = 0; plane < 3; ++plane) {
+    const Vector2d D_p = Project(D, plane);
+    const double norm = D_p.norm();
+    if (!(norm >= kMinProjectedDirection)) continue;
+    const Vector2d u = D_p / norm;
+    PlaneResult& r = planes[plane];
+    r.projected_direction = norm;
+    r.moving = RunPass(moving, fixed, plane, u, tol, options.penetration);
+    r.fixed = RunPass(fixed, moving, plane, -u, tol, options.penetration);
+    if (r.moving.hits.empty() && r.fixed.hits.empty()) continue;
+    r.found = true;
+    r.d_plane = std::max(r.moving.d_max, r.fixed.d_max);
+    r.t = r.d_plane / norm;
+    set.plane_depths_m[plane] = r.t;
+  }
+
+  // t_paper = min over the planes that found something. Among planes within
+  // tol of it, the one where D projects longest wins: its t divides by the
+  // largest |D_p|, so it is the best conditioned; then the lowest index.
+  int chosen = -1;
+  double t_min = kInf;
+  for (const PlaneResult& r : planes) {
+    if (r.found) t_min = std::min(t_min, r.t);
+  }
+  for (int plane = 0; plane < 3; ++plane) {
+    const PlaneResult& r = planes[plane];
+    if (!r.found || r.t > t_min + tol) continue;
+    if (chosen < 0 || r.projected_direction > planes[chosen].projected_direction) chosen = plane;
+  }
+  if (chosen < 0) {
+    // No plane saw a crossing: the pairs only graze each other.
+    set.depth_m = 0;
+    return set;
+  }
+
+  const PlaneResult& r = planes[chosen];
+  set.depth_m = r.t;
+  set.penetrating = set.depth_m > tol;
+  set.reversing_vector_W = -set.depth_m * D;
+  // Within tol, both passes reach d_plane and both report their vertices;
+  // the singular case is when only F's vertices decide the depth.
+  set.singular_case = r.fixed.d_max > r.moving.d_max + tol;
+
+  const PassContacts m = Contacts(r.moving, moving, r.d_plane, tol);
+  const PassContacts f = Contacts(r.fixed, fixed, r.d_plane, tol);
+  set.moving = AggregateSide(context.moving, m.vertices,
+                             TouchedEdges(r.fixed, moving, m.vertices, r.d_plane, tol), {});
+  set.fixed = AggregateSide(context.fixed, f.vertices,
+                            TouchedEdges(r.moving, fixed, f.vertices, r.d_plane, tol), {});
+
+  set.points.reserve(m.vertex_edge.size() + f.vertex_edge.size());
+  for (const auto& [i, j] : m.vertex_edge) {
+    // M's vertex where it ends up once moved by the reversing vector.
+    set.points.push_back({anchor + moving.vertices[i].p - set.depth_m * D,
+                          {FeatureKind::kVertex, moving.vertices[i].id},
+                          {FeatureKind::kEdge, fixed.edges[j].id}});
+  }
+  for (const auto& [i, j] : f.vertex_edge) {
+    set.points.push_back({anchor + fixed.vertices[i].p,
+                          {FeatureKind::kEdge, moving.edges[j].id},
+                          {FeatureKind::kVertex, fixed.vertices[i].id}});
+  }
   return set;
+}
+
+ContactSet ReconstructByProjection(const ContactContext& context) {
+  return ReconstructByProjection(context, ProjectionOptions{});
 }
 
 }  // namespace hs

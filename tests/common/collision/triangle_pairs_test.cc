@@ -7,20 +7,15 @@
 
 #include "common/collision/triangle_sat.h"
 #include "common/model/procedural.h"
+#include "tests/common/random_poses.h"
 
 namespace hs {
 namespace {
 
+using testing_poses::RandomPose;
+
 HapticObject Torus(double major, double minor) {
   return *HapticObject::Create("torus", MakeTorus(major, minor, 24, 12));
-}
-
-Isometry3d RandomPose(std::mt19937& rng, double reach) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  Isometry3d X = Isometry3d::Identity();
-  X.translate(reach * Vector3d(u(rng), u(rng), u(rng)));
-  X.rotate(Eigen::AngleAxisd(3.0 * u(rng), Vector3d(u(rng), u(rng), u(rng)).normalized()));
-  return X;
 }
 
 // The oracle: every face pair through the same SAT leaf test (itself checked

@@ -8,9 +8,13 @@
 #include "common/contact/contact_query.h"
 #include "common/model/procedural.h"
 #include "tests/common/contact/contact_test_bodies.h"
+#include "tests/common/random_poses.h"
 
 namespace hs {
 namespace {
+
+using testing_poses::RandomDirection;
+using testing_poses::RandomPose;
 
 using ::testing::ElementsAre;
 using testing_bodies::Body;
@@ -141,18 +145,6 @@ double BruteForceDepth(const Body& moving, const Body& fixed, const Vector3d& di
     if (i.lo <= t + tolerance && i.hi > t) t = i.hi;
   }
   return t;
-}
-
-Isometry3d RandomPose(std::mt19937& rng, double reach) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  Isometry3d X = Translation(reach * u(rng), reach * u(rng), reach * u(rng));
-  X.rotate(Eigen::AngleAxisd(3.0 * u(rng), Vector3d(u(rng), u(rng), u(rng)).normalized()));
-  return X;
-}
-
-Vector3d RandomDirection(std::mt19937& rng) {
-  std::normal_distribution<double> n(0, 1);
-  return Vector3d(n(rng), n(rng), n(rng)).normalized();
 }
 
 // All face pairs that intersect with zero margin when M is moved back by t.
