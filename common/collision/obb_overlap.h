@@ -29,27 +29,37 @@ struct PlacedBox {
 /// from rejecting what rounding makes look separated.
 inline bool BoxesDisjoint(const fcl::OBBd& a, double a_radius, const PlacedBox& b) {
   constexpr double kParallelSlack = 1e-9;
-  const Vector3d d = b.center - a.To;
+  const double dx = b.center[0] - a.To[0], dy = b.center[1] - a.To[1], dz = b.center[2] - a.To[2];
   const double reach = a_radius + b.radius;
-  if (d.squaredNorm() > reach * reach) return true;
-  const Matrix3d R = a.axis.transpose() * b.axis;
-  const Matrix3d abs_R = R.cwiseAbs().array() + kParallelSlack;
-  const Vector3d t = a.axis.transpose() * d;
-  const Vector3d& ea = a.extent;
-  const Vector3d& eb = b.extent;
+  if (dx * dx + dy * dy + dz * dz > reach * reach) return true;
+  // Plain scalars: at -O2 Eigen's 3x3 expressions here cost several times
+  // the arithmetic they express (callgrind).
+  double R[3][3], abs_R[3][3], t[3];
   for (int i = 0; i < 3; ++i) {
-    if (std::abs(t[i]) > ea[i] + abs_R.row(i).dot(eb)) return true;
+    const double ax = a.axis(0, i), ay = a.axis(1, i), az = a.axis(2, i);
+    t[i] = ax * dx + ay * dy + az * dz;
+    for (int j = 0; j < 3; ++j) {
+      R[i][j] = ax * b.axis(0, j) + ay * b.axis(1, j) + az * b.axis(2, j);
+      abs_R[i][j] = std::abs(R[i][j]) + kParallelSlack;
+    }
+  }
+  const double ea[3] = {a.extent[0], a.extent[1], a.extent[2]};
+  const double eb[3] = {b.extent[0], b.extent[1], b.extent[2]};
+  for (int i = 0; i < 3; ++i) {
+    const double rb = eb[0] * abs_R[i][0] + eb[1] * abs_R[i][1] + eb[2] * abs_R[i][2];
+    if (std::abs(t[i]) > ea[i] + rb) return true;
   }
   for (int j = 0; j < 3; ++j) {
-    if (std::abs(t.dot(R.col(j))) > ea.dot(abs_R.col(j)) + eb[j]) return true;
+    const double ra = ea[0] * abs_R[0][j] + ea[1] * abs_R[1][j] + ea[2] * abs_R[2][j];
+    if (std::abs(t[0] * R[0][j] + t[1] * R[1][j] + t[2] * R[2][j]) > ra + eb[j]) return true;
   }
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double ra = ea[i1] * abs_R(i2, j) + ea[i2] * abs_R(i1, j);
-      const double rb = eb[j1] * abs_R(i, j2) + eb[j2] * abs_R(i, j1);
-      if (std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j)) > ra + rb) return true;
+      const double ra = ea[i1] * abs_R[i2][j] + ea[i2] * abs_R[i1][j];
+      const double rb = eb[j1] * abs_R[i][j2] + eb[j2] * abs_R[i][j1];
+      if (std::abs(t[i2] * R[i1][j] - t[i1] * R[i2][j]) > ra + rb) return true;
     }
   }
   return false;

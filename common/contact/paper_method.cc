@@ -208,15 +208,59 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
       triangles.push_back({Project(t[0], plane), Project(t[1], plane), Project(t[2], plane)});
     }
   }
+  // A segment can meet the line through v along u only if its extent
+  // across the line, [lo, hi] along w = u turned by 90 degrees, holds v.w
+  // within the tolerance (CrossingDepth's rule; the band is widened for
+  // rounding). Buckets over v.w list the segments whose band meets them,
+  // so each vertex tests only the segments near its line instead of all.
+  const Vector2d w(-u.y(), u.x());
+  const int num_vertices = static_cast<int>(vertex_side.vertices.size());
+  std::vector<Vector2d> points(num_vertices);
+  double key_lo = kInf, key_hi = -kInf;
+  for (int i = 0; i < num_vertices; ++i) {
+    points[i] = Project(vertex_side.vertices[i].p, plane);
+    key_lo = std::min(key_lo, points[i].dot(w));
+    key_hi = std::max(key_hi, points[i].dot(w));
+  }
+  const int num_buckets = std::max<int>(1, static_cast<int>(segments.size()));
+  const double bucket_width = std::max((key_hi - key_lo) / num_buckets, 1e-300);
+  auto bucket_of = [&](double key) {
+    return std::clamp(static_cast<int>(std::floor((key - key_lo) / bucket_width)), 0,
+                      num_buckets - 1);
+  };
+  // Bucket b lists bucket_segment[bucket_start[b] .. bucket_start[b + 1]),
+  // filled in ascending segment order (a counting sort).
+  std::vector<std::array<int, 2>> segment_buckets(segments.size(), {0, -1});
+  std::vector<int> bucket_start(num_buckets + 1, 0);
+  for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
+    const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
+    const double slack = 2 * tol + 1e-12 * (std::abs(ka) + std::abs(kb));
+    const double lo = std::min(ka, kb) - slack, hi = std::max(ka, kb) + slack;
+    if (hi < key_lo || lo > key_hi) continue;
+    segment_buckets[j] = {bucket_of(lo), bucket_of(hi)};
+    for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) ++bucket_start[b + 1];
+  }
+  for (int b = 0; b < num_buckets; ++b) bucket_start[b + 1] += bucket_start[b];
+  std::vector<int> bucket_segment(bucket_start[num_buckets]);
+  std::vector<int> cursor(bucket_start.begin(), bucket_start.end() - 1);
+  for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
+    for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) {
+      bucket_segment[cursor[b]++] = j;
+    }
+  }
+
   PassResult result;
-  for (int i = 0; i < static_cast<int>(vertex_side.vertices.size()); ++i) {
-    const Vector2d v = Project(vertex_side.vertices[i].p, plane);
+  for (int i = 0; i < num_vertices; ++i) {
+    const Vector2d& v = points[i];
     if (test == PenetrationTest::kInsideTriangle &&
         std::none_of(triangles.begin(), triangles.end(),
                      [&](const auto& t) { return InsideTriangle(v, t, tol); })) {
       continue;
     }
-    for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
+    const int b = bucket_of(v.dot(w));
+    // Segments ascend within a bucket, so hits keep edge order per vertex.
+    for (int k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
+      const int j = bucket_segment[k];
       const std::optional<Crossing> c = CrossingDepth(v, u, segments[j][0], segments[j][1], tol);
       if (!c || c->d < -tol) continue;
       result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
