@@ -18,6 +18,21 @@ struct PosedFace {
   VertexId vertex(int i) const { return object->face(id).vertices[i]; }
   // Edge i joins corners i and i + 1.
   EdgeId edge(int i) const { return object->face(id).edges[i]; }
+
+  // Edge i only splits one polygon of the source model in two (the diagonal
+  // of a triangulated quad): not an edge of the shape, so a contact on it is
+  // a contact on the face.
+  bool splits_polygon(int i) const {
+    const auto faces = object->EdgeFaces(edge(i));
+    return faces.size() == 2 && object->face(faces[0]).source_polygon != kNoPolygon &&
+           object->face(faces[0]).source_polygon == object->face(faces[1]).source_polygon;
+  }
+
+  // Edge i as a feature: itself, or this face when it splits a polygon.
+  Feature edge_feature(int i) const {
+    return splits_polygon(i) ? Feature{FeatureKind::kFace, id}
+                             : Feature{FeatureKind::kEdge, edge(i)};
+  }
 };
 
 Vector3d UnitNormal(const Triangle3d& t) {
@@ -26,14 +41,15 @@ Vector3d UnitNormal(const Triangle3d& t) {
 }
 
 // The lowest-dimensional feature of `face` within `tolerance` of point `p`
-// lying on (within tolerance of) it.
+// lying on (within tolerance of) it; an edge that only splits a source
+// polygon counts as the face.
 Feature FeatureHolding(const PosedFace& face, const Vector3d& p, double tolerance) {
   for (int i = 0; i < 3; ++i) {
     if ((face.corners[i] - p).norm() <= tolerance) return {FeatureKind::kVertex, face.vertex(i)};
   }
   for (int i = 0; i < 3; ++i) {
     const Vector3d q = ClosestPointOnSegment(p, face.corners[i], face.corners[(i + 1) % 3]);
-    if ((q - p).norm() <= tolerance) return {FeatureKind::kEdge, face.edge(i)};
+    if ((q - p).norm() <= tolerance) return face.edge_feature(i);
   }
   return {FeatureKind::kFace, face.id};
 }
@@ -76,8 +92,8 @@ class Locator {
         if (std::min(s.s, 1 - s.s) * (q1 - p1).norm() <= tol) continue;
         if (std::min(s.t, 1 - s.t) * (q2 - p2).norm() <= tol) continue;
         const Vector3d n = (q1 - p1).cross(q2 - p2);
-        Add((s.on_first + s.on_second) / 2, {FeatureKind::kEdge, m.edge(i)},
-            {FeatureKind::kEdge, f.edge(j)}, n.squaredNorm() > 0 ? n.normalized() : n);
+        Add((s.on_first + s.on_second) / 2, m.edge_feature(i), f.edge_feature(j),
+            n.squaredNorm() > 0 ? n.normalized() : n);
       }
     }
   }

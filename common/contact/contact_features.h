@@ -27,7 +27,9 @@ struct LocatedContacts {
 /// edges within the tolerance at interior points are an edge-edge contact.
 /// The feature of the other object holding a point is its vertex if within
 /// the tolerance of one, else its edge if within the tolerance of one, else
-/// its face.
+/// its face. An edge that only splits one polygon of the source model
+/// (the diagonal of a triangulated quad) counts as the face: it is no edge
+/// of the shape.
 LocatedContacts LocateContacts(const ContactContext& context, const Isometry3d& X_FM,
                                std::span<const TrianglePair> pairs);
 

@@ -224,6 +224,21 @@ TEST(SweepMethodTest, InvariantUnderRigidMotionOfTheScene) {
   }
 }
 
+// A vertex pressed onto the diagonal of the floor's triangulated top quad
+// touches a face of the shape, not an edge: the diagonal only splits the
+// quad (both triangles share its source polygon).
+TEST(SweepMethodTest, DiagonalOfTriangulatedQuadIsFace) {
+  // The floor's top quad is split along the line x = y.
+  const auto pyramid = MakeBody(ApexDownPyramid(), Translation(0.25, 0.25, -0.01));
+  const auto floor = Floor();
+  const ContactSet set = Contact(*pyramid, *floor, kDown);
+  ASSERT_EQ(set.points.size(), 2u);  // one per triangle of the quad
+  for (const ContactPoint& p : set.points) EXPECT_EQ(p.fixed.kind, FeatureKind::kFace);
+  EXPECT_EQ(set.fixed.kind, FeatureKind::kFace);
+  EXPECT_THAT(set.fixed.faces, ElementsAre(2, 3));
+  EXPECT_TRUE(set.fixed.edges.empty());
+}
+
 // Touching without penetration: colliding, not penetrating, depth zero.
 TEST(SweepMethodTest, TouchingIsNotPenetrating) {
   const auto cube = MakeBody(MakeBox(Vector3d(1, 1, 1)), Translation(0.3, 0.1, 0.5));
