@@ -87,15 +87,18 @@ Triangle3d ContactContext::FixedTriangle(FaceId f) const {
   return {fixed.position(v[0]), fixed.position(v[1]), fixed.position(v[2])};
 }
 
-absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
-                                          const ContactQuery& query) {
+namespace {
+
+// Validates a pair query and returns its touching tolerance in metres.
+absl::StatusOr<double> PairTolerance(const PosedObject& moving, const PosedObject& fixed,
+                                     const Vector3d& direction_W, double relative_tolerance) {
   HS_CHECK(moving.object && moving.model && fixed.object && fixed.model);
   HS_RETURN_IF_ERROR(ValidatePose(moving.X_WO, "moving object"));
   HS_RETURN_IF_ERROR(ValidatePose(fixed.X_WO, "fixed object"));
-  if (!query.direction_W.allFinite()) {
+  if (!direction_W.allFinite()) {
     return absl::InvalidArgumentError("direction is not finite");
   }
-  if (!(std::isfinite(query.relative_tolerance) && query.relative_tolerance >= 0)) {
+  if (!(std::isfinite(relative_tolerance) && relative_tolerance >= 0)) {
     return absl::InvalidArgumentError("relative tolerance must be finite and >= 0");
   }
   if (moving.model->bv_type() != fixed.model->bv_type()) {
@@ -103,12 +106,38 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   }
   AlignedBox3d pair_box = WorldBox(moving);
   pair_box.extend(WorldBox(fixed));
-  const double tolerance = query.relative_tolerance * pair_box.diagonal().norm();
+  const double tolerance = relative_tolerance * pair_box.diagonal().norm();
   if (tolerance > moving.model->margin_m() + fixed.model->margin_m()) {
     return absl::InvalidArgumentError(absl::StrCat(
         "tolerance ", tolerance, " m exceeds the collision models' margins (",
         moving.model->margin_m() + fixed.model->margin_m(), " m); build them with larger ones"));
   }
+  return tolerance;
+}
+
+}  // namespace
+
+absl::StatusOr<bool> AreColliding(const PosedObject& moving, const PosedObject& fixed,
+                                  double relative_tolerance,
+                                  const std::optional<Vector3d>& step_W) {
+  HS_ASSIGN_OR_RETURN(
+      const double tolerance,
+      PairTolerance(moving, fixed, step_W.value_or(Vector3d::Zero()), relative_tolerance));
+  std::vector<TrianglePair> pairs;
+  if (step_W && step_W->squaredNorm() > 0) {
+    FindSweptTrianglePairs(*moving.model, moving.X_WO, *step_W, *fixed.model, fixed.X_WO, tolerance,
+                           pairs);
+  } else {
+    FindIntersectingTriangles(*moving.model, moving.X_WO, *fixed.model, fixed.X_WO, tolerance,
+                              pairs);
+  }
+  return !pairs.empty();
+}
+
+absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
+                                          const ContactQuery& query) {
+  HS_ASSIGN_OR_RETURN(const double tolerance,
+                      PairTolerance(moving, fixed, query.direction_W, query.relative_tolerance));
 
   const Isometry3d X_FW = fixed.X_WO.inverse();
   ContactContext context{*moving.object,     *moving.model,    *fixed.object, *fixed.model,

@@ -1,6 +1,8 @@
 #pragma once
 // Contact reconstruction for one moving and one fixed object.
 
+#include <optional>
+
 #include "absl/status/statusor.h"
 #include "common/collision/collision_model.h"
 #include "common/contact/contact_set.h"
@@ -40,5 +42,13 @@ struct ContactQuery {
 /// not share a bounding volume type.
 absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
                                           const ContactQuery& query);
+
+/// Whether `moving` touches or penetrates `fixed` within the tolerance, or,
+/// with `step_W` (the last step's motion, world frame, metres), did so
+/// anywhere along that step. The collision-only question: no contact is
+/// reconstructed. Errors as ComputeContact.
+absl::StatusOr<bool> AreColliding(const PosedObject& moving, const PosedObject& fixed,
+                                  double relative_tolerance,
+                                  const std::optional<Vector3d>& step_W = std::nullopt);
 
 }  // namespace hs

@@ -1,0 +1,65 @@
+#pragma once
+// Effects: the stages of a simulation step. A stage runs only when the
+// scene enables it AND some consumer needs its output (or the output of a
+// stage that depends on it): a scene whose clients only ask "colliding?"
+// never reconstructs contacts.
+
+#include <cstdint>
+#include <string_view>
+
+#include "absl/status/statusor.h"
+
+namespace hs {
+
+enum class Effect : uint8_t {
+  kCollision,            ///< Which tool-object pairs touch or penetrate (yes/no).
+  kContactSet,           ///< Contact features, points and normal per pair.
+  kReversingVector,      ///< Depth and reversing vector per pair; the proxy pose.
+  kForce,                ///< Spring-damper force and torque on each tool.
+  kFriction,             ///< Coulomb friction in the proxy's sliding.
+  kContinuousCollision,  ///< Contact anywhere along the step, not only at its end.
+  kFreeBodyMotion,       ///< Free objects move under the simulation.
+};
+inline constexpr int kNumEffects = 7;
+
+/// A set of effects (a bit mask).
+class EffectSet {
+ public:
+  constexpr EffectSet() = default;
+  constexpr EffectSet(std::initializer_list<Effect> effects) {
+    for (Effect e : effects) bits_ |= Bit(e);
+  }
+  static constexpr EffectSet All() { return EffectSet((1u << kNumEffects) - 1); }
+
+  constexpr bool Has(Effect e) const { return (bits_ & Bit(e)) != 0; }
+  constexpr EffectSet With(Effect e) const { return EffectSet(bits_ | Bit(e)); }
+  constexpr EffectSet Without(Effect e) const { return EffectSet(bits_ & ~Bit(e)); }
+  constexpr EffectSet operator&(EffectSet o) const { return EffectSet(bits_ & o.bits_); }
+  constexpr EffectSet operator|(EffectSet o) const { return EffectSet(bits_ | o.bits_); }
+  constexpr bool operator==(const EffectSet&) const = default;
+  constexpr uint32_t bits() const { return bits_; }
+
+ private:
+  constexpr explicit EffectSet(uint32_t bits) : bits_(bits) {}
+  static constexpr uint32_t Bit(Effect e) { return 1u << static_cast<int>(e); }
+  uint32_t bits_ = 0;
+};
+
+/// `needed` plus every effect those need to have run first: force needs the
+/// reversing vector, which needs the contact set, which needs collision;
+/// friction needs force; continuous collision needs collision.
+EffectSet WithPrerequisites(EffectSet needed);
+
+/// The stages a step runs: what the scene enables, of what consumers need
+/// (with prerequisites). A needed stage whose prerequisite is disabled does
+/// not run. Continuous collision is a way of computing collision, so it runs
+/// whenever collision does and the scene enables it.
+EffectSet StagesToRun(EffectSet enabled, EffectSet needed);
+
+/// "collision", "contact_set", "reversing_vector", "force", "friction",
+/// "continuous_collision", "free_body_motion".
+std::string_view EffectName(Effect effect);
+/// The inverse of EffectName; INVALID_ARGUMENT for any other text.
+absl::StatusOr<Effect> ParseEffect(std::string_view name);
+
+}  // namespace hs

@@ -1,0 +1,97 @@
+#include "common/sim/proxy.h"
+
+#include "common/core/status_macros.h"
+
+namespace hs {
+namespace {
+
+// A face of `object` that holds the contact `side`, for its material.
+FaceId TouchedFace(const HapticObject& object, const SideContact& side) {
+  if (!side.faces.empty()) return side.faces.front();
+  if (!side.edges.empty()) return object.EdgeFaces(side.edges.front()).front();
+  if (!side.vertices.empty()) return object.VertexFaces(side.vertices.front()).front();
+  return 0;
+}
+
+struct FirstTouch {
+  int obstacle = -1;
+  double time = 1;  // fraction of the move
+  ContactSet contact;
+};
+
+// The earliest touch of the tool (orientation R) moving from p to p + v.
+absl::StatusOr<FirstTouch> FindFirstTouch(const PosedObject& tool, const Matrix3d& R,
+                                          const Vector3d& p, const Vector3d& v,
+                                          std::span<const PosedObject> obstacles,
+                                          const ProxyOptions& options) {
+  Isometry3d X_end = Isometry3d::Identity();
+  X_end.linear() = R;
+  X_end.translation() = p + v;
+  const ContactQuery query{.direction_W = v,
+                           .method = options.method,
+                           .continuous = true,
+                           .relative_tolerance = options.relative_tolerance};
+  FirstTouch first;
+  for (int i = 0; i < static_cast<int>(obstacles.size()); ++i) {
+    HS_ASSIGN_OR_RETURN(ContactSet contact,
+                        ComputeContact({tool.object, tool.model, X_end}, obstacles[i], query));
+    if (!contact.colliding) continue;
+    const double time = contact.time_of_impact.value_or(0.0);
+    if (first.obstacle < 0 || time < first.time) first = {i, time, std::move(contact)};
+  }
+  return first;
+}
+
+}  // namespace
+
+absl::StatusOr<ProxyState> MoveProxy(const PosedObject& tool, const Isometry3d& X_WP_before,
+                                     const Isometry3d& X_WD, std::span<const PosedObject> obstacles,
+                                     const ProxyOptions& options) {
+  // The proxy stops this far off a touched surface so that sliding along it
+  // does not touch it again at once; far below what a hand can feel.
+  const double stand_off = 1e-6 * tool.object->bounding_box().diagonal().norm();
+  const Matrix3d R = X_WD.linear();
+  const Vector3d device = X_WD.translation();
+  Vector3d p = X_WP_before.translation();
+  Vector3d goal = device;
+  ProxyState state;
+  for (int slide = 0; slide <= options.max_slides; ++slide) {
+    const Vector3d v = goal - p;
+    if (v.norm() <= stand_off * 1e-3) break;
+    HS_ASSIGN_OR_RETURN(FirstTouch touch, FindFirstTouch(tool, R, p, v, obstacles, options));
+    if (touch.obstacle < 0) {
+      p = goal;
+      break;
+    }
+    const Vector3d& n = touch.contact.normal_W;
+    p += touch.time * v + stand_off * n;
+    const HapticObject& object = *obstacles[touch.obstacle].object;
+    state.touching = true;
+    state.obstacle = touch.obstacle;
+    state.face = TouchedFace(object, touch.contact.fixed);
+    state.normal_W = n;
+    state.p_WC = touch.contact.points.empty() ? p : touch.contact.points.front().p_WC;
+    // Slide toward the device: drop the part of the way that goes into the
+    // surface; with friction, stick inside the static cone and otherwise
+    // lag the device by the dynamic friction force.
+    const Vector3d rest = device - p;
+    const double into = -rest.dot(n);
+    if (into <= 0) {
+      goal = device;
+      continue;
+    }
+    Vector3d along = rest + into * n;
+    if (options.friction) {
+      const Material& m = object.face_material(state.face);
+      const double length = along.norm();
+      if (length <= m.static_friction * into) break;
+      along *= (length - m.dynamic_friction * into) / length;
+    }
+    goal = p + along;
+  }
+  state.X_WP.linear() = R;
+  state.X_WP.translation() = p;
+  return state;
+}
+
+}  // namespace hs

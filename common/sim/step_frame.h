@@ -1,0 +1,61 @@
+#pragma once
+// What one simulation step produces: per tool, the device pose it applied,
+// the proxy (god-object) pose, the force, and the contact with each object.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "common/contact/contact_set.h"
+#include "common/sim/effects.h"
+
+namespace hs {
+
+/// A scene object's id: its index in the order objects were added.
+using ObjectId = int32_t;
+
+/// A tool's contact with one other object at the device pose.
+struct PairContact {
+  ObjectId object = -1;
+  /// Filled as far as the stages that ran allow: `colliding` by collision,
+  /// features and normal by the contact set, depth and reversing vector by
+  /// the reversing-vector stage.
+  ContactSet contact;
+};
+
+struct ToolFrame {
+  ObjectId tool = -1;
+  /// The device pose applied this step, world frame, metres.
+  Isometry3d X_WD = Isometry3d::Identity();
+  /// The proxy (god-object) pose: the device pose kept out of the objects,
+  /// world frame, metres. Equal to X_WD when nothing is touched.
+  Isometry3d X_WP = Isometry3d::Identity();
+  /// Force and torque on the device (to render), world frame, N and N*m,
+  /// about the device origin. Zero unless the force stage ran.
+  Vector3d force_W = Vector3d::Zero();
+  Vector3d torque_W = Vector3d::Zero();
+  /// The force was limited to the scene's clamp.
+  bool force_clamped = false;
+  /// One entry per object the tool touches or penetrates, by object id.
+  std::vector<PairContact> contacts;
+};
+
+struct StepFrame {
+  /// 1 for the first step, then +1 per step.
+  int64_t step = 0;
+  /// Simulated time at the end of the step, seconds.
+  double time_s = 0;
+  /// The stages that ran this step.
+  EffectSet stages_run;
+  /// One entry per tool, by tool id.
+  std::vector<ToolFrame> tools;
+};
+
+/// How often and how long one stage ran, since the scene was created.
+struct StageStats {
+  int64_t runs = 0;
+  int64_t total_ns = 0;
+};
+using StageStatsTable = std::array<StageStats, kNumEffects>;
+
+}  // namespace hs

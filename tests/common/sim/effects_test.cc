@@ -1,0 +1,42 @@
+#include "common/sim/effects.h"
+
+#include <gtest/gtest.h>
+
+namespace hs {
+namespace {
+
+// Force pulls in the reversing vector, the contact set and collision;
+// friction pulls in force; continuous collision pulls in collision.
+TEST(EffectsTest, PrerequisitesClose) {
+  EXPECT_EQ(WithPrerequisites({Effect::kFriction}),
+            (EffectSet{Effect::kFriction, Effect::kForce, Effect::kReversingVector,
+                       Effect::kContactSet, Effect::kCollision}));
+  EXPECT_EQ(WithPrerequisites({Effect::kContinuousCollision}),
+            (EffectSet{Effect::kContinuousCollision, Effect::kCollision}));
+  EXPECT_EQ(WithPrerequisites({Effect::kCollision}), (EffectSet{Effect::kCollision}));
+}
+
+// A stage runs only when enabled and needed, and not when a prerequisite is disabled.
+TEST(EffectsTest, StagesToRun) {
+  EXPECT_EQ(StagesToRun(EffectSet::All(), {Effect::kCollision}),
+            (EffectSet{Effect::kCollision, Effect::kContinuousCollision}));
+  EXPECT_EQ(StagesToRun({Effect::kCollision}, {Effect::kCollision}),
+            (EffectSet{Effect::kCollision}));
+  EXPECT_EQ(StagesToRun({Effect::kCollision}, {Effect::kForce}), (EffectSet{Effect::kCollision}));
+  const EffectSet no_contact_set = EffectSet::All().Without(Effect::kContactSet);
+  EXPECT_EQ(StagesToRun(no_contact_set, {Effect::kForce}),
+            (EffectSet{Effect::kCollision, Effect::kContinuousCollision}));
+  EXPECT_EQ(StagesToRun(EffectSet::All(), EffectSet()), EffectSet());
+}
+
+// Names round-trip; unknown names are rejected.
+TEST(EffectsTest, Names) {
+  for (int i = 0; i < kNumEffects; ++i) {
+    const auto e = static_cast<Effect>(i);
+    EXPECT_EQ(*ParseEffect(EffectName(e)), e);
+  }
+  EXPECT_FALSE(ParseEffect("gravity").ok());
+}
+
+}  // namespace
+}  // namespace hs

@@ -1,0 +1,219 @@
+#include "common/sim/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "common/model/procedural.h"
+
+namespace hs {
+namespace {
+
+Isometry3d At(double x, double y, double z) {
+  Isometry3d X = Isometry3d::Identity();
+  X.translation() = Vector3d(x, y, z);
+  return X;
+}
+
+// A 1 m x 1 m x 0.1 m floor with its top at z = 0, and a 2 cm cube probe
+// whose bottom starts at z = 0.01.
+struct Rig {
+  std::unique_ptr<Scene> scene;
+  ObjectId floor = -1, probe = -1;
+};
+
+Rig MakeRig(const SceneOptions& options = {}, double floor_thickness = 0.1) {
+  Rig rig;
+  rig.scene = *Scene::Create(options);
+  rig.floor = *rig.scene->AddObject(
+      *HapticObject::Create("floor", MakeBox(Vector3d(1, 1, floor_thickness))), ObjectKind::kFixed,
+      At(0, 0, -floor_thickness / 2));
+  rig.probe =
+      *rig.scene->AddObject(*HapticObject::Create("probe", MakeBox(Vector3d::Constant(0.02))),
+                            ObjectKind::kTool, At(0.1, 0.05, 0.02));
+  return rig;
+}
+
+// The device path of the tests: 20 steps pressing 1 mm per step, from 1 cm
+// above the floor to 1 cm into it, then 10 steps sliding 5 mm per step along x.
+std::vector<Isometry3d> PressAndSlide() {
+  std::vector<Isometry3d> path;
+  for (int i = 1; i <= 20; ++i) path.push_back(At(0.1, 0.05, 0.02 - 0.001 * i));
+  for (int i = 1; i <= 10; ++i) path.push_back(At(0.1 + 0.005 * i, 0.05, 0.0));
+  return path;
+}
+
+std::vector<StepFrame> Drive(Rig& rig, const std::vector<Isometry3d>& path) {
+  std::vector<StepFrame> frames;
+  for (const Isometry3d& X : path) {
+    EXPECT_TRUE(rig.scene->SetDevicePose(rig.probe, X).ok());
+    frames.push_back(rig.scene->Step());
+  }
+  return frames;
+}
+
+// A consumer that only needs yes/no collision gets it without any contact
+// reconstruction, proxy or force stage running, and its answers equal
+// those of a run with everything enabled.
+TEST(SceneTest, CollisionOnlyConsumerRunsOnlyCollision) {
+  Rig lean = MakeRig(), full = MakeRig();
+  lean.scene->SetNeeded({Effect::kCollision});
+  const auto a = Drive(lean, PressAndSlide());
+  const auto b = Drive(full, PressAndSlide());
+  const StageStatsTable& stats = lean.scene->stats();
+  EXPECT_EQ(stats[static_cast<int>(Effect::kCollision)].runs, 30);
+  for (Effect e : {Effect::kContactSet, Effect::kReversingVector, Effect::kForce}) {
+    EXPECT_EQ(stats[static_cast<int>(e)].runs, 0) << EffectName(e);
+  }
+  int colliding = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].tools[0].contacts.size(), b[i].tools[0].contacts.size()) << "step " << i;
+    for (size_t k = 0; k < a[i].tools[0].contacts.size(); ++k) {
+      EXPECT_EQ(a[i].tools[0].contacts[k].contact.colliding,
+                b[i].tools[0].contacts[k].contact.colliding);
+      colliding += a[i].tools[0].contacts[k].contact.colliding;
+    }
+    EXPECT_EQ(a[i].tools[0].force_W, Vector3d::Zero());
+  }
+  EXPECT_GT(colliding, 20);
+}
+
+// A stage the scene disables never runs, even when needed; stages that
+// depend on it do not run either.
+TEST(SceneTest, DisabledStageNeverRuns) {
+  SceneOptions options;
+  options.enabled = EffectSet::All().Without(Effect::kContactSet);
+  Rig rig = MakeRig(options);
+  Drive(rig, PressAndSlide());
+  for (Effect e : {Effect::kContactSet, Effect::kReversingVector, Effect::kForce}) {
+    EXPECT_EQ(rig.scene->stats()[static_cast<int>(e)].runs, 0) << EffectName(e);
+  }
+  EXPECT_GT(rig.scene->stats()[static_cast<int>(Effect::kCollision)].runs, 0);
+}
+
+// A scene where nothing moves runs no stage at all.
+TEST(SceneTest, NothingMovingSkipsCollision) {
+  Rig rig = MakeRig();
+  rig.scene->Step();
+  const int64_t runs = rig.scene->stats()[static_cast<int>(Effect::kCollision)].runs;
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(rig.scene->Step().stages_run, EffectSet());
+  EXPECT_EQ(rig.scene->stats()[static_cast<int>(Effect::kCollision)].runs, runs);
+}
+
+// Pressed 1 cm into the floor, the proxy stays on the surface and the force
+// is the floor's stiffness times the depth, straight up.
+TEST(SceneTest, ForceIsSpringToProxy) {
+  Rig rig = MakeRig();
+  const auto frames = Drive(rig, PressAndSlide());
+  const ToolFrame& pressed = frames[19].tools[0];  // probe bottom 1 cm into the floor
+  const double depth = -(pressed.X_WD.translation().z() - 0.01);  // probe bottom below z = 0
+  ASSERT_GT(depth, 0);
+  EXPECT_NEAR(pressed.X_WP.translation().z(), 0.01, 1e-6);  // proxy bottom on the surface
+  const double k = Material{}.stiffness_n_per_m;
+  // The proxy stands off the surface by 1e-6 of the probe's diagonal.
+  EXPECT_NEAR(pressed.force_W.z(), k * depth, k * 1e-6);
+  EXPECT_NEAR(pressed.force_W.x(), 0, 1e-9);
+  EXPECT_NEAR(pressed.force_W.y(), 0, 1e-9);
+}
+
+// Sliding along the floor without friction, the force stays normal and
+// continuous: across the diagonal of the floor's top (a face boundary) it
+// changes by far less than the clamp between steps.
+TEST(SceneTest, SlidingAcrossFaceBoundaryHasNoForceJump) {
+  Rig rig = MakeRig();
+  std::vector<Isometry3d> path;
+  for (int i = 1; i <= 20; ++i) path.push_back(At(0.05, 0.1, 0.02 - 0.0015 * i));
+  // Slide along x at y = 0.1 across the diagonal x = y at x = 0.1.
+  for (int i = 1; i <= 40; ++i) path.push_back(At(0.05 + 0.0025 * i, 0.1, -0.01));
+  SceneOptions options;
+  options.enabled = EffectSet::All().Without(Effect::kFriction);
+  rig = MakeRig(options);
+  const auto frames = Drive(rig, path);
+  double largest_jump = 0;
+  for (size_t i = 21; i < frames.size(); ++i) {
+    largest_jump = std::max(largest_jump,
+                            (frames[i].tools[0].force_W - frames[i - 1].tools[0].force_W).norm());
+    EXPECT_GT(frames[i].tools[0].force_W.z(), 0) << "step " << i;
+  }
+  EXPECT_LT(largest_jump, 0.01 * rig.scene->options().force_clamp_n);
+}
+
+// The device steps 0.2 m straight through a 5 mm plate in one step: the
+// proxy stays on top and the force pushes up (clamped), no pop-through.
+TEST(SceneTest, NoPopThroughThinPlate) {
+  Rig rig = MakeRig({}, 0.005);
+  ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(0.1, 0.05, 0.012)).ok());
+  rig.scene->Step();
+  ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(0.1, 0.05, -0.19)).ok());
+  const ToolFrame& through = rig.scene->Step().tools[0];
+  EXPECT_NEAR(through.X_WP.translation().z(), 0.01, 1e-6);
+  EXPECT_GT(through.force_W.z(), 0);
+  EXPECT_TRUE(through.force_clamped);
+  // The next step, still below: the proxy has not popped through.
+  ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(0.1, 0.05, -0.2)).ok());
+  EXPECT_NEAR(rig.scene->Step().tools[0].X_WP.translation().z(), 0.01, 1e-6);
+}
+
+// With friction, a small sideways pull within the static cone leaves the
+// proxy stuck and gives a sideways force; without friction it slides.
+TEST(SceneTest, StaticFrictionSticks) {
+  for (bool friction : {true, false}) {
+    SCOPED_TRACE(friction);
+    SceneOptions options;
+    options.force_clamp_n = 100;  // 20 N of pressing must not be clamped here
+    if (!friction) options.enabled = EffectSet::All().Without(Effect::kFriction);
+    Rig rig = MakeRig(options);
+    std::vector<Isometry3d> path;
+    for (int i = 1; i <= 20; ++i) path.push_back(At(0.1, 0.05, 0.02 - 0.0015 * i));
+    // 2 cm deep (20 N); pull 1 mm sideways: 1 N against 0.3 x 20 N static.
+    path.push_back(At(0.101, 0.05, -0.01));
+    const auto frames = Drive(rig, path);
+    const ToolFrame& pulled = frames.back().tools[0];
+    if (friction) {
+      // Within the stand-off's share of the step (1e-6 of the probe's size).
+      EXPECT_NEAR(pulled.X_WP.translation().x(), 0.1, 1e-6);
+      EXPECT_NEAR(pulled.force_W.x(), -1.0, 1e-3);
+    } else {
+      EXPECT_NEAR(pulled.X_WP.translation().x(), 0.101, 1e-6);
+      EXPECT_NEAR(pulled.force_W.x(), 0, 1e-6);
+    }
+  }
+}
+
+// The same scene and device inputs give bit-identical frames.
+TEST(SceneTest, Deterministic) {
+  Rig a = MakeRig(), b = MakeRig();
+  const auto fa = Drive(a, PressAndSlide());
+  const auto fb = Drive(b, PressAndSlide());
+  for (size_t i = 0; i < fa.size(); ++i) {
+    const ToolFrame& x = fa[i].tools[0];
+    const ToolFrame& y = fb[i].tools[0];
+    EXPECT_EQ(std::memcmp(x.force_W.data(), y.force_W.data(), sizeof(double) * 3), 0);
+    EXPECT_TRUE(x.X_WP.matrix() == y.X_WP.matrix());
+    ASSERT_EQ(x.contacts.size(), y.contacts.size());
+    for (size_t k = 0; k < x.contacts.size(); ++k) {
+      EXPECT_EQ(x.contacts[k].contact.depth_m, y.contacts[k].contact.depth_m);
+      EXPECT_EQ(x.contacts[k].contact.moving.vertices, y.contacts[k].contact.moving.vertices);
+    }
+  }
+}
+
+// Bad device poses and ids are rejected with specific codes and change nothing.
+TEST(SceneTest, RejectsBadInput) {
+  Rig rig = MakeRig();
+  EXPECT_EQ(rig.scene->SetDevicePose(rig.probe, At(NAN, 0, 0)).code(),
+            absl::StatusCode::kInvalidArgument);
+  Isometry3d scaled = At(0, 0, 0);
+  scaled.linear() *= 2;
+  EXPECT_EQ(rig.scene->SetDevicePose(rig.probe, scaled).code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(rig.scene->SetDevicePose(7, At(0, 0, 0)).code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(rig.scene->SetDevicePose(rig.floor, At(0, 0, 0)).code(),
+            absl::StatusCode::kFailedPrecondition);
+  const StepFrame& frame = rig.scene->Step();
+  EXPECT_TRUE(frame.tools[0].X_WD.isApprox(At(0.1, 0.05, 0.02)));
+  EXPECT_EQ(Scene::Create({.step_s = 0}).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace hs
