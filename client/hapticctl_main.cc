@@ -5,6 +5,7 @@
 #include "client/contact_command.h"
 #include "client/exit_codes.h"
 #include "client/inspect_command.h"
+#include "client/simulate_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"hapticctl: client of the haptic simulation service"};
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   int exit_code = hs::cli::kExitOk;
   hs::cli::AddInspectCommand(app, exit_code);
   hs::cli::AddContactCommand(app, exit_code);
+  hs::cli::AddSimulateCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -91,7 +91,8 @@ const StepFrame& Scene::Step() {
     frame_.stages_run = EffectSet();
     return frame_;
   }
-  frame_.stages_run = StagesToRun(options_.enabled, needed_);
+  // No object is free yet (ObjectKind has none), so free-body motion never runs.
+  frame_.stages_run = StagesToRun(options_.enabled, needed_).Without(Effect::kFreeBodyMotion);
   frame_.tools.resize(tools_.size());
   for (size_t i = 0; i < tools_.size(); ++i) {
     StepTool(tools_[i], frame_.stages_run, frame_.tools[i]);
@@ -113,6 +114,12 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   frame.force_clamped = false;
   frame.contacts.clear();
   const PosedObject device = Posed(t, tool.X_WD);
+  // Continuous collision and friction run inside the collision and proxy
+  // stages: their runs are counted here, their time is their hosts'.
+  if (continuous && stages.Has(Effect::kCollision)) {
+    ++stats_[static_cast<int>(Effect::kContinuousCollision)].runs;
+  }
+  if (stages.Has(Effect::kFriction)) ++stats_[static_cast<int>(Effect::kFriction)].runs;
 
   if (stages.Has(Effect::kCollision)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kCollision)]);

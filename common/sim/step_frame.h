@@ -52,6 +52,8 @@ struct StepFrame {
 };
 
 /// How often and how long one stage ran, since the scene was created.
+/// Continuous collision and friction run inside the collision and proxy
+/// (reversing-vector) stages: their time is counted there.
 struct StageStats {
   int64_t runs = 0;
   int64_t total_ns = 0;

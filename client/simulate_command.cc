@@ -1,0 +1,144 @@
+#include "client/simulate_command.h"
+
+#include <fstream>
+#include <memory>
+
+#include "client/contact_json.h"
+#include "client/exit_codes.h"
+#include "client/pose_args.h"
+#include "server/scene_file.h"
+
+namespace hs::cli {
+namespace {
+
+absl::StatusOr<std::vector<Isometry3d>> ReadToolPath(const std::string& path) {
+  std::vector<Isometry3d> poses;
+  if (path.empty()) return poses;
+  std::ifstream in(path);
+  if (!in) return absl::NotFoundError(path + ": cannot open");
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    absl::StatusOr<Isometry3d> pose = ParsePose(line);
+    if (!pose.ok()) {
+      return absl::InvalidArgumentError(path + ":" + std::to_string(number) + ": " +
+                                        std::string(pose.status().message()));
+    }
+    poses.push_back(*pose);
+  }
+  return poses;
+}
+
+nlohmann::ordered_json Vec(const Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& loaded) {
+  nlohmann::ordered_json tools = nlohmann::ordered_json::array();
+  for (const ToolFrame& t : frame.tools) {
+    nlohmann::ordered_json contacts = nlohmann::ordered_json::array();
+    for (const PairContact& c : t.contacts) {
+      nlohmann::ordered_json entry = ContactSetToJson(c.contact);
+      entry["object"] = loaded.names[c.object];
+      contacts.push_back(std::move(entry));
+    }
+    tools.push_back({{"tool", loaded.names[t.tool]},
+                     {"device_position_W_m", Vec(t.X_WD.translation())},
+                     {"proxy_position_W_m", Vec(t.X_WP.translation())},
+                     {"force_W_n", Vec(t.force_W)},
+                     {"torque_W_nm", Vec(t.torque_W)},
+                     {"force_clamped", t.force_clamped},
+                     {"contacts", contacts}});
+  }
+  nlohmann::ordered_json stages = nlohmann::ordered_json::array();
+  for (int i = 0; i < kNumEffects; ++i) {
+    if (frame.stages_run.Has(static_cast<Effect>(i))) {
+      stages.push_back(EffectName(static_cast<Effect>(i)));
+    }
+  }
+  return {{"step", frame.step}, {"time_s", frame.time_s}, {"stages_run", stages}, {"tools", tools}};
+}
+
+nlohmann::ordered_json StatsJson(const StageStatsTable& stats) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (int i = 0; i < kNumEffects; ++i) {
+    out[std::string(EffectName(static_cast<Effect>(i)))] = {
+        {"runs", stats[i].runs},
+        {"mean_us", stats[i].runs ? 1e-3 * stats[i].total_ns / stats[i].runs : 0.0}};
+  }
+  return out;
+}
+
+absl::StatusOr<EffectSet> ParseNeeds(const std::vector<std::string>& names) {
+  if (names.empty()) return EffectSet::All();
+  EffectSet needs;
+  for (const std::string& name : names) {
+    absl::StatusOr<Effect> effect = ParseEffect(name);
+    if (!effect.ok()) return effect.status();
+    needs = needs.With(*effect);
+  }
+  return needs;
+}
+
+}  // namespace
+
+int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
+  auto fail = [&](const absl::Status& status) {
+    err << "hapticctl simulate: " << status.message() << "\n";
+    return kExitFailure;
+  };
+  absl::StatusOr<LoadedScene> loaded = LoadSceneFile(args.scene_file);
+  if (!loaded.ok()) return fail(loaded.status());
+  absl::StatusOr<std::vector<Isometry3d>> path = ReadToolPath(args.tool_path);
+  if (!path.ok()) return fail(path.status());
+  absl::StatusOr<EffectSet> needs = ParseNeeds(args.needs);
+  if (!needs.ok()) return fail(needs.status());
+  if (!path->empty() && loaded->tools.empty()) {
+    return fail(absl::FailedPreconditionError("a tool path was given but the scene has no tool"));
+  }
+  Scene& scene = *loaded->scene;
+  scene.SetNeeded(*needs);
+  for (int step = 0; step < args.steps; ++step) {
+    if (step < static_cast<int>(path->size())) {
+      if (absl::Status s = scene.SetDevicePose(loaded->tools.front(), (*path)[step]); !s.ok()) {
+        return fail(s);
+      }
+    }
+    const StepFrame& frame = scene.Step();
+    if (args.json) {
+      out << FrameJson(frame, *loaded).dump() << "\n";
+      continue;
+    }
+    out << "step " << frame.step;
+    for (const ToolFrame& t : frame.tools) {
+      out << "  " << loaded->names[t.tool] << ": contacts " << t.contacts.size() << ", force "
+          << t.force_W.transpose() << " N";
+    }
+    out << "\n";
+  }
+  if (args.json) {
+    out << nlohmann::ordered_json{{"stage_stats", StatsJson(scene.stats())}}.dump() << "\n";
+  } else {
+    const nlohmann::ordered_json stats = StatsJson(scene.stats());
+    for (const auto& [name, s] : stats.items()) {
+      out << name << ": " << s["runs"] << " runs, " << s["mean_us"] << " us mean\n";
+    }
+  }
+  return kExitOk;
+}
+
+void AddSimulateCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<SimulateArgs>();
+  CLI::App* cmd = app.add_subcommand("simulate", "Run a scene file offline and print each step");
+  cmd->add_option("scene", args->scene_file, "Scene file (protobuf text format, or .json)")
+      ->required();
+  cmd->add_option("--steps", args->steps, "Number of steps")->check(CLI::Range(0, 10000000));
+  cmd->add_option("--tool-path", args->tool_path,
+                  "Device poses of the first tool, one 'x,y,z,rx,ry,rz' line per step");
+  cmd->add_option("--needs", args->needs,
+                  "Effects the consumer needs (collision, contact_set, reversing_vector, force, "
+                  "friction, continuous_collision); default all");
+  cmd->add_flag("--json", args->json, "One JSON object per step, then the stage statistics");
+  cmd->callback([args, &exit_code] { exit_code = RunSimulate(*args, std::cout, std::cerr); });
+}
+
+}  // namespace hs::cli

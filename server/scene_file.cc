@@ -1,0 +1,254 @@
+#include "server/scene_file.h"
+
+#include <google/protobuf/io/tokenizer.h>
+#include <google/protobuf/text_format.h>
+#include <google/protobuf/util/json_util.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "common/core/status_macros.h"
+#include "common/model/import.h"
+#include "common/model/procedural.h"
+
+namespace hs {
+namespace {
+
+namespace pb = haptics::v1;
+
+absl::Status Invalid(const std::string& where, const std::string& what) {
+  return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
+}
+
+absl::StatusOr<Vector3d> ToVector(const pb::Vector3& v, const std::string& where) {
+  const Vector3d out(v.x(), v.y(), v.z());
+  if (!out.allFinite()) return Invalid(where, "not finite");
+  return out;
+}
+
+absl::StatusOr<Isometry3d> ToPose(const pb::Pose& pose, const std::string& where) {
+  HS_ASSIGN_OR_RETURN(const Vector3d p, ToVector(pose.position_m(), where + ".position_m"));
+  const pb::Quaternion& q = pose.orientation();
+  Eigen::Quaterniond rotation(q.w(), q.x(), q.y(), q.z());
+  if (!rotation.coeffs().allFinite()) return Invalid(where + ".orientation", "not finite");
+  if (rotation.coeffs().isZero()) {
+    rotation = Eigen::Quaterniond::Identity();
+  } else if (std::abs(rotation.norm() - 1) > 1e-6) {
+    return Invalid(where + ".orientation", "not a unit quaternion");
+  }
+  Isometry3d X = Isometry3d::Identity();
+  X.linear() = rotation.normalized().toRotationMatrix();
+  X.translation() = p;
+  return X;
+}
+
+absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::string& where) {
+  switch (p.shape_case()) {
+    case pb::Procedural::kBox: {
+      HS_ASSIGN_OR_RETURN(const Vector3d size, ToVector(p.box().size_m(), where + ".box.size_m"));
+      if (!(size.array() > 0).all()) return Invalid(where + ".box.size_m", "must be > 0");
+      return MakeBox(size);
+    }
+    case pb::Procedural::kSphere: {
+      const auto& s = p.sphere();
+      if (!(std::isfinite(s.radius_m()) && s.radius_m() > 0)) {
+        return Invalid(where + ".sphere.radius_m", "must be finite and > 0");
+      }
+      if (s.subdivisions() < 0 || s.subdivisions() > 6) {
+        return Invalid(where + ".sphere.subdivisions", "must be in [0, 6]");
+      }
+      return MakeIcosphere(s.radius_m(), s.subdivisions());
+    }
+    case pb::Procedural::kTorus: {
+      const auto& t = p.torus();
+      if (!(std::isfinite(t.major_radius_m()) && std::isfinite(t.minor_radius_m()) &&
+            0 < t.minor_radius_m() && t.minor_radius_m() < t.major_radius_m())) {
+        return Invalid(where + ".torus", "radii must be finite with 0 < minor < major");
+      }
+      if (t.major_segments() < 3 || t.minor_segments() < 3 || t.major_segments() > 1000 ||
+          t.minor_segments() > 1000) {
+        return Invalid(where + ".torus", "segments must be in [3, 1000]");
+      }
+      return MakeTorus(t.major_radius_m(), t.minor_radius_m(), t.major_segments(),
+                       t.minor_segments());
+    }
+    case pb::Procedural::SHAPE_NOT_SET:
+      break;
+  }
+  return Invalid(where, "no shape");
+}
+
+absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::string& where,
+                                       const std::string& base_dir) {
+  const pb::ModelSource& source = o.model();
+  const double unit_scale = source.unit_scale() == 0 ? 1.0 : source.unit_scale();
+  if (!(std::isfinite(unit_scale) && unit_scale > 0)) {
+    return Invalid(where + ".model.unit_scale", "must be finite and > 0");
+  }
+  switch (source.source_case()) {
+    case pb::ModelSource::kPath: {
+      std::filesystem::path path(source.path());
+      if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+      ImportOptions options;
+      options.unit_scale = unit_scale;
+      absl::StatusOr<ImportedModel> model = ImportModel(path.string(), options);
+      if (!model.ok()) return Invalid(where + ".model", std::string(model.status().message()));
+      return std::move(model->object);
+    }
+    case pb::ModelSource::kProcedural: {
+      HS_ASSIGN_OR_RETURN(MeshInput mesh, ProceduralMesh(source.procedural(), where + ".model"));
+      mesh = TransformMesh(std::move(mesh), Isometry3d(Eigen::Scaling(unit_scale)));
+      absl::StatusOr<HapticObject> object = HapticObject::Create(o.name(), std::move(mesh));
+      if (!object.ok()) return Invalid(where + ".model", std::string(object.status().message()));
+      return object;
+    }
+    case pb::ModelSource::SOURCE_NOT_SET:
+      break;
+  }
+  return Invalid(where + ".model", "no path or procedural shape");
+}
+
+absl::Status ApplyMaterials(const pb::SceneObject& o, const std::string& where,
+                            HapticObject& object) {
+  for (int i = 0; i < o.materials_size(); ++i) {
+    const pb::MaterialOverride& m = o.materials(i);
+    const std::string at = absl::StrCat(where, ".materials[", i, "]");
+    bool found = false;
+    for (MaterialId id = 0; id < static_cast<MaterialId>(object.materials().size()); ++id) {
+      if (!m.face_group().empty() && object.materials()[id].name != m.face_group()) continue;
+      found = true;
+      Material material = object.materials()[id];
+      material.stiffness_n_per_m = m.material().stiffness_n_per_m() == 0
+                                       ? Material{}.stiffness_n_per_m
+                                       : m.material().stiffness_n_per_m();
+      material.damping_ns_per_m = m.material().damping_ns_per_m();
+      material.static_friction = m.material().static_friction();
+      material.dynamic_friction = m.material().dynamic_friction();
+      if (absl::Status s = object.SetMaterial(id, material); !s.ok()) {
+        return Invalid(at, std::string(s.message()));
+      }
+    }
+    if (!found) return Invalid(at, absl::StrCat("no face group '", m.face_group(), "'"));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
+  SceneOptions options;
+  if (spec.step_s() != 0) options.step_s = spec.step_s();
+  if (spec.relative_tolerance() != 0) options.relative_tolerance = spec.relative_tolerance();
+  if (spec.force_clamp_n() != 0) options.force_clamp_n = spec.force_clamp_n();
+  if (spec.effects_size() > 0) {
+    options.enabled = EffectSet();
+    for (int i = 0; i < spec.effects_size(); ++i) {
+      const int e = spec.effects(i);
+      if (e <= pb::EFFECT_UNSPECIFIED || e > pb::EFFECT_CONTINUOUS_COLLISION) {
+        return Invalid(absl::StrCat("effects[", i, "]"), "unknown effect");
+      }
+      // The proto's effects follow Effect's order, from 1.
+      options.enabled = options.enabled.With(static_cast<Effect>(e - 1));
+    }
+  }
+  switch (spec.contact_method()) {
+    case pb::CONTACT_METHOD_PAPER_2D:
+      options.method = ContactMethod::kPaper2d;
+      break;
+    case pb::CONTACT_METHOD_UNSPECIFIED:
+    case pb::CONTACT_METHOD_SWEEP_3D:
+      options.method = ContactMethod::kSweep3d;
+      break;
+    default:
+      return Invalid("contact_method", "unknown method");
+  }
+  constexpr BvType kBvs[] = {BvType::kObbRss, BvType::kObbRss, BvType::kObb,
+                             BvType::kRss,    BvType::kKios,   BvType::kAabb};
+  if (spec.bounding_volume() < 0 || spec.bounding_volume() > pb::BOUNDING_VOLUME_AABB) {
+    return Invalid("bounding_volume", "unknown bounding volume");
+  }
+  options.bv = kBvs[spec.bounding_volume()];
+  return options;
+}
+
+// Keeps the text parser's first error for the status instead of logging it.
+class FirstError : public google::protobuf::io::ErrorCollector {
+ public:
+  void AddError(int line, int column, const std::string& message) override {
+    if (text_.empty())
+      text_ = absl::StrCat("line ", line + 1, ", column ", column + 1, ": ", message);
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+};
+
+}  // namespace
+
+absl::StatusOr<pb::SceneSpec> ReadSceneFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return absl::NotFoundError(absl::StrCat(path, ": cannot open"));
+  std::stringstream text;
+  text << in.rdbuf();
+  pb::SceneSpec spec;
+  if (path.ends_with(".json")) {
+    const auto status = google::protobuf::util::JsonStringToMessage(text.str(), &spec);
+    if (!status.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat(path, ": ", status.message().as_string()));
+    }
+  } else {
+    FirstError errors;
+    google::protobuf::TextFormat::Parser parser;
+    parser.RecordErrorsTo(&errors);
+    if (!parser.ParseFromString(text.str(), &spec)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat(path, ": not a SceneSpec in text format: ", errors.text()));
+    }
+  }
+  return spec;
+}
+
+absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const std::string& base_dir) {
+  HS_ASSIGN_OR_RETURN(const SceneOptions options, ToOptions(spec));
+  LoadedScene loaded;
+  HS_ASSIGN_OR_RETURN(loaded.scene, Scene::Create(options));
+  std::set<std::string> names;
+  for (int i = 0; i < spec.objects_size(); ++i) {
+    const pb::SceneObject& o = spec.objects(i);
+    const std::string where = absl::StrCat("objects[", i, "] '", o.name(), "'");
+    if (o.name().empty() || !names.insert(o.name()).second) {
+      return Invalid(where, "name must be non-empty and unique");
+    }
+    ObjectKind kind;
+    if (o.kind() == pb::OBJECT_KIND_FIXED) {
+      kind = ObjectKind::kFixed;
+    } else if (o.kind() == pb::OBJECT_KIND_TOOL) {
+      kind = ObjectKind::kTool;
+    } else {
+      return Invalid(where + ".kind", "must be OBJECT_KIND_FIXED or OBJECT_KIND_TOOL");
+    }
+    HS_ASSIGN_OR_RETURN(const Isometry3d X_WO, ToPose(o.pose(), where + ".pose"));
+    HS_ASSIGN_OR_RETURN(HapticObject object, LoadModel(o, where, base_dir));
+    HS_RETURN_IF_ERROR(ApplyMaterials(o, where, object));
+    HS_ASSIGN_OR_RETURN(const ObjectId id, loaded.scene->AddObject(std::move(object), kind, X_WO));
+    loaded.names.push_back(o.name());
+    if (kind == ObjectKind::kTool) loaded.tools.push_back(id);
+  }
+  return loaded;
+}
+
+absl::StatusOr<LoadedScene> LoadSceneFile(const std::string& path) {
+  HS_ASSIGN_OR_RETURN(const pb::SceneSpec spec, ReadSceneFile(path));
+  absl::StatusOr<LoadedScene> loaded =
+      BuildScene(spec, std::filesystem::path(path).parent_path().string());
+  if (!loaded.ok()) {
+    return absl::Status(loaded.status().code(),
+                        absl::StrCat(path, ": ", loaded.status().message()));
+  }
+  return loaded;
+}
+
+}  // namespace hs

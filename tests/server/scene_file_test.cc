@@ -1,0 +1,97 @@
+#include "server/scene_file.h"
+
+#include <google/protobuf/text_format.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace hs {
+namespace {
+
+const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
+
+haptics::v1::SceneSpec Parse(const std::string& text) {
+  haptics::v1::SceneSpec spec;
+  EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(text, &spec)) << text;
+  return spec;
+}
+
+// A box floor and a cube tool, as text; `extra` is appended to the tool.
+std::string TwoObjects(const std::string& tool_extra = "", const std::string& scene_extra = "") {
+  return R"(
+    objects { name: "floor" kind: OBJECT_KIND_FIXED
+              model { procedural { box { size_m { x: 1 y: 1 z: 0.1 } } } } }
+    objects { name: "probe" kind: OBJECT_KIND_TOOL
+              model { procedural { box { size_m { x: 0.02 y: 0.02 z: 0.02 } } } } )" +
+         tool_extra + "}\n" + scene_extra;
+}
+
+// The bundled demo scene loads: its objects, names and tool.
+TEST(SceneFileTest, BundledDemoSceneLoads) {
+  absl::StatusOr<LoadedScene> loaded = LoadSceneFile(kScenes + "/probe_on_torus.textproto");
+  ASSERT_TRUE(loaded.ok()) << loaded.status();
+  EXPECT_EQ(loaded->names, (std::vector<std::string>{"table", "organ", "probe"}));
+  EXPECT_EQ(loaded->tools, (std::vector<ObjectId>{2}));
+  EXPECT_DOUBLE_EQ(loaded->scene->options().step_s, 0.001);
+}
+
+// Model files are found relative to the scene file, with unit scale and
+// material overrides by face group.
+TEST(SceneFileTest, ModelFileWithMaterialOverride) {
+  const auto dir = std::filesystem::path(testing::TempDir()) / "scene_file_test";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(std::string(HS_TEST_DATA_DIR) + "/cube.iv", dir / "cube.iv",
+                             std::filesystem::copy_options::overwrite_existing);
+  const auto spec = Parse(R"(
+    objects { name: "cube" kind: OBJECT_KIND_FIXED model { path: "cube.iv" unit_scale: 0.01 }
+              materials { face_group: "rubber" material { stiffness_n_per_m: 50 } } })");
+  absl::StatusOr<LoadedScene> loaded = BuildScene(spec, dir.string());
+  ASSERT_TRUE(loaded.ok()) << loaded.status();
+}
+
+// Every bad field is rejected with INVALID_ARGUMENT naming where it is.
+TEST(SceneFileTest, RejectsBadSpecs) {
+  const std::pair<std::string, std::string> cases[] = {
+      {TwoObjects("pose { position_m { x: nan } }"), "position_m"},
+      {TwoObjects("pose { orientation { w: 2 } }"), "unit quaternion"},
+      {TwoObjects(R"(materials { face_group: "bone" material {} })"), "no face group"},
+      {TwoObjects(R"(materials { material { static_friction: 0.1 dynamic_friction: 0.5 } })"),
+       "dynamic_friction"},
+      {TwoObjects("", "step_s: -1"), "step_s"},
+      {TwoObjects("", "relative_tolerance: 0.1"), "relative_tolerance"},
+      {TwoObjects("", "effects: EFFECT_UNSPECIFIED"), "effect"},
+      {R"(objects { name: "a" kind: OBJECT_KIND_FIXED model { procedural { box {} } } })",
+       "size_m"},
+      {R"(objects { name: "a" model { procedural { box { size_m { x: 1 y: 1 z: 1 } } } } })",
+       "kind"},
+      {R"(objects { name: "a" kind: OBJECT_KIND_FIXED model { path: "/missing.obj" } })",
+       "missing.obj"},
+      {R"(objects { name: "a" kind: OBJECT_KIND_FIXED
+                    model { procedural { torus { major_radius_m: 1 minor_radius_m: 2
+                                                 major_segments: 8 minor_segments: 8 } } } })",
+       "torus"},
+      {TwoObjects() + R"(objects { name: "probe" kind: OBJECT_KIND_FIXED
+                    model { procedural { sphere { radius_m: 1 } } } })",
+       "unique"},
+  };
+  for (const auto& [text, expected] : cases) {
+    SCOPED_TRACE(text);
+    const absl::StatusOr<LoadedScene> loaded = BuildScene(Parse(text), ".");
+    ASSERT_FALSE(loaded.ok());
+    EXPECT_EQ(loaded.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_NE(loaded.status().message().find(expected), std::string::npos)
+        << loaded.status().message();
+  }
+}
+
+// A file that is not a SceneSpec, or not there, fails with the file named.
+TEST(SceneFileTest, UnreadableFiles) {
+  EXPECT_EQ(ReadSceneFile("/missing.textproto").status().code(), absl::StatusCode::kNotFound);
+  const std::string garbage = std::string(HS_TEST_DATA_DIR) + "/garbage.obj";
+  const auto status = ReadSceneFile(garbage).status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(status.message().find("garbage.obj"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hs
