@@ -8,21 +8,11 @@
 #include "common/contact/paper_method.h"
 #include "common/contact/sweep_method.h"
 #include "common/core/check.h"
+#include "common/core/rigid_pose.h"
 #include "common/core/status_macros.h"
 
 namespace hs {
 namespace {
-
-absl::Status ValidatePose(const Isometry3d& X, const char* name) {
-  if (!X.matrix().allFinite()) {
-    return absl::InvalidArgumentError(absl::StrCat(name, " pose is not finite"));
-  }
-  const Matrix3d R = X.linear();
-  if (!(R.transpose() * R).isIdentity(1e-9) || R.determinant() < 0) {
-    return absl::InvalidArgumentError(absl::StrCat(name, " pose rotation is not a rotation"));
-  }
-  return absl::OkStatus();
-}
 
 AlignedBox3d WorldBox(const PosedObject& o) {
   AlignedBox3d world;
@@ -93,8 +83,8 @@ namespace {
 absl::StatusOr<double> PairTolerance(const PosedObject& moving, const PosedObject& fixed,
                                      const Vector3d& direction_W, double relative_tolerance) {
   HS_CHECK(moving.object && moving.model && fixed.object && fixed.model);
-  HS_RETURN_IF_ERROR(ValidatePose(moving.X_WO, "moving object"));
-  HS_RETURN_IF_ERROR(ValidatePose(fixed.X_WO, "fixed object"));
+  HS_RETURN_IF_ERROR(ValidateRigidPose(moving.X_WO, "moving object"));
+  HS_RETURN_IF_ERROR(ValidateRigidPose(fixed.X_WO, "fixed object"));
   if (!direction_W.allFinite()) {
     return absl::InvalidArgumentError("direction is not finite");
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "common/core/rigid_pose.h"
 #include "common/core/status_macros.h"
 
 namespace hs {
@@ -11,15 +12,6 @@ namespace {
 
 // Collision models are grown for query tolerances up to this (relative).
 constexpr double kMaxRelativeTolerance = 1e-6;
-
-absl::Status ValidatePose(const Isometry3d& X) {
-  if (!X.matrix().allFinite()) return absl::InvalidArgumentError("pose is not finite");
-  const Matrix3d R = X.linear();
-  if (!(R.transpose() * R).isIdentity(1e-9) || R.determinant() < 0) {
-    return absl::InvalidArgumentError("pose rotation is not a rotation");
-  }
-  return absl::OkStatus();
-}
 
 // Adds the wall time of its scope to one stage's statistics.
 class StageTimer {
@@ -55,7 +47,7 @@ absl::StatusOr<std::unique_ptr<Scene>> Scene::Create(const SceneOptions& options
 
 absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
                                           const Isometry3d& X_WO) {
-  HS_RETURN_IF_ERROR(ValidatePose(X_WO));
+  HS_RETURN_IF_ERROR(ValidateRigidPose(X_WO, "object"));
   const double margin = kMaxRelativeTolerance * object.bounding_box().diagonal().norm();
   CollisionModel model(object, options_.bv, margin);
   const auto id = static_cast<ObjectId>(objects_.size());
@@ -72,7 +64,7 @@ absl::Status Scene::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
   if (objects_[id]->kind != ObjectKind::kTool) {
     return absl::FailedPreconditionError(absl::StrCat("object ", id, " is not a tool"));
   }
-  HS_RETURN_IF_ERROR(ValidatePose(X_WD));
+  HS_RETURN_IF_ERROR(ValidateRigidPose(X_WD, "device"));
   for (Tool& tool : tools_) {
     if (tool.id != id) continue;
     tool.moved = tool.moved || !X_WD.isApprox(tool.X_WD, 0.0);
