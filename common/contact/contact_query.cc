@@ -5,6 +5,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_context.h"
+#include "common/contact/contact_features.h"
 #include "common/contact/paper_method.h"
 #include "common/contact/sweep_method.h"
 #include "common/core/check.h"
@@ -122,6 +123,35 @@ absl::StatusOr<bool> AreColliding(const PosedObject& moving, const PosedObject& 
                               pairs);
   }
   return !pairs.empty();
+}
+
+absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& moving,
+                                                         const PosedObject& fixed,
+                                                         const Vector3d& step_W,
+                                                         double relative_tolerance) {
+  HS_ASSIGN_OR_RETURN(const double tolerance,
+                      PairTolerance(moving, fixed, step_W, relative_tolerance));
+  const Isometry3d X_FW = fixed.X_WO.inverse();
+  const Vector3d step_F = X_FW.linear() * step_W;
+  if (!(step_F.squaredNorm() > 1e-300)) return std::nullopt;
+  ContactContext context{*moving.object,     *moving.model,       *fixed.object, *fixed.model,
+                         X_FW * moving.X_WO, step_F.normalized(), tolerance,     {}};
+  std::vector<TrianglePair> swept;
+  FindSweptTrianglePairs(*moving.model, context.X_FM, step_F, *fixed.model, Isometry3d::Identity(),
+                         tolerance, swept);
+  const std::optional<double> back = LatestTouchBack(context, swept, step_F);
+  if (!back) return std::nullopt;
+  context.X_FM.pretranslate(-*back * step_F);
+  FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
+                            tolerance, context.pairs);
+  const LocatedContacts located = LocateContacts(context, context.X_FM, context.pairs);
+  FirstTouch touch;
+  touch.time = 1 - *back;
+  touch.normal_W = fixed.X_WO.linear() * located.normal_F;
+  touch.fixed = located.fixed;
+  touch.points = located.points;
+  for (ContactPoint& p : touch.points) p.p_WC = fixed.X_WO * p.p_WC;
+  return touch;
 }
 
 absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,

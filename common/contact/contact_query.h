@@ -51,4 +51,27 @@ absl::StatusOr<bool> AreColliding(const PosedObject& moving, const PosedObject& 
                                   double relative_tolerance,
                                   const std::optional<Vector3d>& step_W = std::nullopt);
 
+/// Where a moving object first touches a fixed one along a straight step.
+struct FirstTouch {
+  /// Fraction of the step, in [0, 1], at the first touch.
+  double time = 0;
+  /// Unit contact normal at the first touch, world frame, from the fixed
+  /// object toward the moving one.
+  Vector3d normal_W = Vector3d::Zero();
+  /// The fixed object's touched features and the contact points, world
+  /// frame, at the first touch.
+  SideContact fixed;
+  std::vector<ContactPoint> points;
+};
+
+/// The first touch of `moving` with `fixed` while `moving` translates by
+/// `step_W` (world frame, metres) into its pose `moving.X_WO`; nullopt when
+/// they never touch during the step. Cheaper than a continuous
+/// ComputeContact: no depth is reconstructed at the end pose. Errors as
+/// ComputeContact.
+absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& moving,
+                                                         const PosedObject& fixed,
+                                                         const Vector3d& step_W,
+                                                         double relative_tolerance);
+
 }  // namespace hs

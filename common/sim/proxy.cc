@@ -13,33 +13,29 @@ FaceId TouchedFace(const HapticObject& object, const SideContact& side) {
   return 0;
 }
 
-struct FirstTouch {
+struct EarliestTouch {
   int obstacle = -1;
-  double time = 1;  // fraction of the move
-  ContactSet contact;
+  FirstTouch touch;
 };
 
 // The earliest touch of the tool (orientation R) moving from p to p + v.
-absl::StatusOr<FirstTouch> FindFirstTouch(const PosedObject& tool, const Matrix3d& R,
-                                          const Vector3d& p, const Vector3d& v,
-                                          std::span<const PosedObject> obstacles,
-                                          const ProxyOptions& options) {
+absl::StatusOr<EarliestTouch> FindEarliestTouch(const PosedObject& tool, const Matrix3d& R,
+                                                const Vector3d& p, const Vector3d& v,
+                                                std::span<const PosedObject> obstacles,
+                                                const ProxyOptions& options) {
   Isometry3d X_end = Isometry3d::Identity();
   X_end.linear() = R;
   X_end.translation() = p + v;
-  const ContactQuery query{.direction_W = v,
-                           .method = options.method,
-                           .continuous = true,
-                           .relative_tolerance = options.relative_tolerance};
-  FirstTouch first;
+  EarliestTouch earliest;
   for (int i = 0; i < static_cast<int>(obstacles.size()); ++i) {
-    HS_ASSIGN_OR_RETURN(ContactSet contact,
-                        ComputeContact({tool.object, tool.model, X_end}, obstacles[i], query));
-    if (!contact.colliding) continue;
-    const double time = contact.time_of_impact.value_or(0.0);
-    if (first.obstacle < 0 || time < first.time) first = {i, time, std::move(contact)};
+    HS_ASSIGN_OR_RETURN(std::optional<FirstTouch> touch,
+                        FindFirstTouch({tool.object, tool.model, X_end}, obstacles[i], v,
+                                       options.relative_tolerance));
+    if (touch && (earliest.obstacle < 0 || touch->time < earliest.touch.time)) {
+      earliest = {i, *std::move(touch)};
+    }
   }
-  return first;
+  return earliest;
 }
 
 }  // namespace
@@ -58,19 +54,21 @@ absl::StatusOr<ProxyState> MoveProxy(const PosedObject& tool, const Isometry3d& 
   for (int slide = 0; slide <= options.max_slides; ++slide) {
     const Vector3d v = goal - p;
     if (v.norm() <= stand_off * 1e-3) break;
-    HS_ASSIGN_OR_RETURN(FirstTouch touch, FindFirstTouch(tool, R, p, v, obstacles, options));
-    if (touch.obstacle < 0) {
+    HS_ASSIGN_OR_RETURN(const EarliestTouch earliest,
+                        FindEarliestTouch(tool, R, p, v, obstacles, options));
+    if (earliest.obstacle < 0) {
       p = goal;
       break;
     }
-    const Vector3d& n = touch.contact.normal_W;
+    const FirstTouch& touch = earliest.touch;
+    const Vector3d& n = touch.normal_W;
     p += touch.time * v + stand_off * n;
-    const HapticObject& object = *obstacles[touch.obstacle].object;
+    const HapticObject& object = *obstacles[earliest.obstacle].object;
     state.touching = true;
-    state.obstacle = touch.obstacle;
-    state.face = TouchedFace(object, touch.contact.fixed);
+    state.obstacle = earliest.obstacle;
+    state.face = TouchedFace(object, touch.fixed);
     state.normal_W = n;
-    state.p_WC = touch.contact.points.empty() ? p : touch.contact.points.front().p_WC;
+    state.p_WC = touch.points.empty() ? p : touch.points.front().p_WC;
     // Slide toward the device: drop the part of the way that goes into the
     // surface; with friction, stick inside the static cone and otherwise
     // lag the device by the dynamic friction force.

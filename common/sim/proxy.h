@@ -14,7 +14,6 @@
 namespace hs {
 
 struct ProxyOptions {
-  ContactMethod method = ContactMethod::kSweep3d;
   double relative_tolerance = 1e-9;
   /// Slide with Coulomb friction from the touched face's material.
   bool friction = false;

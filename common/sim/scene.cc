@@ -155,8 +155,7 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
       obstacles.push_back(Posed(o, o.X_WO));
       obstacle_ids.push_back(id);
     }
-    const ProxyOptions options{.method = options_.method,
-                               .relative_tolerance = options_.relative_tolerance,
+    const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
                                .friction = stages.Has(Effect::kFriction)};
     absl::StatusOr<ProxyState> moved = MoveProxy(device, tool.X_WP, tool.X_WD, obstacles, options);
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
