@@ -54,6 +54,23 @@ TEST(ContinuousContactTest, PenetratingStepReportsTimeOfImpact) {
   EXPECT_NEAR(*b.time_of_impact, 0.8, 1e-12);
 }
 
+// FindFirstTouch gives the same first touch without reconstructing the end
+// pose: time 0.445 of the step, normal up, the plate's top face, and
+// nothing for a step that misses.
+TEST(ContinuousContactTest, FirstTouchOfThinPlate) {
+  const auto cube = MakeBody(MakeBox(Vector3d(0.1, 0.1, 0.1)), Translation(0.3, 0.2, -0.5));
+  const auto plate = MakeBody(MakeBox(Vector3d(2, 2, 0.01)));
+  const auto touch = *FindFirstTouch(cube->posed(), plate->posed(), Vector3d(0, 0, -1), 1e-9);
+  ASSERT_TRUE(touch.has_value());
+  EXPECT_NEAR(touch->time, 0.445, 1e-12);
+  EXPECT_TRUE(touch->normal_W.isApprox(Vector3d(0, 0, 1), 1e-12));
+  EXPECT_EQ(touch->fixed.kind, FeatureKind::kFace);
+  for (const ContactPoint& p : touch->points) EXPECT_NEAR(p.p_WC.z(), 0.005, 1e-12);
+  cube->X_WO = Translation(3, 0, -0.5);
+  EXPECT_FALSE(
+      FindFirstTouch(cube->posed(), plate->posed(), Vector3d(0, 0, -1), 1e-9)->has_value());
+}
+
 // A step that never reaches the object reports no contact and no time.
 TEST(ContinuousContactTest, MissIsNoContact) {
   const auto cube = MakeBody(MakeBox(Vector3d(0.1, 0.1, 0.1)), Translation(3, 0, -0.5));
