@@ -25,6 +25,8 @@ struct DemoScene {
 
 constexpr DemoScene kScenes[] = {
     {"probe_on_torus", "probe_on_torus.textproto", "press_and_slide.csv"},
+    {"peg_in_hole", "peg_in_hole.textproto", "peg_in_hole.csv"},
+    {"linked_rings", "linked_rings.textproto", "linked_rings.csv"},
 };
 
 std::vector<Isometry3d> ReadPath(const std::string& file) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "client/exit_codes.h"
+#include "common/core/types.h"
 
 namespace hs::cli {
 namespace {
@@ -64,6 +65,40 @@ TEST(SimulateCommandTest, NeedsLimitTheStages) {
   EXPECT_EQ(stats["contact_set"]["runs"], 0);
   EXPECT_EQ(stats["force"]["runs"], 0);
   EXPECT_EQ(stats["collision"]["runs"], 60);
+}
+
+// Every bundled demo scene runs its device path, touches, and renders a
+// force that resists the device's last motion.
+TEST(SimulateCommandTest, EveryBundledDemoResistsItsPath) {
+  const std::pair<std::string, std::string> demos[] = {
+      {"probe_on_torus", "press_and_slide"},
+      {"peg_in_hole", "peg_in_hole"},
+      {"linked_rings", "linked_rings"},
+  };
+  for (const auto& [scene, path] : demos) {
+    SCOPED_TRACE(scene);
+    std::ostringstream out, err;
+    SimulateArgs args{.scene_file = kScenes + "/" + scene + ".textproto",
+                      .steps = 80,
+                      .tool_path = kScenes + "/" + path + ".csv",
+                      .needs = {},
+                      .json = true};
+    ASSERT_EQ(RunSimulate(args, out, err), kExitOk) << err.str();
+    const auto lines = Lines(out.str());
+    ASSERT_EQ(lines.size(), 81u);
+    // The last two frames with a device move give the last motion.
+    int last = 79;
+    auto position = [&](int i) {
+      const auto& p = lines[i]["tools"][0]["device_position_W_m"];
+      return Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    };
+    while (last > 0 && position(last) == position(last - 1)) --last;
+    const Vector3d motion = position(last) - position(last - 1);
+    const auto& f = lines[last]["tools"][0]["force_W_n"];
+    const Vector3d force(f[0].get<double>(), f[1].get<double>(), f[2].get<double>());
+    EXPECT_FALSE(lines[last]["tools"][0]["contacts"].empty());
+    EXPECT_LT(force.dot(motion), 0) << force.transpose() << " vs " << motion.transpose();
+  }
 }
 
 // Bad files and names fail with a message.
