@@ -95,8 +95,9 @@ void AddContactCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"paper", "3d"}));
   cmd->add_option("--bv", args->bv, "Bounding volume: obbrss, obb, rss, kios, aabb")
       ->check(CLI::IsMember({"obbrss", "obb", "rss", "kios", "aabb"}));
-  cmd->add_option("--tolerance", args->relative_tolerance,
-                  "Touching tolerance relative to the pair's box diagonal (<= 1e-6)");
+  cmd->add_option(
+      "--tolerance", args->relative_tolerance,
+      "Touching tolerance relative to the pair's size, the sum of the box diagonals (<= 1e-6)");
   cmd->add_option("--unit-scale", args->unit_scale, "Metres per file unit")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--continuous", args->continuous,

@@ -15,15 +15,6 @@
 namespace hs {
 namespace {
 
-AlignedBox3d WorldBox(const PosedObject& o) {
-  AlignedBox3d world;
-  const AlignedBox3d& local = o.object->bounding_box();
-  for (int corner = 0; corner < 8; ++corner) {
-    world.extend(o.X_WO * local.corner(static_cast<AlignedBox3d::CornerType>(corner)));
-  }
-  return world;
-}
-
 // With no motion to reverse, push back against the fixed faces the moving
 // object is in: D points into F, opposite their mean outward normal; failing
 // that, from M's centre toward F's.
@@ -95,9 +86,13 @@ absl::StatusOr<double> PairTolerance(const PosedObject& moving, const PosedObjec
   if (moving.model->bv_type() != fixed.model->bv_type()) {
     return absl::InvalidArgumentError("the two collision models use different bounding volumes");
   }
-  AlignedBox3d pair_box = WorldBox(moving);
-  pair_box.extend(WorldBox(fixed));
-  const double tolerance = relative_tolerance * pair_box.diagonal().norm();
+  // The pair's size: the sum of the two objects' box diagonals. Unlike the
+  // box around both, it is the same wherever the objects are, so the
+  // tolerance is invariant under rigid motion and never outgrows the
+  // models' margins when the objects are far apart.
+  const double size = moving.object->bounding_box().diagonal().norm() +
+                      fixed.object->bounding_box().diagonal().norm();
+  const double tolerance = relative_tolerance * size;
   if (tolerance > moving.model->margin_m() + fixed.model->margin_m()) {
     return absl::InvalidArgumentError(absl::StrCat(
         "tolerance ", tolerance, " m exceeds the collision models' margins (",

@@ -30,7 +30,8 @@ struct ContactQuery {
   /// along it is found, so a thin object passed through in one step is
   /// caught (paper fig. 3 c) and the time of impact reported.
   bool continuous = false;
-  /// Touching tolerance relative to the diagonal of the pair's bounding box.
+  /// Touching tolerance relative to the pair's size (the sum of the two
+  /// objects' bounding-box diagonals).
   /// Finite, >= 0, and within what the collision models were built for.
   double relative_tolerance = 1e-9;
 };

@@ -73,7 +73,8 @@ struct ContactSet {
   SideContact fixed;
   std::vector<ContactPoint> points;
   /// The distance under which objects count as touching, metres: the
-  /// query's relative tolerance times the diagonal of the pair's box.
+  /// query's relative tolerance times the pair's size (the sum of the two
+  /// objects' bounding-box diagonals).
   double tolerance_m = 0;
   /// The paper's singular case (fig. 6) decided the depth: a vertex of F
   /// inside M with no vertex of M inside F (paper method only).

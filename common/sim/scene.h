@@ -26,7 +26,7 @@ struct SceneOptions {
   EffectSet enabled = EffectSet::All();
   ContactMethod method = ContactMethod::kSweep3d;
   BvType bv = BvType::kObbRss;
-  /// Touching tolerance relative to a pair's box diagonal; <= 1e-6.
+  /// Touching tolerance relative to a pair's size (ContactQuery); <= 1e-6.
   double relative_tolerance = 1e-9;
   /// The largest force rendered on a tool, newtons. Finite and > 0.
   double force_clamp_n = 10;

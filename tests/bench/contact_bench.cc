@@ -276,16 +276,10 @@ const Case& GetCase(int index) {
 }
 
 // The tolerance ComputeContact derives from the query: relative to the
-// diagonal of the pair's world box.
+// pair's size, the sum of the two objects' box diagonals.
 double ToleranceM(const Case& c) {
-  AlignedBox3d box;
-  for (const Body* b : {c.moving.get(), c.fixed.get()}) {
-    const AlignedBox3d& local = b->object.bounding_box();
-    for (int corner = 0; corner < 8; ++corner) {
-      box.extend(b->X_WO * local.corner(static_cast<AlignedBox3d::CornerType>(corner)));
-    }
-  }
-  return kRelativeTolerance * box.diagonal().norm();
+  return kRelativeTolerance * (c.moving->object.bounding_box().diagonal().norm() +
+                               c.fixed->object.bounding_box().diagonal().norm());
 }
 
 ContactQuery Query(const Case& c, ContactMethod method) {

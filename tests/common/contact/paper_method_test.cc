@@ -129,13 +129,10 @@ bool Penetrate(const Body& m, const Isometry3d& X_WM, const Body& f, const Isome
   return !pairs.empty();
 }
 
-// The tolerance ComputeContact would use: 1e-9 x the pair's box diagonal.
-double PairTolerance(const Body& m, const Isometry3d& X_FM, const Body& f) {
-  AlignedBox3d box = f.object.bounding_box();
-  for (int c = 0; c < 8; ++c) {
-    box.extend(X_FM * m.object.bounding_box().corner(static_cast<AlignedBox3d::CornerType>(c)));
-  }
-  return 1e-9 * box.diagonal().norm();
+// The tolerance ComputeContact would use: 1e-9 x the pair's size.
+double PairTolerance(const Body& m, const Body& f) {
+  return 1e-9 *
+         (m.object.bounding_box().diagonal().norm() + f.object.bounding_box().diagonal().norm());
 }
 
 // The method on a context built by hand, F at the origin (world = F's
@@ -143,7 +140,7 @@ double PairTolerance(const Body& m, const Isometry3d& X_FM, const Body& f) {
 // makes every vertex and edge of both objects a candidate.
 ContactSet RunContext(const Body& m, const Isometry3d& X_FM, const Body& f, const Vector3d& D,
                       bool whole_objects = false, const ProjectionOptions& options = {}) {
-  const double tol = PairTolerance(m, X_FM, f);
+  const double tol = PairTolerance(m, f);
   ContactContext context{m.object, m.model, f.object, f.model, X_FM, D.normalized(), tol, {}};
   if (whole_objects) {
     for (FaceId a = 0; a < m.object.num_faces(); ++a) {
@@ -715,7 +712,7 @@ TEST(PaperMethodTest, DegenerateTrianglesInTheInput) {
   EXPECT_EQ(set.moving.faces, (std::vector<FaceId>{0, 1}));
   EXPECT_EQ(set.moving.vertices, Ids({0, 1, 2, 3}));
 
-  const double tol = PairTolerance(*m, X_FM, *f);
+  const double tol = PairTolerance(*m, *f);
   ContactContext context{m->object, m->model, f->object, f->model, X_FM, D, tol, {}};
   FindIntersectingTriangles(m->model, X_FM, f->model, Isometry3d::Identity(), tol, context.pairs);
   const size_t clean = context.pairs.size();
