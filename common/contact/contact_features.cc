@@ -1,7 +1,6 @@
 #include "common/contact/contact_features.h"
 
 #include <algorithm>
-#include <map>
 
 #include "common/contact/closest_points.h"
 #include "common/contact/side_contact.h"
@@ -98,7 +97,14 @@ class Locator {
     }
   }
 
-  LocatedContacts Finish() const {
+  LocatedContacts Finish() {
+    // One entry per feature pair, in feature order, the first one added kept.
+    std::stable_sort(points_.begin(), points_.end(),
+                     [](const Entry& x, const Entry& y) { return x.features < y.features; });
+    points_.erase(
+        std::unique(points_.begin(), points_.end(),
+                    [](const Entry& x, const Entry& y) { return x.features == y.features; }),
+        points_.end());
     LocatedContacts out;
     std::vector<VertexId> vertices[2];
     std::vector<EdgeId> edges[2];
@@ -109,11 +115,11 @@ class Locator {
       if (feature.kind == FeatureKind::kFace) faces[side].push_back(feature.id);
     };
     Vector3d normal_sum = Vector3d::Zero();
-    for (const auto& [features, entry] : points_) {
-      out.points.push_back(ContactPoint{entry.first, features.first, features.second});
-      collect(0, features.first);
-      collect(1, features.second);
-      normal_sum += entry.second;
+    for (const Entry& e : points_) {
+      out.points.push_back(ContactPoint{e.p, e.features.first, e.features.second});
+      collect(0, e.features.first);
+      collect(1, e.features.second);
+      normal_sum += e.normal;
     }
     out.moving = AggregateSide(c_.moving, vertices[0], edges[0], faces[0]);
     out.fixed = AggregateSide(c_.fixed, vertices[1], edges[1], faces[1]);
@@ -126,12 +132,18 @@ class Locator {
   // oppose the motion (a soup has no reliable outside).
   void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, Vector3d normal) {
     if (normal.dot(c_.direction_F) > 0) normal = -normal;
-    points_.try_emplace({moving, fixed}, p, normal);
+    points_.push_back({{moving, fixed}, p, normal});
   }
+
+  struct Entry {
+    std::pair<Feature, Feature> features;
+    Vector3d p;
+    Vector3d normal;
+  };
 
   const ContactContext& c_;
   const Isometry3d X_FM_;
-  std::map<std::pair<Feature, Feature>, std::pair<Vector3d, Vector3d>> points_;
+  std::vector<Entry> points_;
 };
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "common/contact/sweep_method.h"
 
 #include <algorithm>
-#include <set>
 
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_features.h"
@@ -27,18 +26,22 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
   // pair (a, b) intersects over the interval of t in which a - t D meets b.
   // Intervals are exact (zero margin); runs may chain across gaps below the
   // tolerance, which count as touching.
-  std::set<TrianglePair> known;
+  std::vector<TrianglePair> known;  // sorted
   std::vector<Interval> intervals;
-  auto add_pairs = [&](const std::vector<TrianglePair>& pairs) {
+  // Returns whether any pair was new.
+  auto add_pairs = [&](std::vector<TrianglePair> pairs) {
+    std::sort(pairs.begin(), pairs.end());
+    const size_t old_size = known.size();
     for (const TrianglePair& pair : pairs) {
-      if (!known.insert(pair).second) continue;
-      const auto& v = c.moving.face(pair.a).vertices;
+      if (std::binary_search(known.begin(), known.begin() + old_size, pair)) continue;
+      known.push_back(pair);
       // Sweep intervals are translation-invariant, so take a at t = 0.
-      const Triangle3d a = {c.X_FM * c.moving.position(v[0]), c.X_FM * c.moving.position(v[1]),
-                            c.X_FM * c.moving.position(v[2])};
-      const Interval interval = SweptIntersection(a, c.FixedTriangle(pair.b), D, 0.0);
+      const Interval interval =
+          SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), D, 0.0);
       if (!interval.empty()) intervals.push_back(interval);
     }
+    std::inplace_merge(known.begin(), known.begin() + old_size, known.end());
+    return known.size() > old_size;
   };
   add_pairs(c.pairs);
 
@@ -59,9 +62,7 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
     at_t_star.clear();
     FindIntersectingTriangles(c.moving_model, MovedBack(c, t_star), c.fixed_model,
                               Isometry3d::Identity(), c.tolerance_m, at_t_star);
-    const size_t known_before = known.size();
-    add_pairs(at_t_star);
-    settled = known.size() == known_before;
+    settled = !add_pairs(at_t_star);
   }
 
   ContactSet set;
