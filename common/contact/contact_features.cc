@@ -65,26 +65,35 @@ class Locator {
                        X_FM_ * c_.moving.position(mv[2])}};
     const PosedFace f{&c_.fixed, pair.b, c_.FixedTriangle(pair.b)};
     const double tol = c_.tolerance_m;
+    // Cheap rejections first: most corners and edge pairs of a touching
+    // pair are nowhere near the other triangle.
+    const Vector3d n_m = UnitNormal(m.corners), n_f = UnitNormal(f.corners);
+    auto off_plane = [tol](const Vector3d& p, const Triangle3d& t, const Vector3d& n) {
+      return std::abs(n.dot(p - t[0])) > tol;  // n zero (flat face): never
+    };
     for (int i = 0; i < 3; ++i) {
       const Vector3d& p = m.corners[i];
+      if (off_plane(p, f.corners, n_f)) continue;
       const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
       if ((q - p).norm() <= tol) {
-        Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol),
-            UnitNormal(f.corners));
+        Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol), n_f);
       }
     }
     for (int j = 0; j < 3; ++j) {
       const Vector3d& p = f.corners[j];
+      if (off_plane(p, m.corners, n_m)) continue;
       const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
       if ((q - p).norm() <= tol) {
-        Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)},
-            -UnitNormal(m.corners));
+        Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)}, -n_m);
       }
     }
     for (int i = 0; i < 3; ++i) {
       const Vector3d &p1 = m.corners[i], &q1 = m.corners[(i + 1) % 3];
       for (int j = 0; j < 3; ++j) {
         const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
+        const Eigen::Array3d gap =
+            (p1.cwiseMin(q1) - p2.cwiseMax(q2)).cwiseMax(p2.cwiseMin(q2) - p1.cwiseMax(q1)).array();
+        if ((gap > tol).any()) continue;  // boxes of the segments too far apart
         const SegmentClosest s = ClosestPointsOfSegments(p1, q1, p2, q2);
         if ((s.on_first - s.on_second).norm() > tol) continue;
         // Ends within the tolerance are vertex contacts, found above.
