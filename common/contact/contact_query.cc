@@ -31,14 +31,15 @@ Vector3d FallbackDirection(const ContactContext& c) {
   return towards.squaredNorm() > 0 ? towards.normalized() : Vector3d::UnitZ();
 }
 
-// The largest t in [0, 1] at which a pair of `swept` (found for M moving by
-// `step_F` into its current pose) intersects: M touched F first at the
-// fraction 1 - t of the step. Exact intervals (zero margin), so that M
-// moved back by t touches F within any tolerance; none when only near
-// misses were found.
-std::optional<double> LatestTouchBack(const ContactContext& c,
-                                      const std::vector<TrianglePair>& swept,
-                                      const Vector3d& step_F) {
+// For M moving by `step_F` into its current pose: the largest t in [0, 1]
+// at which a pair intersects, found by the swept query, so M touched F first
+// at the fraction 1 - t of the step. Exact intervals (zero margin), so that
+// M moved back by t touches F within any tolerance; none when the query
+// found only near misses, or nothing.
+std::optional<double> LatestTouchBack(const ContactContext& c, const Vector3d& step_F) {
+  std::vector<TrianglePair> swept;
+  FindSweptTrianglePairs(c.moving_model, c.X_FM, step_F, c.fixed_model, Isometry3d::Identity(),
+                         c.tolerance_m, swept);
   std::optional<double> latest;
   for (const TrianglePair& pair : swept) {
     const Interval i =
@@ -131,10 +132,7 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
   if (!(step_F.squaredNorm() > 1e-300)) return std::nullopt;
   ContactContext context{*moving.object,     *moving.model,       *fixed.object, *fixed.model,
                          X_FW * moving.X_WO, step_F.normalized(), tolerance,     {}};
-  std::vector<TrianglePair> swept;
-  FindSweptTrianglePairs(*moving.model, context.X_FM, step_F, *fixed.model, Isometry3d::Identity(),
-                         tolerance, swept);
-  const std::optional<double> back = LatestTouchBack(context, swept, step_F);
+  const std::optional<double> back = LatestTouchBack(context, step_F);
   if (!back) return std::nullopt;
   context.X_FM.pretranslate(-*back * step_F);
   FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
@@ -169,10 +167,7 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   double back = 0;  // fraction of the step to move back to the first touch
   std::optional<double> time_of_impact;
   if (query.continuous && !no_direction) {
-    std::vector<TrianglePair> swept;
-    FindSweptTrianglePairs(*moving.model, context.X_FM, direction_F, *fixed.model,
-                           Isometry3d::Identity(), tolerance, swept);
-    if (const std::optional<double> latest = LatestTouchBack(context, swept, direction_F)) {
+    if (const std::optional<double> latest = LatestTouchBack(context, direction_F)) {
       back = *latest;
       time_of_impact = 1 - back;
     }
