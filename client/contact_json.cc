@@ -5,8 +5,6 @@
 namespace hs::cli {
 namespace {
 
-nlohmann::ordered_json Vec(const Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
 nlohmann::ordered_json Side(const SideContact& side) {
   return {{"kind", FeatureKindName(side.kind)},
           {"vertices", side.vertices},
@@ -19,6 +17,8 @@ nlohmann::ordered_json FeatureJson(const Feature& f) {
 }
 
 }  // namespace
+
+nlohmann::ordered_json Vector3Json(const Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 const char* FeatureKindName(FeatureKind kind) {
   switch (kind) {
@@ -37,7 +37,7 @@ const char* FeatureKindName(FeatureKind kind) {
 nlohmann::ordered_json ContactSetToJson(const ContactSet& set) {
   nlohmann::ordered_json points = nlohmann::ordered_json::array();
   for (const ContactPoint& p : set.points) {
-    points.push_back({{"p_WC_m", Vec(p.p_WC)},
+    points.push_back({{"p_WC_m", Vector3Json(p.p_WC)},
                       {"moving", FeatureJson(p.moving)},
                       {"fixed", FeatureJson(p.fixed)}});
   }
@@ -49,9 +49,9 @@ nlohmann::ordered_json ContactSetToJson(const ContactSet& set) {
           {"colliding", set.colliding},
           {"penetrating", set.penetrating},
           {"depth_m", set.depth_m},
-          {"direction_W", Vec(set.direction_W)},
-          {"reversing_vector_W_m", Vec(set.reversing_vector_W)},
-          {"normal_W", Vec(set.normal_W)},
+          {"direction_W", Vector3Json(set.direction_W)},
+          {"reversing_vector_W_m", Vector3Json(set.reversing_vector_W)},
+          {"normal_W", Vector3Json(set.normal_W)},
           {"tolerance_m", set.tolerance_m},
           {"singular_case", set.singular_case},
           {"fallback", set.fallback},

@@ -11,6 +11,9 @@ namespace hs::cli {
 /// "edge", "face" or "none", infinite plane depths as null.
 nlohmann::ordered_json ContactSetToJson(const ContactSet& set);
 
+/// A vector as [x, y, z].
+nlohmann::ordered_json Vector3Json(const Vector3d& v);
+
 /// "vertex", "edge", "face" or "none".
 const char* FeatureKindName(FeatureKind kind);
 

@@ -30,8 +30,6 @@ absl::StatusOr<std::vector<Isometry3d>> ReadToolPath(const std::string& path) {
   return poses;
 }
 
-nlohmann::ordered_json Vec(const Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
 nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& loaded) {
   nlohmann::ordered_json tools = nlohmann::ordered_json::array();
   for (const ToolFrame& t : frame.tools) {
@@ -42,10 +40,10 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
       contacts.push_back(std::move(entry));
     }
     tools.push_back({{"tool", loaded.names[t.tool]},
-                     {"device_position_W_m", Vec(t.X_WD.translation())},
-                     {"proxy_position_W_m", Vec(t.X_WP.translation())},
-                     {"force_W_n", Vec(t.force_W)},
-                     {"torque_W_nm", Vec(t.torque_W)},
+                     {"device_position_W_m", Vector3Json(t.X_WD.translation())},
+                     {"proxy_position_W_m", Vector3Json(t.X_WP.translation())},
+                     {"force_W_n", Vector3Json(t.force_W)},
+                     {"torque_W_nm", Vector3Json(t.torque_W)},
                      {"force_clamped", t.force_clamped},
                      {"contacts", contacts}});
   }
