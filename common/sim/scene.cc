@@ -54,6 +54,10 @@ absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
   objects_.push_back(
       std::make_unique<Object>(Object{std::move(object), std::move(model), kind, X_WO}));
   if (kind == ObjectKind::kTool) tools_.push_back(Tool{id, X_WO, X_WO, X_WO, true});
+  if (kind == ObjectKind::kFixed) {
+    obstacles_.push_back(Posed(*objects_.back(), X_WO));
+    obstacle_ids_.push_back(id);
+  }
   return id;
 }
 
@@ -115,14 +119,12 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
 
   if (stages.Has(Effect::kCollision)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kCollision)]);
-    for (ObjectId id = 0; id < static_cast<ObjectId>(objects_.size()); ++id) {
-      const Object& o = *objects_[id];
-      if (o.kind != ObjectKind::kFixed) continue;
+    for (size_t k = 0; k < obstacles_.size(); ++k) {
       const absl::StatusOr<bool> colliding =
-          AreColliding(device, Posed(o, o.X_WO), options_.relative_tolerance,
+          AreColliding(device, obstacles_[k], options_.relative_tolerance,
                        continuous ? std::optional<Vector3d>(motion) : std::nullopt);
       if (colliding.ok() && *colliding) {
-        PairContact pair{id, {}};
+        PairContact pair{obstacle_ids_[k], {}};
         pair.contact.colliding = true;
         frame.contacts.push_back(std::move(pair));
       }
@@ -147,19 +149,11 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   ProxyState proxy;
   {
     StageTimer timer(stats_[static_cast<int>(Effect::kReversingVector)]);
-    std::vector<PosedObject> obstacles;
-    std::vector<ObjectId> obstacle_ids;
-    for (ObjectId id = 0; id < static_cast<ObjectId>(objects_.size()); ++id) {
-      const Object& o = *objects_[id];
-      if (o.kind != ObjectKind::kFixed) continue;
-      obstacles.push_back(Posed(o, o.X_WO));
-      obstacle_ids.push_back(id);
-    }
     const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
                                .friction = stages.Has(Effect::kFriction)};
-    absl::StatusOr<ProxyState> moved = MoveProxy(device, tool.X_WP, tool.X_WD, obstacles, options);
+    absl::StatusOr<ProxyState> moved = MoveProxy(device, tool.X_WP, tool.X_WD, obstacles_, options);
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
-    if (proxy.touching) proxy.obstacle = obstacle_ids[proxy.obstacle];
+    if (proxy.touching) proxy.obstacle = obstacle_ids_[proxy.obstacle];
     tool.X_WP = proxy.X_WP;
     frame.X_WP = proxy.X_WP;
   }

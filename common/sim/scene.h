@@ -81,6 +81,10 @@ class Scene {
   EffectSet needed_ = EffectSet::All();
   std::vector<std::unique_ptr<Object>> objects_;
   std::vector<Tool> tools_;
+  // The fixed objects, posed, and their ids: built once as objects are
+  // added, not every step.
+  std::vector<PosedObject> obstacles_;
+  std::vector<ObjectId> obstacle_ids_;
   StageStatsTable stats_{};
   StepFrame frame_;
 };
