@@ -80,6 +80,21 @@ AnyBvh BuildAny(const HapticObject& object, BvType type, double margin) {
   HS_CHECK(false);
 }
 
+// FCL keeps its own leaf order private; every leaf holds one face at its
+// position in that order, so the leaves give it back.
+std::vector<int> LeafFaces(const AnyBvh& bvh) {
+  return std::visit(
+      [](const auto& model) {
+        std::vector<int> faces(model->num_tris, -1);
+        for (int n = 0; n < model->getNumBVs(); ++n) {
+          const auto& node = model->getBV(n);
+          if (node.isLeaf()) faces[node.first_primitive] = node.primitiveId();
+        }
+        return faces;
+      },
+      bvh);
+}
+
 }  // namespace
 
 std::shared_ptr<fcl::CollisionGeometryd> CollisionModel::Impl::geometry() const {
@@ -104,6 +119,7 @@ CollisionModel::CollisionModel(const HapticObject& object, BvType type, double m
   impl_->geometry_version = object.geometry_version();
   impl_->bvh = BuildAny(object, type, margin_m);
   impl_->degenerate = DegenerateFaces(object);
+  impl_->leaf_faces = LeafFaces(impl_->bvh);
 }
 
 CollisionModel::~CollisionModel() = default;

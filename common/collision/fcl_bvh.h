@@ -37,6 +37,9 @@ struct CollisionModel::Impl {
   /// no normal and SAT cannot separate it reliably; in a closed mesh its
   /// neighbours carry the contact).
   std::vector<bool> degenerate;
+  /// Faces in the order of the hierarchy's leaves: node n holds faces
+  /// leaf_faces[n.first_primitive, n.first_primitive + n.num_primitives).
+  std::vector<int> leaf_faces;
 
   /// The hierarchy as FCL's generic geometry, for the broad phase.
   std::shared_ptr<fcl::CollisionGeometryd> geometry() const;

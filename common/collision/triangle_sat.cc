@@ -12,12 +12,12 @@ constexpr double kAxisRelativeFloor = 1e-12;
 
 // Calls visit(axis, squared_axis_norm) for every usable SAT axis of the pair; stops
 // early and returns false when visit returns false.
+// `na` and `nb` are the face normals (a[1]-a[0]) x (a[2]-a[1]), unnormalised.
 template <typename Visit>
-bool ForEachAxis(const Triangle3d& a, const Triangle3d& b, Visit&& visit) {
+bool ForEachAxis(const Triangle3d& a, const Vector3d& na, const Triangle3d& b, const Vector3d& nb,
+                 Visit&& visit) {
   const std::array<Vector3d, 3> ea = {a[1] - a[0], a[2] - a[1], a[0] - a[2]};
   const std::array<Vector3d, 3> eb = {b[1] - b[0], b[2] - b[1], b[0] - b[2]};
-  const Vector3d na = ea[0].cross(ea[1]);
-  const Vector3d nb = eb[0].cross(eb[1]);
   auto try_axis = [&](const Vector3d& axis, double scale_sq) {
     const double norm_sq = axis.squaredNorm();
     if (norm_sq <= kAxisRelativeFloor * kAxisRelativeFloor * scale_sq || norm_sq == 0) return true;
@@ -43,8 +43,8 @@ bool ForEachAxis(const Triangle3d& a, const Triangle3d& b, Visit&& visit) {
 
 void Project(const Triangle3d& t, const Vector3d& axis, double& lo, double& hi) {
   const double p0 = axis.dot(t[0]), p1 = axis.dot(t[1]), p2 = axis.dot(t[2]);
-  lo = std::min({p0, p1, p2});
-  hi = std::max({p0, p1, p2});
+  lo = std::min(std::min(p0, p1), p2);
+  hi = std::max(std::max(p0, p1), p2);
 }
 
 // True when the gap between [a_lo, a_hi] and [b_lo, b_hi] along an axis of
@@ -63,16 +63,23 @@ bool BeyondPlane(const Triangle3d& t, const Vector3d& origin, const Vector3d& n,
   const double norm_sq = n.squaredNorm();
   if (norm_sq == 0) return false;
   const double d0 = n.dot(t[0] - origin), d1 = n.dot(t[1] - origin), d2 = n.dot(t[2] - origin);
-  const double lo = std::min({d0, d1, d2}), hi = std::max({d0, d1, d2});
+  const double lo = std::min(std::min(d0, d1), d2), hi = std::max(std::max(d0, d1), d2);
   return SeparatedAlong(lo, hi, 0.0, 0.0, norm_sq, margin);
 }
 
 }  // namespace
 
+Vector3d TriangleNormal(const Triangle3d& t) { return (t[1] - t[0]).cross(t[2] - t[1]); }
+
 bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin) {
-  if (BeyondPlane(b, a[0], (a[1] - a[0]).cross(a[2] - a[0]), margin)) return false;
-  if (BeyondPlane(a, b[0], (b[1] - b[0]).cross(b[2] - b[0]), margin)) return false;
-  return ForEachAxis(a, b, [&](const Vector3d& axis, double norm_sq) {
+  return TrianglesIntersect(a, TriangleNormal(a), b, TriangleNormal(b), margin);
+}
+
+bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                        const Vector3d& normal_b, double margin) {
+  if (BeyondPlane(b, a[0], normal_a, margin)) return false;
+  if (BeyondPlane(a, b[0], normal_b, margin)) return false;
+  return ForEachAxis(a, normal_a, b, normal_b, [&](const Vector3d& axis, double norm_sq) {
     double a_lo, a_hi, b_lo, b_hi;
     Project(a, axis, a_lo, a_hi);
     Project(b, axis, b_lo, b_hi);
@@ -84,27 +91,28 @@ Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vecto
                            double margin) {
   Interval result{-std::numeric_limits<double>::infinity(),
                   std::numeric_limits<double>::infinity()};
-  ForEachAxis(a, b, [&](const Vector3d& axis, double norm_sq) {
-    double a_lo, a_hi, b_lo, b_hi;
-    Project(a, axis, a_lo, a_hi);
-    Project(b, axis, b_lo, b_hi);
-    const double slack = margin * std::sqrt(norm_sq);
-    // Along the axis, a(t) spans [a_lo - t*s, a_hi - t*s] with s = axis.D.
-    // They overlap while a_lo - t*s <= b_hi + slack and b_lo <= a_hi - t*s + slack.
-    const double s = axis.dot(direction);
-    const double low_gap = a_lo - b_hi - slack;   // need t*s >= low_gap
-    const double high_gap = a_hi - b_lo + slack;  // need t*s <= high_gap
-    if (s == 0) {
-      if (low_gap > 0 || high_gap < 0) result = Interval{};
-    } else if (s > 0) {
-      result.lo = std::max(result.lo, low_gap / s);
-      result.hi = std::min(result.hi, high_gap / s);
-    } else {
-      result.lo = std::max(result.lo, high_gap / s);
-      result.hi = std::min(result.hi, low_gap / s);
-    }
-    return !result.empty();
-  });
+  ForEachAxis(a, TriangleNormal(a), b, TriangleNormal(b),
+              [&](const Vector3d& axis, double norm_sq) {
+                double a_lo, a_hi, b_lo, b_hi;
+                Project(a, axis, a_lo, a_hi);
+                Project(b, axis, b_lo, b_hi);
+                const double slack = margin * std::sqrt(norm_sq);
+                // Along the axis, a(t) spans [a_lo - t*s, a_hi - t*s] with s = axis.D.
+                // They overlap while a_lo - t*s <= b_hi + slack and b_lo <= a_hi - t*s + slack.
+                const double s = axis.dot(direction);
+                const double low_gap = a_lo - b_hi - slack;   // need t*s >= low_gap
+                const double high_gap = a_hi - b_lo + slack;  // need t*s <= high_gap
+                if (s == 0) {
+                  if (low_gap > 0 || high_gap < 0) result = Interval{};
+                } else if (s > 0) {
+                  result.lo = std::max(result.lo, low_gap / s);
+                  result.hi = std::min(result.hi, high_gap / s);
+                } else {
+                  result.lo = std::max(result.lo, high_gap / s);
+                  result.hi = std::min(result.hi, low_gap / s);
+                }
+                return !result.empty();
+              });
   return result;
 }
 

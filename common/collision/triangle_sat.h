@@ -32,6 +32,14 @@ struct Interval {
 /// `margin` (metres, >= 0) along every axis: touching counts as intersecting.
 bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin);
 
+/// The normal of `t`, (t[1] - t[0]) x (t[2] - t[1]), unnormalised.
+Vector3d TriangleNormal(const Triangle3d& t);
+
+/// TrianglesIntersect with each triangle's TriangleNormal given, for callers
+/// that test one triangle against many.
+bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                        const Vector3d& normal_b, double margin);
+
 /// The set of t for which `a` translated by -t * `direction` intersects `b`
 /// (within `margin`). Always one closed interval (a line through the convex
 /// Minkowski difference); unbounded ends are +-inf. `direction` need not be
