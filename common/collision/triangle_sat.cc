@@ -88,9 +88,8 @@ bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Tri
 }
 
 Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
-                           double margin) {
-  Interval result{-std::numeric_limits<double>::infinity(),
-                  std::numeric_limits<double>::infinity()};
+                           double margin, Interval within) {
+  Interval result = within;
   ForEachAxis(a, TriangleNormal(a), b, TriangleNormal(b),
               [&](const Vector3d& axis, double norm_sq) {
                 double a_lo, a_hi, b_lo, b_hi;

@@ -28,6 +28,10 @@ struct Interval {
   bool Overlaps(double from, double to) const { return lo <= to && from <= hi && !empty(); }
 };
 
+/// Every real t.
+inline constexpr Interval kWholeLine{-std::numeric_limits<double>::infinity(),
+                                     std::numeric_limits<double>::infinity()};
+
 /// True when triangles `a` and `b` (same frame) intersect or are closer than
 /// `margin` (metres, >= 0) along every axis: touching counts as intersecting.
 bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin);
@@ -43,8 +47,10 @@ bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Tri
 /// The set of t for which `a` translated by -t * `direction` intersects `b`
 /// (within `margin`). Always one closed interval (a line through the convex
 /// Minkowski difference); unbounded ends are +-inf. `direction` need not be
-/// unit: t is in units of its length.
+/// unit: t is in units of its length. With a `within`, the result is cut to
+/// it, and the test stops as soon as the cut is empty: callers that care
+/// about part of the line only should say which.
 Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
-                           double margin);
+                           double margin, Interval within = kWholeLine);
 
 }  // namespace hs

@@ -43,8 +43,8 @@ std::optional<double> LatestTouchBack(const ContactContext& c, const Vector3d& s
   std::optional<double> latest;
   for (const TrianglePair& pair : swept) {
     const Interval i =
-        SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), step_F, 0.0);
-    if (i.Overlaps(0, 1)) latest = std::max(latest.value_or(0.0), std::min(i.hi, 1.0));
+        SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), step_F, 0.0, {0, 1});
+    if (!i.empty()) latest = std::max(latest.value_or(0.0), i.hi);
   }
   return latest;
 }
@@ -132,14 +132,30 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
   if (!(step_F.squaredNorm() > 1e-300)) return std::nullopt;
   ContactContext context{*moving.object,     *moving.model,       *fixed.object, *fixed.model,
                          X_FW * moving.X_WO, step_F.normalized(), tolerance,     {}};
-  const std::optional<double> back = LatestTouchBack(context, step_F);
-  if (!back) return std::nullopt;
-  context.X_FM.pretranslate(-*back * step_F);
+  // The step is swept in pieces from its start, and the first piece that
+  // touches holds the first touch. A proxy resting on a surface touches it
+  // early in its step, and a short piece's swept volume meets few faces.
+  constexpr double kPieceEnds[] = {1.0 / 16, 1.0};
+  const Isometry3d X_FM_end = context.X_FM;
+  double piece_start = 0;
+  std::optional<double> touch_time;
+  for (const double piece_end : kPieceEnds) {
+    const Vector3d piece_F = (piece_end - piece_start) * step_F;
+    context.X_FM = X_FM_end;
+    context.X_FM.pretranslate(-(1 - piece_end) * step_F);
+    if (const std::optional<double> back = LatestTouchBack(context, piece_F)) {
+      context.X_FM.pretranslate(-*back * piece_F);
+      touch_time = piece_end - *back * (piece_end - piece_start);
+      break;
+    }
+    piece_start = piece_end;
+  }
+  if (!touch_time) return std::nullopt;
   FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
                             tolerance, context.pairs);
   const LocatedContacts located = LocateContacts(context, context.X_FM, context.pairs);
   FirstTouch touch;
-  touch.time = 1 - *back;
+  touch.time = *touch_time;
   touch.normal_W = fixed.X_WO.linear() * located.normal_F;
   touch.fixed = located.fixed;
   touch.points = located.points;

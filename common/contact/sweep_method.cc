@@ -1,6 +1,7 @@
 #include "common/contact/sweep_method.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_features.h"
@@ -35,9 +36,11 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
     for (const TrianglePair& pair : pairs) {
       if (std::binary_search(known.begin(), known.begin() + old_size, pair)) continue;
       known.push_back(pair);
-      // Sweep intervals are translation-invariant, so take a at t = 0.
+      // Sweep intervals are translation-invariant, so take a at t = 0. Only
+      // t >= 0 can extend the run from t = 0.
       const Interval interval =
-          SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), D, 0.0);
+          SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), D, 0.0,
+                            {0, std::numeric_limits<double>::infinity()});
       if (!interval.empty()) intervals.push_back(interval);
     }
     std::inplace_merge(known.begin(), known.begin() + old_size, known.end());

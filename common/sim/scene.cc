@@ -132,13 +132,26 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   }
   if (stages.Has(Effect::kContactSet)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kContactSet)]);
-    const ContactQuery query{.direction_W = motion,
-                             .method = options_.method,
-                             .continuous = continuous,
-                             .relative_tolerance = options_.relative_tolerance};
+    // D is the device's way in from its proxy, which the last step left
+    // outside every object: reversing it ends at the surface the device
+    // went through. The device's own motion is tangent to the surface while
+    // it slides, and reversing that would travel far inside the object.
+    const Vector3d from_proxy = tool.X_WD.translation() - tool.X_WP.translation();
+    const ContactQuery at_device{.direction_W = from_proxy.squaredNorm() > 0 ? from_proxy : motion,
+                                 .method = options_.method,
+                                 .relative_tolerance = options_.relative_tolerance};
+    // A device that passed through an object in this step (the collision
+    // stage's swept query caught it) is reconstructed at its first touch
+    // along the step; the swept query is not paid for when the device is in.
+    ContactQuery along_step = at_device;
+    along_step.direction_W = motion;
+    along_step.continuous = true;
     for (PairContact& pair : frame.contacts) {
       const Object& o = *objects_[pair.object];
-      const absl::StatusOr<ContactSet> contact = ComputeContact(device, Posed(o, o.X_WO), query);
+      absl::StatusOr<ContactSet> contact = ComputeContact(device, Posed(o, o.X_WO), at_device);
+      if (continuous && contact.ok() && !contact->colliding) {
+        contact = ComputeContact(device, Posed(o, o.X_WO), along_step);
+      }
       if (contact.ok()) pair.contact = *contact;
     }
   }
