@@ -45,7 +45,8 @@ class PlacedFaces {
     }
     vertices_ = vertices;
     triangles_ = triangles;
-    X_ = X;
+    R_ = X.linear();
+    T_ = X.translation();
     sweep_ = sweep ? *sweep : Vector3d::Zero();
     if (++stamp_ == 0) {  // wrapped: forget every stamp
       std::fill(stamps_.begin(), stamps_.end(), 0);
@@ -59,7 +60,7 @@ class PlacedFaces {
     if (stamps_[f] != stamp_) {
       stamps_[f] = stamp_;
       const fcl::Triangle& t = triangles_[f];
-      for (int k = 0; k < 3; ++k) placed.triangle[k] = X_ * vertices_[t[k]];
+      for (int k = 0; k < 3; ++k) placed.triangle[k] = R_ * vertices_[t[k]] + T_;
       placed.normal = TriangleNormal(placed.triangle);
       placed.lo = placed.triangle[0].cwiseMin(placed.triangle[1]).cwiseMin(placed.triangle[2]);
       placed.hi = placed.triangle[0].cwiseMax(placed.triangle[1]).cwiseMax(placed.triangle[2]);
@@ -75,7 +76,8 @@ class PlacedFaces {
   uint32_t stamp_ = 0;
   const fcl::Vector3d* vertices_ = nullptr;
   const fcl::Triangle* triangles_ = nullptr;
-  Isometry3d X_ = Isometry3d::Identity();
+  Matrix3d R_ = Matrix3d::Identity();
+  Vector3d T_ = Vector3d::Zero();
   Vector3d sweep_ = Vector3d::Zero();
 };
 
