@@ -135,11 +135,12 @@ class BucketTest {
     for (const Entry& a : list_a) {
       for (const Entry& b : list_b) {
         if (FaceBoxesApart(*a.face, *b.face, margin_)) continue;
-        const bool hit = sweep_A_ ? !SweptIntersection(a.face->triangle, b.face->triangle,
-                                                       *sweep_A_, margin_, {0, 1})
-                                         .empty()
-                                  : TrianglesIntersect(a.face->triangle, a.face->normal,
-                                                       b.face->triangle, b.face->normal, margin_);
+        const bool hit =
+            sweep_A_ ? !SweptIntersection(a.face->triangle, a.face->normal, b.face->triangle,
+                                          b.face->normal, *sweep_A_, margin_, {0, 1})
+                            .empty()
+                     : TrianglesIntersect(a.face->triangle, a.face->normal, b.face->triangle,
+                                          b.face->normal, margin_);
         if (hit) pairs.push_back({a.id, b.id});
       }
     }

@@ -53,4 +53,9 @@ bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Tri
 Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
                            double margin, Interval within = kWholeLine);
 
+/// SweptIntersection with each triangle's TriangleNormal given.
+Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                           const Vector3d& normal_b, const Vector3d& direction, double margin,
+                           Interval within);
+
 }  // namespace hs
