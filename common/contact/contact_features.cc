@@ -76,7 +76,7 @@ class Locator {
       if (off_plane(p, f.corners, n_f)) continue;
       const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
       if ((q - p).norm() <= tol) {
-        Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol), n_f);
+        Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol), n_f, n_f);
       }
     }
     for (int j = 0; j < 3; ++j) {
@@ -84,7 +84,7 @@ class Locator {
       if (off_plane(p, m.corners, n_m)) continue;
       const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
       if ((q - p).norm() <= tol) {
-        Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)}, -n_m);
+        Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)}, -n_m, -n_m);
       }
     }
     for (int i = 0; i < 3; ++i) {
@@ -101,12 +101,17 @@ class Locator {
         if (std::min(s.t, 1 - s.t) * (q2 - p2).norm() <= tol) continue;
         const Vector3d n = (q1 - p1).cross(q2 - p2);
         Add((s.on_first + s.on_second) / 2, m.edge_feature(i), f.edge_feature(j),
-            n.squaredNorm() > 0 ? n.normalized() : n);
+            n.squaredNorm() > 0 ? n.normalized() : n, n_f);
       }
     }
   }
 
   LocatedContacts Finish() {
+    // Every entry counts toward the normal, duplicates too: a vertex on an
+    // edge meets the faces on both sides of it, and keeping one of them
+    // would tilt the normal toward that face.
+    Vector3d normal_sum = Vector3d::Zero();
+    for (const Entry& e : points_) normal_sum += e.normal;
     // One entry per feature pair, in feature order, the first one added kept.
     std::stable_sort(points_.begin(), points_.end(),
                      [](const Entry& x, const Entry& y) { return x.features < y.features; });
@@ -123,12 +128,10 @@ class Locator {
       if (feature.kind == FeatureKind::kEdge) edges[side].push_back(feature.id);
       if (feature.kind == FeatureKind::kFace) faces[side].push_back(feature.id);
     };
-    Vector3d normal_sum = Vector3d::Zero();
     for (const Entry& e : points_) {
       out.points.push_back(ContactPoint{e.p, e.features.first, e.features.second});
       collect(0, e.features.first);
       collect(1, e.features.second);
-      normal_sum += e.normal;
     }
     out.moving = AggregateSide(c_.moving, vertices[0], edges[0], faces[0]);
     out.fixed = AggregateSide(c_.fixed, vertices[1], edges[1], faces[1]);
@@ -137,10 +140,20 @@ class Locator {
   }
 
  private:
-  // Keeps the first point of each feature pair; normals are turned to
-  // oppose the motion (a soup has no reliable outside).
-  void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, Vector3d normal) {
-    if (normal.dot(c_.direction_F) > 0) normal = -normal;
+  // Records a contact point. Its normal is turned to oppose the motion (a
+  // soup has no reliable outside), unless the motion runs along the
+  // surface: then a rounding-sized tilt would flip it, so the mesh's own
+  // orientation (`outward`: the fixed face's normal, or the moving face's
+  // reversed) decides.
+  void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, Vector3d normal,
+           const Vector3d& outward) {
+    constexpr double kAlongSurface = 1e-6;  // |cos| of the angle between normal and D
+    const double along = normal.dot(c_.direction_F);
+    if (std::abs(along) > kAlongSurface * normal.norm()) {
+      if (along > 0) normal = -normal;
+    } else if (normal.dot(outward) < 0) {
+      normal = -normal;
+    }
     points_.push_back({{moving, fixed}, p, normal});
   }
 

@@ -50,7 +50,16 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
 
   double t_star = 0;
   std::vector<TrianglePair> at_t_star = c.pairs;
-  bool settled = false;
+  // Objects that only touch need no reversing, whatever D is: a D along
+  // the touching faces would otherwise chain across their whole overlap. A
+  // pair penetrates when it overlaps by more than the tolerance along every
+  // separating axis at t = 0.
+  const bool penetrating = std::any_of(c.pairs.begin(), c.pairs.end(), [&](const TrianglePair& p) {
+    return !SweptIntersection(c.MovingTriangle(p.a), c.FixedTriangle(p.b), D, -c.tolerance_m,
+                              {0, 0})
+                .empty();
+  });
+  bool settled = !penetrating;
   for (int round = 0; round < kMaxRounds && !settled; ++round) {
     std::sort(intervals.begin(), intervals.end(),
               [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
