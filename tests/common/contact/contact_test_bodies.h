@@ -27,6 +27,16 @@ inline std::unique_ptr<Body> MakeBody(MeshInput mesh,
   return std::make_unique<Body>(Body{std::move(object), std::move(model), X_WO});
 }
 
+/// A square pyramid with its apex (vertex 0) at the origin and its base at
+/// z = 1.
+inline MeshInput ApexDownPyramid() {
+  MeshInput mesh;
+  mesh.materials.emplace_back();
+  mesh.positions = {{0, 0, 0}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  mesh.faces = {{{0, 2, 1}}, {{0, 3, 2}}, {{0, 4, 3}}, {{0, 1, 4}}, {{1, 2, 3}}, {{1, 3, 4}}};
+  return mesh;
+}
+
 inline Isometry3d Translation(double x, double y, double z) {
   Isometry3d X = Isometry3d::Identity();
   X.translation() = Vector3d(x, y, z);

@@ -21,6 +21,7 @@
 namespace hs {
 namespace {
 
+using testing_bodies::ApexDownPyramid;
 using testing_bodies::Body;
 using testing_bodies::MakeBody;
 using testing_bodies::Translation;
@@ -53,15 +54,6 @@ struct HardCase {
 };
 
 void PrintTo(const HardCase& c, std::ostream* os) { *os << c.name; }
-
-// A square pyramid with its apex at the origin and its base at z = 1.
-MeshInput ApexDownPyramid() {
-  MeshInput mesh;
-  mesh.materials.emplace_back();
-  mesh.positions = {{0, 0, 0}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  mesh.faces = {{{0, 2, 1}}, {{0, 3, 2}}, {{0, 4, 3}}, {{0, 1, 4}}, {{1, 2, 3}}, {{1, 3, 4}}};
-  return mesh;
-}
 
 // A 4 x 4 x 1 slab with its top face at z = 0.
 MeshInput Slab() { return TransformMesh(MakeBox(Vector3d(4, 4, 1)), Translation(0, 0, -0.5)); }

@@ -17,6 +17,7 @@ using testing_poses::RandomDirection;
 using testing_poses::RandomPose;
 
 using ::testing::ElementsAre;
+using testing_bodies::ApexDownPyramid;
 using testing_bodies::Body;
 using testing_bodies::MakeBody;
 using testing_bodies::Translation;
@@ -32,15 +33,6 @@ ContactSet Contact(const Body& moving, const Body& fixed, const Vector3d& direct
                                   .relative_tolerance = relative_tolerance});
   EXPECT_TRUE(set.ok()) << set.status();
   return set.ok() ? *set : ContactSet{};
-}
-
-// A square pyramid with its apex (vertex 0) at the origin and its base at z = 1.
-MeshInput ApexDownPyramid() {
-  MeshInput mesh;
-  mesh.materials.emplace_back();
-  mesh.positions = {{0, 0, 0}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  mesh.faces = {{{0, 2, 1}}, {{0, 3, 2}}, {{0, 4, 3}}, {{0, 1, 4}}, {{1, 2, 3}}, {{1, 3, 4}}};
-  return mesh;
 }
 
 // A 4 x 4 x 1 slab whose top face is the plane z = 0.
