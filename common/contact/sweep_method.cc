@@ -9,8 +9,8 @@
 namespace hs {
 namespace {
 
-// A query finds new pairs only while the cover grows; each round adds at
-// least one pair, and real scenes settle in two or three rounds.
+// Each round at least doubles the stretch of the motion searched; real
+// scenes settle in two or three.
 constexpr int kMaxRounds = 64;
 
 Isometry3d MovedBack(const ContactContext& c, double t) {
@@ -29,7 +29,6 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
   // tolerance, which count as touching.
   std::vector<TrianglePair> known;  // sorted
   std::vector<Interval> intervals;
-  // Returns whether any pair was new.
   auto add_pairs = [&](std::vector<TrianglePair> pairs) {
     std::sort(pairs.begin(), pairs.end());
     const size_t old_size = known.size();
@@ -44,12 +43,9 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
       if (!interval.empty()) intervals.push_back(interval);
     }
     std::inplace_merge(known.begin(), known.begin() + old_size, known.end());
-    return known.size() > old_size;
   };
   add_pairs(c.pairs);
 
-  double t_star = 0;
-  std::vector<TrianglePair> at_t_star = c.pairs;
   // Objects that only touch need no reversing, whatever D is: a D along
   // the touching faces would otherwise chain across their whole overlap. A
   // pair penetrates when it overlaps by more than the tolerance along every
@@ -59,22 +55,54 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
                               {0, 0})
                 .empty();
   });
-  bool settled = !penetrating;
-  for (int round = 0; round < kMaxRounds && !settled; ++round) {
+  double t_star = 0;
+  auto extend_run = [&] {
     std::sort(intervals.begin(), intervals.end(),
               [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
-    const double before = t_star;
     for (const Interval& interval : intervals) {
       if (interval.lo <= t_star + c.tolerance_m && interval.hi > t_star) t_star = interval.hi;
     }
-    if (round > 0 && t_star == before) {
-      settled = true;
-      break;
-    }
+  };
+  std::vector<TrianglePair> at_t_star = c.pairs;
+  bool settled = !penetrating;
+  if (!settled) {
+    extend_run();
+    // A pair that could extend the run past t* meets at t*, so one query
+    // there usually settles it, and its pairs are those to locate.
+    const double t1 = t_star;
     at_t_star.clear();
-    FindIntersectingTriangles(c.moving_model, MovedBack(c, t_star), c.fixed_model,
+    FindIntersectingTriangles(c.moving_model, MovedBack(c, t1), c.fixed_model,
                               Isometry3d::Identity(), c.tolerance_m, at_t_star);
-    settled = !add_pairs(at_t_star);
+    add_pairs(at_t_star);
+    extend_run();
+    settled = t_star == t1;
+    // Faces wholly inside the other object are in no pair until M backs out
+    // to them, so a deep contact of a fine mesh would take a query per ring
+    // of faces. Swept queries over the next stretch instead, each reaching
+    // at least twice as far: every pair that meets in [t1, covered] is then
+    // known, and none outside it can reach a run ending before `covered`.
+    double covered = t1;
+    for (int round = 0; round < kMaxRounds && !settled; ++round) {
+      const double reach = std::max(t_star + 2 * c.tolerance_m, 2 * covered);
+      std::vector<TrianglePair> swept;
+      FindSweptTrianglePairs(c.moving_model, MovedBack(c, covered), (reach - covered) * D,
+                             c.fixed_model, Isometry3d::Identity(), c.tolerance_m, swept);
+      add_pairs(std::move(swept));
+      covered = reach;
+      extend_run();
+      settled = t_star + c.tolerance_m <= covered;
+    }
+    if (t_star != t1) {
+      // The pairs touching at t*: all known, since [t1, covered] holds t*.
+      at_t_star.clear();
+      for (const TrianglePair& pair : known) {
+        if (!SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), D, c.tolerance_m,
+                               {t_star, t_star})
+                 .empty()) {
+          at_t_star.push_back(pair);
+        }
+      }
+    }
   }
 
   ContactSet set;
