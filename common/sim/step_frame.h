@@ -40,6 +40,21 @@ struct ToolFrame {
   std::vector<PairContact> contacts;
 };
 
+/// Where a free body ended a step.
+struct BodyFrame {
+  ObjectId body = -1;
+  /// X_WO at the end of the step, world frame, metres.
+  Isometry3d X_WO = Isometry3d::Identity();
+  /// Velocity of the centre of mass and angular velocity, world frame, m/s
+  /// and rad/s.
+  Vector3d v_W = Vector3d::Zero();
+  Vector3d w_W = Vector3d::Zero();
+  /// Contacts resolved this step (one per object per sub-step).
+  int contacts = 0;
+  /// Sub-steps the body's motion was split into (1: not split).
+  int substeps = 1;
+};
+
 struct StepFrame {
   /// 1 for the first step, then +1 per step.
   int64_t step = 0;
@@ -49,6 +64,8 @@ struct StepFrame {
   EffectSet stages_run;
   /// One entry per tool, by tool id.
   std::vector<ToolFrame> tools;
+  /// One entry per free body, by id.
+  std::vector<BodyFrame> bodies;
 };
 
 /// How often and how long one stage ran, since the scene was created.
