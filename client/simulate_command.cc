@@ -37,6 +37,7 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
     for (const PairContact& c : t.contacts) {
       nlohmann::ordered_json entry = ContactSetToJson(c.contact);
       entry["object"] = loaded.names[c.object];
+      entry["substep"] = c.substep;
       contacts.push_back(std::move(entry));
     }
     tools.push_back({{"tool", loaded.names[t.tool]},
@@ -45,6 +46,7 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
                      {"force_W_n", Vector3Json(t.force_W)},
                      {"torque_W_nm", Vector3Json(t.torque_W)},
                      {"force_clamped", t.force_clamped},
+                     {"substeps", t.substeps},
                      {"contacts", contacts}});
   }
   nlohmann::ordered_json stages = nlohmann::ordered_json::array();

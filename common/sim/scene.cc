@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/core/rigid_pose.h"
 #include "common/core/status_macros.h"
+#include "common/sim/motion_bounds.h"
 #include "common/sim/touched_face.h"
 
 namespace hs {
@@ -14,6 +15,15 @@ namespace {
 
 // Collision models are grown for query tolerances up to this (relative).
 constexpr double kMaxRelativeTolerance = 1e-6;
+// A step is split into at most this many sub-steps: a tool moving farther
+// than this many shortest box edges in one step may pass through.
+constexpr int kMaxSubsteps = 256;
+
+AlignedBox3d Grown(AlignedBox3d box, double margin) {
+  box.min().array() -= margin;
+  box.max().array() += margin;
+  return box;
+}
 
 // Adds the wall time of its scope to one stage's statistics.
 class StageTimer {
@@ -71,10 +81,12 @@ absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
   objects_.push_back(
       std::make_unique<Object>(Object{std::move(object), std::move(model), kind, X_WO}));
   const Object& added = *objects_.back();
+  broad_phase_.Add(id, added.model, X_WO);
   switch (kind) {
     case ObjectKind::kTool:
       slots_.push_back(static_cast<int>(tools_.size()));
       tools_.push_back(Tool{id, X_WO, X_WO, X_WO, X_WO, true});
+      target_index_.push_back(-1);
       return id;
     case ObjectKind::kFixed:
       slots_.push_back(-1);
@@ -86,8 +98,10 @@ absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
       bodies_.push_back(Body{id, mass, FreeBodyState{X_WO, body.v_W, body.w_W}, X_WO});
       break;
   }
+  target_index_.push_back(static_cast<int>(targets_.size()));
   targets_.push_back(Posed(added, X_WO));
   target_ids_.push_back(id);
+  target_boxes_.push_back(Grown(WorldBox(added.object, X_WO), added.model.margin_m()));
   return id;
 }
 
@@ -120,6 +134,10 @@ const StepFrame& Scene::Step() {
     return frame_;
   }
   frame_.stages_run = stages;
+  broad_pairs_fresh_ = false;
+  for (const Tool& tool : tools_) {
+    if (tool.moved) broad_phase_.SetPose(tool.id, tool.X_WD);
+  }
   frame_.tools.resize(tools_.size());
   for (size_t i = 0; i < tools_.size(); ++i) {
     tools_[i].X_WP_previous = tools_[i].X_WP;
@@ -134,7 +152,13 @@ const StepFrame& Scene::Step() {
     // Serially, in id order: each body meets the others where they are now
     // (paper s.5), so a body moved earlier this step is met at its new pose.
     for (size_t i = 0; i < bodies_.size(); ++i) MoveFreeBody(bodies_[i], frame_.bodies[i]);
-    for (size_t k = 0; k < targets_.size(); ++k) targets_[k].X_WO = objects_[target_ids_[k]]->X_WO;
+    for (const Body& body : bodies_) {
+      const Object& o = *objects_[body.id];
+      const int k = target_index_[body.id];
+      targets_[k].X_WO = o.X_WO;
+      target_boxes_[k] = Grown(WorldBox(o.object, o.X_WO), o.model.margin_m());
+      broad_phase_.SetPose(body.id, o.X_WO);
+    }
   }
   return frame_;
 }
@@ -194,6 +218,13 @@ bool Scene::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId oth
   const Object& self = *objects_[body.id];
   const Object& that = *objects_[other];
   const Counterpart c = CounterpartOf(other);
+  // Boxes apart (grown by the margins that cover the touching tolerance):
+  // no contact, without asking the narrow phase.
+  if (options_.broad_phase &&
+      !Grown(WorldBox(self.object, body.state.X_WO), self.model.margin_m())
+           .intersects(Grown(WorldBox(that.object, c.X_WO), that.model.margin_m()))) {
+    return false;
+  }
   // The body's motion relative to the other object: the direction the
   // reversing vector undoes.
   const ContactQuery query{
@@ -224,6 +255,73 @@ bool Scene::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId oth
   return true;
 }
 
+void Scene::FindCandidates(const Tool& tool, Candidates which) {
+  const HapticObject& t = objects_[tool.id]->object;
+  candidates_.clear();
+  if (which != Candidates::kAtDevicePose) {
+    const AlignedBox3d box =
+        Grown(SweptBox(t, tool.X_WD_previous, tool.X_WD), objects_[tool.id]->model.margin_m());
+    for (int k = 0; k < static_cast<int>(targets_.size()); ++k) {
+      if (which == Candidates::kEvery || box.intersects(target_boxes_[k])) candidates_.push_back(k);
+    }
+    return;
+  }
+  if (!broad_pairs_fresh_) {
+    broad_pairs_ = broad_phase_.CandidatePairs();
+    broad_pairs_fresh_ = true;
+  }
+  for (const auto& [a, b] : broad_pairs_) {
+    if (a != tool.id && b != tool.id) continue;
+    const int k = target_index_[a == tool.id ? b : a];
+    if (k >= 0) candidates_.push_back(k);
+  }
+  std::sort(candidates_.begin(), candidates_.end());
+}
+
+void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame) {
+  const Object& t = *objects_[tool.id];
+  const Isometry3d& from = tool.X_WD_previous;
+  const Isometry3d& to = tool.X_WD;
+  // Without continuous collision, a step longer than the shortest box edge
+  // of the objects it may meet is split so that none is passed through
+  // (paper s.4, fig. 3 c). Which objects it may meet: the swept boxes.
+  if (!continuous) {
+    FindCandidates(tool, Candidates::kSwept);
+    double edge = t.object.smallest_box_edge();
+    for (const int k : candidates_) edge = std::min(edge, targets_[k].object->smallest_box_edge());
+    frame.substeps = SubstepCount(Travel(t.object, from, to), edge, kMaxSubsteps);
+  }
+  const bool swept = continuous || frame.substeps > 1;
+  const Candidates which = !options_.broad_phase ? Candidates::kEvery
+                           : swept               ? Candidates::kSwept
+                                                 : Candidates::kAtDevicePose;
+  if (continuous || which != Candidates::kSwept) FindCandidates(tool, which);
+  const Vector3d motion = to.translation() - from.translation();
+  const PosedObject device = Posed(t, to);
+  for (const int k : candidates_) {
+    int substep = frame.substeps;
+    auto colliding_at = [&](const PosedObject& moving) {
+      const absl::StatusOr<bool> colliding =
+          AreColliding(moving, targets_[k], options_.relative_tolerance,
+                       continuous ? std::optional<Vector3d>(motion) : std::nullopt);
+      return colliding.ok() && *colliding;
+    };
+    // At the device pose first; if not there, at the first sub-step that touches.
+    bool found = colliding_at(device);
+    for (int i = 1; !found && i < frame.substeps; ++i) {
+      found = colliding_at(
+          Posed(t, InterpolatePose(from, to, static_cast<double>(i) / frame.substeps)));
+      substep = i;
+    }
+    if (!found) continue;
+    PairContact& pair = frame.contacts.emplace_back();
+    pair.object = target_ids_[k];
+    pair.substep = substep;
+    pair.contact = ContactSet{};
+    pair.contact.colliding = true;
+  }
+}
+
 void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   const Object& t = *objects_[tool.id];
   const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
@@ -235,6 +333,7 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   frame.torque_W.setZero();
   frame.force_clamped = false;
   frame.contacts.clear();
+  frame.substeps = 1;
   const PosedObject device = Posed(t, tool.X_WD);
   // Continuous collision and friction run inside the collision and proxy
   // stages: their runs are counted here, their time is their hosts'.
@@ -245,16 +344,7 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
 
   if (stages.Has(Effect::kCollision)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kCollision)]);
-    for (size_t k = 0; k < targets_.size(); ++k) {
-      const absl::StatusOr<bool> colliding =
-          AreColliding(device, targets_[k], options_.relative_tolerance,
-                       continuous ? std::optional<Vector3d>(motion) : std::nullopt);
-      if (colliding.ok() && *colliding) {
-        PairContact pair{target_ids_[k], {}};
-        pair.contact.colliding = true;
-        frame.contacts.push_back(std::move(pair));
-      }
-    }
+    FindToolContacts(tool, continuous, frame);
   }
   if (stages.Has(Effect::kContactSet)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kContactSet)]);
@@ -264,7 +354,14 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
                              .relative_tolerance = options_.relative_tolerance};
     for (PairContact& pair : frame.contacts) {
       const Object& o = *objects_[pair.object];
-      const absl::StatusOr<ContactSet> contact = ComputeContact(device, Posed(o, o.X_WO), query);
+      // A pair found at an earlier sub-step is reported at that sub-step's
+      // pose: the tool passed through and no longer touches at the end.
+      const PosedObject at =
+          pair.substep == frame.substeps
+              ? device
+              : Posed(t, InterpolatePose(tool.X_WD_previous, tool.X_WD,
+                                         static_cast<double>(pair.substep) / frame.substeps));
+      const absl::StatusOr<ContactSet> contact = ComputeContact(at, Posed(o, o.X_WO), query);
       if (contact.ok()) pair.contact = *contact;
     }
   }

@@ -17,6 +17,10 @@ using ObjectId = int32_t;
 /// A tool's contact with one other object at the device pose.
 struct PairContact {
   ObjectId object = -1;
+  /// The sub-step (1 to ToolFrame::substeps) whose tool pose the contact
+  /// is at: the last one (the device pose) when the pair touches there,
+  /// else the first that touched (the tool passed through).
+  int substep = 1;
   /// Filled as far as the stages that ran allow: `colliding` by collision,
   /// features and normal by the contact set, depth and reversing vector by
   /// the reversing-vector stage.
@@ -36,6 +40,11 @@ struct ToolFrame {
   Vector3d torque_W = Vector3d::Zero();
   /// The force was limited to the scene's clamp.
   bool force_clamped = false;
+  /// How many sub-steps the collision stage split the device's motion
+  /// into: more than 1 when, without continuous collision, the tool moved
+  /// farther than the shortest box edge of itself and the objects its
+  /// swept box meets (paper s.4, fig. 3 c).
+  int substeps = 1;
   /// One entry per object the tool touches or penetrates, by object id.
   std::vector<PairContact> contacts;
 };

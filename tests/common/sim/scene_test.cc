@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include "common/model/procedural.h"
 
@@ -307,6 +308,94 @@ TEST(SceneTest, FreeBodiesDeterministic) {
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 16), 0) << i;
+  }
+}
+
+// Without continuous collision, the device steps 0.2 m through a 5 mm
+// plate in one step, where neither end pose touches it: the step is split
+// into sub-steps under the plate's thickness, and the plate is reported
+// at the first sub-step that touched.
+TEST(SceneTest, SubstepsCatchThinPlateWithoutContinuous) {
+  SceneOptions options;
+  options.enabled = EffectSet::All().Without(Effect::kContinuousCollision);
+  Rig rig = MakeRig(options, 0.005);
+  ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(0.1, 0.05, 0.012)).ok());
+  EXPECT_EQ(rig.scene->Step().tools[0].substeps, 1);  // 8 mm, under the probe's 2 cm edge
+  ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(0.1, 0.05, -0.19)).ok());
+  const ToolFrame& through = rig.scene->Step().tools[0];
+  // 0.202 m over the 5 mm plate: 1 + floor(0.202 / 0.005) sub-steps.
+  EXPECT_EQ(through.substeps, 41);
+  ASSERT_EQ(through.contacts.size(), 1u);
+  const PairContact& plate = through.contacts[0];
+  EXPECT_EQ(plate.object, rig.floor);
+  EXPECT_LT(plate.substep, through.substeps);
+  EXPECT_TRUE(plate.contact.colliding);
+  EXPECT_FALSE(plate.contact.time_of_impact.has_value());
+  // The probe's bottom at that sub-step is within one sub-step of the
+  // plate's top (z = 0).
+  const double bottom = 0.002 - 0.202 * plate.substep / through.substeps;
+  EXPECT_LE(bottom, 0);
+  EXPECT_GT(bottom, -0.202 / through.substeps - 0.005);
+}
+
+// Oracle: on a scene of many objects (a seeded scatter of fixed boxes and
+// balls, and free cubes), the broad phase gives exactly the frames of
+// testing every pair, with continuous collision on and off (then with
+// sub-steps: some steps jump several centimetres).
+TEST(SceneTest, BroadPhaseMatchesEveryPair) {
+  for (const bool continuous : {true, false}) {
+    SCOPED_TRACE(continuous);
+    auto run = [continuous](bool broad_phase) {
+      SceneOptions options;
+      options.broad_phase = broad_phase;
+      if (!continuous) options.enabled = EffectSet::All().Without(Effect::kContinuousCollision);
+      Rig rig = MakeRig(options);
+      std::mt19937 rng(11);
+      std::uniform_real_distribution<double> x(0.0, 0.4), size(0.004, 0.03);
+      for (int i = 0; i < 40; ++i) {
+        const double s = size(rng);
+        MeshInput mesh = i % 2 ? MakeBox(Vector3d(s, s, 0.5 * s)) : MakeIcosphere(s / 2, 1);
+        EXPECT_TRUE(rig.scene
+                        ->AddObject(*HapticObject::Create("o", std::move(mesh)), ObjectKind::kFixed,
+                                    At(x(rng), x(rng) - 0.1, s / 4))
+                        .ok());
+      }
+      for (int i = 0; i < 3; ++i) AddCube(*rig.scene, 0.02 * i, x(rng));
+      std::vector<StepFrame> frames;
+      for (int i = 0; i < 50; ++i) {
+        // Sweeps over the scatter, 2 mm per step, with a 6 cm jump every 10th.
+        const double along = 0.002 * i + (i / 10) * 0.06;
+        EXPECT_TRUE(rig.scene->SetDevicePose(rig.probe, At(along, 0.05 + 0.001 * i, 0.004)).ok());
+        frames.push_back(rig.scene->Step());
+      }
+      return frames;
+    };
+    const std::vector<StepFrame> fast = run(true), oracle = run(false);
+    int contacts = 0, split = 0;
+    for (size_t i = 0; i < fast.size(); ++i) {
+      const ToolFrame& a = fast[i].tools[0];
+      const ToolFrame& b = oracle[i].tools[0];
+      EXPECT_EQ(a.substeps, b.substeps);
+      split += a.substeps > 1;
+      ASSERT_EQ(a.contacts.size(), b.contacts.size()) << "step " << i;
+      for (size_t k = 0; k < a.contacts.size(); ++k) {
+        EXPECT_EQ(a.contacts[k].object, b.contacts[k].object);
+        EXPECT_EQ(a.contacts[k].substep, b.contacts[k].substep);
+        EXPECT_EQ(a.contacts[k].contact.depth_m, b.contacts[k].contact.depth_m);
+        EXPECT_EQ(a.contacts[k].contact.points.size(), b.contacts[k].contact.points.size());
+      }
+      contacts += static_cast<int>(a.contacts.size());
+      EXPECT_TRUE(a.X_WP.matrix() == b.X_WP.matrix());
+      EXPECT_TRUE(a.force_W == b.force_W);
+      ASSERT_EQ(fast[i].bodies.size(), oracle[i].bodies.size());
+      for (size_t k = 0; k < fast[i].bodies.size(); ++k) {
+        EXPECT_TRUE(fast[i].bodies[k].X_WO.matrix() == oracle[i].bodies[k].X_WO.matrix());
+      }
+    }
+    EXPECT_GT(contacts, 20);
+    if (!continuous) {
+      EXPECT_GT(split, 0);
+    }
   }
 }
 
