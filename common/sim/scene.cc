@@ -361,8 +361,8 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
               ? device
               : Posed(t, InterpolatePose(tool.X_WD_previous, tool.X_WD,
                                          static_cast<double>(pair.substep) / frame.substeps));
-      const absl::StatusOr<ContactSet> contact = ComputeContact(at, Posed(o, o.X_WO), query);
-      if (contact.ok()) pair.contact = *contact;
+      absl::StatusOr<ContactSet> contact = ComputeContact(at, Posed(o, o.X_WO), query);
+      if (contact.ok()) pair.contact = *std::move(contact);
     }
   }
   if (!stages.Has(Effect::kReversingVector)) {
