@@ -9,6 +9,7 @@
 
 #include "common/model/procedural.h"
 #include "common/sim/scene.h"
+#include "tests/common/sim/at_pose.h"
 
 namespace {
 std::atomic<long> allocations{0};
@@ -38,12 +39,6 @@ void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::f
 
 namespace hs {
 namespace {
-
-Isometry3d At(double x, double y, double z) {
-  Isometry3d X = Isometry3d::Identity();
-  X.translation() = Vector3d(x, y, z);
-  return X;
-}
 
 // After warm-up, steps that move a tool (with every effect on, sub-steps
 // and the broad phase) and free bodies in free fall allocate nothing:

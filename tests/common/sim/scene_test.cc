@@ -7,15 +7,10 @@
 #include <random>
 
 #include "common/model/procedural.h"
+#include "tests/common/sim/at_pose.h"
 
 namespace hs {
 namespace {
-
-Isometry3d At(double x, double y, double z) {
-  Isometry3d X = Isometry3d::Identity();
-  X.translation() = Vector3d(x, y, z);
-  return X;
-}
 
 // A 1 m x 1 m x 0.1 m floor with its top at z = 0, and a 2 cm cube probe
 // whose bottom starts at z = 0.01.
