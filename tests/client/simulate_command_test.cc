@@ -74,6 +74,7 @@ TEST(SimulateCommandTest, EveryBundledDemoResistsItsPath) {
       {"probe_on_torus", "press_and_slide"},
       {"peg_in_hole", "peg_in_hole"},
       {"linked_rings", "linked_rings"},
+      {"fine_organ", "fine_organ"},
   };
   for (const auto& [scene, path] : demos) {
     SCOPED_TRACE(scene);
