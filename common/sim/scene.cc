@@ -278,6 +278,24 @@ void Scene::FindCandidates(const Tool& tool, Candidates which) {
   std::sort(candidates_.begin(), candidates_.end());
 }
 
+void Scene::FindProxyObstacles(const Tool& tool) {
+  proxy_obstacles_.clear();
+  proxy_obstacle_ids_.clear();
+  const Object& t = *objects_[tool.id];
+  // The proxy only moves toward the device: every pose it takes lies within
+  // the device's distance of the device pose (plus a stand-off per slide,
+  // far under the margin added here).
+  const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
+                       1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
+  const AlignedBox3d box = Grown(WorldBox(t.object, tool.X_WD), reach);
+  for (size_t k = 0; k < obstacles_.size(); ++k) {
+    const ObjectId id = obstacle_ids_[k];
+    if (options_.broad_phase && !box.intersects(target_boxes_[target_index_[id]])) continue;
+    proxy_obstacles_.push_back(obstacles_[k]);
+    proxy_obstacle_ids_.push_back(id);
+  }
+}
+
 void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame) {
   const Object& t = *objects_[tool.id];
   const Isometry3d& from = tool.X_WD_previous;
@@ -374,9 +392,11 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
     StageTimer timer(stats_[static_cast<int>(Effect::kReversingVector)]);
     const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
                                .friction = stages.Has(Effect::kFriction)};
-    absl::StatusOr<ProxyState> moved = MoveProxy(device, tool.X_WP, tool.X_WD, obstacles_, options);
+    FindProxyObstacles(tool);
+    absl::StatusOr<ProxyState> moved =
+        MoveProxy(device, tool.X_WP, tool.X_WD, proxy_obstacles_, options);
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
-    if (proxy.touching) proxy.obstacle = obstacle_ids_[proxy.obstacle];
+    if (proxy.touching) proxy.obstacle = proxy_obstacle_ids_[proxy.obstacle];
     tool.X_WP = proxy.X_WP;
     frame.X_WP = proxy.X_WP;
   }

@@ -131,6 +131,8 @@ class Scene {
   };
   // Fills candidates_ with the targets the tool may touch this step.
   void FindCandidates(const Tool& tool, Candidates which);
+  // Fills proxy_obstacles_ with the fixed objects the proxy may touch.
+  void FindProxyObstacles(const Tool& tool);
   // The collision stage of one tool, sub-stepped when its step is long.
   void FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame);
   // Resolves one contact of `body` (moved from X_WO_from this sub-step)
@@ -166,6 +168,9 @@ class Scene {
   bool broad_pairs_fresh_ = false;
   // Scratch of FindCandidates: indices into targets_, ascending.
   std::vector<int> candidates_;
+  // Scratch of FindProxyObstacles: a subset of obstacles_, in order.
+  std::vector<PosedObject> proxy_obstacles_;
+  std::vector<ObjectId> proxy_obstacle_ids_;
   StageStatsTable stats_{};
   StepFrame frame_;
 };
