@@ -149,6 +149,7 @@ const StepFrame& Scene::Step() {
   if (stages.Has(Effect::kFreeBodyMotion)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kFreeBodyMotion)]);
     for (Body& body : bodies_) body.X_WO_start = body.state.X_WO;
+    for (Tool& tool : tools_) tool.push_impulse_W.setZero();
     // Serially, in id order: each body meets the others where they are now
     // (paper s.5), so a body moved earlier this step is met at its new pose.
     for (size_t i = 0; i < bodies_.size(); ++i) MoveFreeBody(bodies_[i], frame_.bodies[i]);
@@ -159,8 +160,22 @@ const StepFrame& Scene::Step() {
       target_boxes_[k] = Grown(WorldBox(o.object, o.X_WO), o.model.margin_m());
       broad_phase_.SetPose(body.id, o.X_WO);
     }
+    if (stages.Has(Effect::kForce)) {
+      for (size_t i = 0; i < tools_.size(); ++i) AddPushReaction(tools_[i], frame_.tools[i]);
+    }
   }
   return frame_;
+}
+
+void Scene::AddPushReaction(const Tool& tool, ToolFrame& frame) const {
+  if (tool.push_impulse_W.isZero()) return;
+  // The bodies push back with the impulse they took, spread over the step.
+  Vector3d force = frame.force_W - tool.push_impulse_W / options_.step_s;
+  if (force.norm() > options_.force_clamp_n) {
+    force *= options_.force_clamp_n / force.norm();
+    frame.force_clamped = true;
+  }
+  frame.force_W = force;
 }
 
 void Scene::MoveFreeBody(Body& body, BodyFrame& frame) {
@@ -251,7 +266,8 @@ bool Scene::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId oth
   response.v_other_W = c.v_W;
   response.friction =
       that.object.face_material(TouchedFace(that.object, contact->fixed)).dynamic_friction;
-  RespondToContact(body.mass, response, body.state, c.body);
+  const Vector3d impulse = RespondToContact(body.mass, response, body.state, c.body);
+  if (that.kind == ObjectKind::kTool) tools_[slots_[other]].push_impulse_W += impulse;
   return true;
 }
 

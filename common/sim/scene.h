@@ -104,6 +104,8 @@ class Scene {
     Isometry3d X_WP;           // proxy pose
     Isometry3d X_WP_previous;  // proxy pose of the last step
     bool moved = true;
+    // Impulse the tool gave free bodies this step, world frame, N*s.
+    Vector3d push_impulse_W = Vector3d::Zero();
   };
   struct Body {
     ObjectId id;
@@ -123,6 +125,8 @@ class Scene {
   PosedObject Posed(const Object& o, const Isometry3d& X) const { return {&o.object, &o.model, X}; }
   void StepTool(Tool& tool, EffectSet stages, ToolFrame& frame);
   void MoveFreeBody(Body& body, BodyFrame& frame);
+  // Adds the reaction of the free bodies the tool pushed to its force.
+  void AddPushReaction(const Tool& tool, ToolFrame& frame) const;
   Counterpart CounterpartOf(ObjectId id);
   enum class Candidates {
     kAtDevicePose,  // the broad phase's pairs at the device pose

@@ -262,7 +262,7 @@ TEST(SceneTest, FreeBodyRestsOnFixedBox) {
 }
 
 // The probe pushes a resting free cube sideways: the cube moves along with
-// it, ahead of it, and stays on the floor.
+// it, ahead of it, and stays on the floor; the device feels it resist.
 TEST(SceneTest, ToolPushesFreeBody) {
   Rig rig = MakeRig();
   // The cube sits on the floor at x = 0.3; the probe, level with it, starts
@@ -271,10 +271,15 @@ TEST(SceneTest, ToolPushesFreeBody) {
   for (int i = 0; i < 50; ++i) rig.scene->Step();
   const double x_start = rig.scene->Step().bodies[0].X_WO.translation().x();
   const double probe_x0 = 0.3 - 0.03;
+  double push_back = 0;  // the most negative force along the push
   for (int i = 0; i <= 60; ++i) {
     ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(probe_x0 + 0.001 * i, 0.05, 0.0101)).ok());
-    rig.scene->Step();
+    const ToolFrame& tool = rig.scene->Step().tools[0];
+    push_back = std::min(push_back, tool.force_W.x());
+    EXPECT_LE(tool.force_W.norm(), rig.scene->options().force_clamp_n + 1e-12);
   }
+  // The device feels the cube resist: the impulse it gave, over the step.
+  EXPECT_LT(push_back, 0);
   const StepFrame& frame = rig.scene->Step();
   const BodyFrame& body = frame.bodies[0];
   EXPECT_EQ(body.body, cube);
@@ -284,6 +289,21 @@ TEST(SceneTest, ToolPushesFreeBody) {
   EXPECT_GT(body.X_WO.translation().x() - 0.01, probe_face - 1e-6);
   EXPECT_GT(body.X_WO.translation().x() - x_start, 0.04);
   EXPECT_NEAR(body.X_WO.translation().z(), 0.01, 1e-4);
+}
+
+// A cube thrown down at 30 m/s (3 cm a step, beyond the 5 mm plate's
+// thickness) moves in sub-steps under 5 mm and lands on the plate instead
+// of passing through it.
+TEST(SceneTest, FastFreeBodySubstepsOntoThinPlate) {
+  Rig rig = MakeRig({}, 0.005);
+  AddCube(*rig.scene, 0.05, 0.3, {.v_W = Vector3d(0, 0, -30)});
+  const BodyFrame& first = rig.scene->Step().bodies[0];
+  // 3 cm over the shortest edge (5 mm): 1 + floor(0.03 / 0.005) sub-steps.
+  EXPECT_EQ(first.substeps, 7);
+  for (int i = 0; i < 20; ++i) rig.scene->Step();
+  const BodyFrame& landed = rig.scene->Step().bodies[0];
+  EXPECT_NEAR(landed.X_WO.translation().z(), 0.01, 1e-4);  // bottom on the plate's top
+  EXPECT_GT(landed.contacts, 0);
 }
 
 // Free bodies move identically, to the bit, for identical inputs.
