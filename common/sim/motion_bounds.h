@@ -8,6 +8,13 @@
 
 namespace hs {
 
+/// `box` grown by `margin` (metres) on every side.
+inline AlignedBox3d GrowBox(AlignedBox3d box, double margin) {
+  box.min().array() -= margin;
+  box.max().array() += margin;
+  return box;
+}
+
 /// The world axis-aligned box around `object`'s own box posed at X_WO,
 /// metres.
 AlignedBox3d WorldBox(const HapticObject& object, const Isometry3d& X_WO);

@@ -8,7 +8,6 @@
 #include "common/core/rigid_pose.h"
 #include "common/core/status_macros.h"
 #include "common/sim/motion_bounds.h"
-#include "common/sim/touched_face.h"
 
 namespace hs {
 namespace {
@@ -18,12 +17,6 @@ constexpr double kMaxRelativeTolerance = 1e-6;
 // A step is split into at most this many sub-steps: a tool moving farther
 // than this many shortest box edges in one step may pass through.
 constexpr int kMaxSubsteps = 256;
-
-AlignedBox3d Grown(AlignedBox3d box, double margin) {
-  box.min().array() -= margin;
-  box.max().array() += margin;
-  return box;
-}
 
 // Adds the wall time of its scope to one stage's statistics.
 class StageTimer {
@@ -101,7 +94,7 @@ absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
   target_index_.push_back(static_cast<int>(targets_.size()));
   targets_.push_back(Posed(added, X_WO));
   target_ids_.push_back(id);
-  target_boxes_.push_back(Grown(WorldBox(added.object, X_WO), added.model.margin_m()));
+  target_boxes_.push_back(GrowBox(WorldBox(added.object, X_WO), added.model.margin_m()));
   return id;
 }
 
@@ -157,7 +150,7 @@ const StepFrame& Scene::Step() {
       const Object& o = *objects_[body.id];
       const int k = target_index_[body.id];
       targets_[k].X_WO = o.X_WO;
-      target_boxes_[k] = Grown(WorldBox(o.object, o.X_WO), o.model.margin_m());
+      target_boxes_[k] = GrowBox(WorldBox(o.object, o.X_WO), o.model.margin_m());
       broad_phase_.SetPose(body.id, o.X_WO);
     }
     if (stages.Has(Effect::kForce)) {
@@ -167,116 +160,12 @@ const StepFrame& Scene::Step() {
   return frame_;
 }
 
-void Scene::AddPushReaction(const Tool& tool, ToolFrame& frame) const {
-  if (tool.push_impulse_W.isZero()) return;
-  // The bodies push back with the impulse they took, spread over the step.
-  Vector3d force = frame.force_W - tool.push_impulse_W / options_.step_s;
-  if (force.norm() > options_.force_clamp_n) {
-    force *= options_.force_clamp_n / force.norm();
-    frame.force_clamped = true;
-  }
-  frame.force_W = force;
-}
-
-void Scene::MoveFreeBody(Body& body, BodyFrame& frame) {
-  frame.body = body.id;
-  frame.contacts = 0;
-  // Keep each sub-step's travel under the shortest box edge of any object
-  // (paper s.4): the travel is estimated from the velocity after gravity.
-  const double dt = options_.step_s;
-  const double travel = (body.state.v_W + dt * options_.gravity_W).norm() * dt;
-  constexpr int kMaxSubsteps = 64;
-  frame.substeps = std::min(kMaxSubsteps, 1 + static_cast<int>(travel / smallest_edge_m_));
-  const double h = dt / frame.substeps;
-  for (int sub = 0; sub < frame.substeps; ++sub) {
-    const Isometry3d X_WO_from = body.state.X_WO;
-    IntegrateFreeBody(body.mass, options_.gravity_W, h, body.state);
-    int touching = 0;
-    for (ObjectId other = 0; other < static_cast<ObjectId>(objects_.size()); ++other) {
-      if (other != body.id) touching += ResolveContact(body, X_WO_from, other);
-    }
-    if (touching > 0) body.state.w_W *= std::exp(-options_.contact_angular_damping_per_s * h);
-    frame.contacts += touching;
-  }
-  objects_[body.id]->X_WO = body.state.X_WO;
-  frame.X_WO = body.state.X_WO;
-  frame.v_W = body.state.v_W;
-  frame.w_W = body.state.w_W;
-}
-
-Scene::Counterpart Scene::CounterpartOf(ObjectId id) {
-  const Object& o = *objects_[id];
-  Counterpart c;
-  c.X_WO = o.X_WO;
-  switch (o.kind) {
-    case ObjectKind::kFixed:
-      break;
-    case ObjectKind::kTool: {
-      const Tool& tool = tools_[slots_[id]];
-      c.X_WO = tool.X_WP;
-      c.motion_W = tool.X_WP.translation() - tool.X_WP_previous.translation();
-      c.v_W = c.motion_W / options_.step_s;
-      break;
-    }
-    case ObjectKind::kFree: {
-      Body& other = bodies_[slots_[id]];
-      c.X_WO = other.state.X_WO;
-      c.motion_W = other.state.X_WO.translation() - other.X_WO_start.translation();
-      c.body = {&other.mass, &other.state};
-      break;
-    }
-  }
-  return c;
-}
-
-bool Scene::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId other) {
-  const Object& self = *objects_[body.id];
-  const Object& that = *objects_[other];
-  const Counterpart c = CounterpartOf(other);
-  // Boxes apart (grown by the margins that cover the touching tolerance):
-  // no contact, without asking the narrow phase.
-  if (options_.broad_phase &&
-      !Grown(WorldBox(self.object, body.state.X_WO), self.model.margin_m())
-           .intersects(Grown(WorldBox(that.object, c.X_WO), that.model.margin_m()))) {
-    return false;
-  }
-  // The body's motion relative to the other object: the direction the
-  // reversing vector undoes.
-  const ContactQuery query{
-      .direction_W = body.state.X_WO.translation() - X_WO_from.translation() - c.motion_W,
-      .method = options_.method,
-      .relative_tolerance = options_.relative_tolerance};
-  const absl::StatusOr<ContactSet> contact =
-      ComputeContact(Posed(self, body.state.X_WO), Posed(that, c.X_WO), query);
-  if (!contact.ok() || !contact->colliding || contact->normal_W.isZero()) return false;
-  BodyContact response;
-  response.normal_W = FaceSideNormal(that.object, contact->fixed, c.X_WO);
-  if (response.normal_W.isZero()) response.normal_W = contact->normal_W;
-  // The normal share of the reversing vector: moving back along the whole
-  // vector would also undo the body's sliding along the surface.
-  if (contact->penetrating) {
-    response.separation_m = std::max(0.0, contact->reversing_vector_W.dot(response.normal_W));
-  }
-  response.p_WC = CentreOfMass(body.mass, body.state);
-  if (!contact->points.empty()) {
-    Vector3d sum = Vector3d::Zero();
-    for (const ContactPoint& p : contact->points) sum += p.p_WC;
-    response.p_WC = sum / static_cast<double>(contact->points.size());
-  }
-  response.v_other_W = c.v_W;
-  response.friction =
-      that.object.face_material(TouchedFace(that.object, contact->fixed)).dynamic_friction;
-  const Vector3d impulse = RespondToContact(body.mass, response, body.state, c.body);
-  if (that.kind == ObjectKind::kTool) tools_[slots_[other]].push_impulse_W += impulse;
-  return true;
-}
-
 void Scene::FindCandidates(const Tool& tool, Candidates which) {
   const HapticObject& t = objects_[tool.id]->object;
   candidates_.clear();
   if (which != Candidates::kAtDevicePose) {
     const AlignedBox3d box =
-        Grown(SweptBox(t, tool.X_WD_previous, tool.X_WD), objects_[tool.id]->model.margin_m());
+        GrowBox(SweptBox(t, tool.X_WD_previous, tool.X_WD), objects_[tool.id]->model.margin_m());
     for (int k = 0; k < static_cast<int>(targets_.size()); ++k) {
       if (which == Candidates::kEvery || box.intersects(target_boxes_[k])) candidates_.push_back(k);
     }
@@ -303,7 +192,7 @@ void Scene::FindProxyObstacles(const Tool& tool) {
   // far under the margin added here).
   const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
                        1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
-  const AlignedBox3d box = Grown(WorldBox(t.object, tool.X_WD), reach);
+  const AlignedBox3d box = GrowBox(WorldBox(t.object, tool.X_WD), reach);
   for (size_t k = 0; k < obstacles_.size(); ++k) {
     const ObjectId id = obstacle_ids_[k];
     if (options_.broad_phase && !box.intersects(target_boxes_[target_index_[id]])) continue;
