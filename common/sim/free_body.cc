@@ -48,7 +48,16 @@ void IntegrateFreeBody(const MassProperties& body, const Vector3d& g_W, double d
 Vector3d RespondToContact(const MassProperties& body, const BodyContact& contact,
                           FreeBodyState& state, const OtherBody& other) {
   const Vector3d& n = contact.normal_W;
-  if (contact.separation_m > 0) state.X_WO.translation() += contact.separation_m * n;
+  if (contact.separation_m > 0) {
+    // Two free bodies part by inverse mass: a light body on a heavy one
+    // moves most, and neither is shoved whole into what lies behind it.
+    const double share =
+        other.mass == nullptr ? 1.0 : other.mass->mass_kg / (body.mass_kg + other.mass->mass_kg);
+    state.X_WO.translation() += share * contact.separation_m * n;
+    if (other.state != nullptr) {
+      other.state->X_WO.translation() -= (1 - share) * contact.separation_m * n;
+    }
+  }
   const ImpulseTarget self(body, state, contact.p_WC);
   std::optional<ImpulseTarget> that;
   if (other.mass != nullptr) that.emplace(*other.mass, *other.state, contact.p_WC);

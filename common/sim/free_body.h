@@ -51,7 +51,8 @@ struct OtherBody {
   FreeBodyState* state = nullptr;
 };
 
-/// Moves the body out along the normal, then, when it approaches the other
+/// Moves the body out along the normal (a free `other` takes its share of
+/// the separation by inverse mass), then, when it approaches the other
 /// object at the contact point, applies the impulse that stops the
 /// approach (restitution 0) at the contact point; friction's impulse, at
 /// most `friction` times the normal one, acts through the centre of mass. A fixed object or a tool

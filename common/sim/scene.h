@@ -139,6 +139,11 @@ class Scene {
   void FindProxyObstacles(const Tool& tool);
   // The collision stage of one tool, sub-stepped when its step is long.
   void FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame);
+  // How far to move `self` (at X_WO) along the unit normal n to stop
+  // penetrating `that`, from `contact` found along `motion_W`.
+  double SeparationAlongNormal(const Object& self, const Isometry3d& X_WO, const Object& that,
+                               const Isometry3d& X_WO_other, const ContactSet& contact,
+                               const Vector3d& motion_W, const Vector3d& n) const;
   // Resolves one contact of `body` (moved from X_WO_from this sub-step)
   // with object `other`; returns whether they were in contact.
   bool ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId other);

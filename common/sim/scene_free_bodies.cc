@@ -9,6 +9,14 @@
 #include "common/sim/touched_face.h"
 
 namespace hs {
+namespace {
+
+// Below this cosine between the body's motion and the inward normal, the
+// depth along the motion is too long a way round: measure it along the
+// normal instead.
+constexpr double kMinInto = 0.1;
+
+}  // namespace
 
 void Scene::AddPushReaction(const Tool& tool, ToolFrame& frame) const {
   if (tool.push_impulse_W.isZero()) return;
@@ -72,6 +80,26 @@ Scene::Counterpart Scene::CounterpartOf(ObjectId id) {
   return c;
 }
 
+double Scene::SeparationAlongNormal(const Object& self, const Isometry3d& X_WO, const Object& that,
+                                    const Isometry3d& X_WO_other, const ContactSet& contact,
+                                    const Vector3d& motion_W, const Vector3d& n) const {
+  // A motion that goes into the surface: the reversing vector's normal
+  // share is the depth along the normal.
+  const double into = -motion_W.normalized().dot(n);
+  const double separation = contact.reversing_vector_W.dot(n);
+  if (into >= kMinInto && separation > 0) return separation;
+  // A motion along or out of the surface (a body pushed in by another
+  // after its own resolution, or sliding): the depth straight along the
+  // normal, by a query moving the body into the surface.
+  const ContactQuery along_normal{.direction_W = -n,
+                                  .method = options_.method,
+                                  .relative_tolerance = options_.relative_tolerance};
+  const absl::StatusOr<ContactSet> again =
+      ComputeContact(Posed(self, X_WO), Posed(that, X_WO_other), along_normal);
+  if (!again.ok() || !again->penetrating) return std::max(0.0, separation);
+  return std::max(0.0, again->reversing_vector_W.dot(n));
+}
+
 bool Scene::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId other) {
   const Object& self = *objects_[body.id];
   const Object& that = *objects_[other];
@@ -98,7 +126,8 @@ bool Scene::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId oth
   // The normal share of the reversing vector: moving back along the whole
   // vector would also undo the body's sliding along the surface.
   if (contact->penetrating) {
-    response.separation_m = std::max(0.0, contact->reversing_vector_W.dot(response.normal_W));
+    response.separation_m = SeparationAlongNormal(self, body.state.X_WO, that, c.X_WO, *contact,
+                                                  query.direction_W, response.normal_W);
   }
   response.p_WC = CentreOfMass(body.mass, body.state);
   if (!contact->points.empty()) {
