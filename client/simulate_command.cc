@@ -37,6 +37,7 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
     for (const PairContact& c : t.contacts) {
       nlohmann::ordered_json entry = ContactSetToJson(c.contact);
       entry["object"] = loaded.names[c.object];
+      entry["substep"] = c.substep;
       contacts.push_back(std::move(entry));
     }
     tools.push_back({{"tool", loaded.names[t.tool]},
@@ -45,6 +46,7 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
                      {"force_W_n", Vector3Json(t.force_W)},
                      {"torque_W_nm", Vector3Json(t.torque_W)},
                      {"force_clamped", t.force_clamped},
+                     {"substeps", t.substeps},
                      {"contacts", contacts}});
   }
   nlohmann::ordered_json stages = nlohmann::ordered_json::array();
@@ -53,7 +55,22 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
       stages.push_back(EffectName(static_cast<Effect>(i)));
     }
   }
-  return {{"step", frame.step}, {"time_s", frame.time_s}, {"stages_run", stages}, {"tools", tools}};
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+  for (const BodyFrame& b : frame.bodies) {
+    const Eigen::Quaterniond q(b.X_WO.linear());
+    bodies.push_back({{"body", loaded.names[b.body]},
+                      {"position_W_m", Vector3Json(b.X_WO.translation())},
+                      {"orientation_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+                      {"velocity_W_m_per_s", Vector3Json(b.v_W)},
+                      {"angular_velocity_W_rad_per_s", Vector3Json(b.w_W)},
+                      {"contacts", b.contacts},
+                      {"substeps", b.substeps}});
+  }
+  return {{"step", frame.step},
+          {"time_s", frame.time_s},
+          {"stages_run", stages},
+          {"tools", tools},
+          {"bodies", bodies}};
 }
 
 nlohmann::ordered_json StatsJson(const StageStatsTable& stats) {
@@ -111,6 +128,10 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
       out << "  " << loaded->names[t.tool] << ": contacts " << t.contacts.size() << ", force "
           << t.force_W.transpose() << " N";
     }
+    for (const BodyFrame& b : frame.bodies) {
+      out << "  " << loaded->names[b.body] << ": at " << b.X_WO.translation().transpose()
+          << " m, contacts " << b.contacts;
+    }
     out << "\n";
   }
   if (args.json) {
@@ -134,7 +155,7 @@ void AddSimulateCommand(CLI::App& app, int& exit_code) {
                   "Device poses of the first tool, one 'x,y,z,rx,ry,rz' line per step");
   cmd->add_option("--needs", args->needs,
                   "Effects the consumer needs (collision, contact_set, reversing_vector, force, "
-                  "friction, continuous_collision); default all");
+                  "friction, continuous_collision, free_body_motion); default all");
   cmd->add_flag("--json", args->json, "One JSON object per step, then the stage statistics");
   cmd->callback([args, &exit_code] { exit_code = RunSimulate(*args, std::cout, std::cerr); });
 }

@@ -137,6 +137,40 @@ absl::Status ApplyMaterials(const pb::SceneObject& o, const std::string& where,
   return absl::OkStatus();
 }
 
+absl::StatusOr<ObjectKind> ToKind(const pb::SceneObject& o, const std::string& where) {
+  switch (o.kind()) {
+    case pb::OBJECT_KIND_FIXED:
+      return ObjectKind::kFixed;
+    case pb::OBJECT_KIND_TOOL:
+      return ObjectKind::kTool;
+    case pb::OBJECT_KIND_FREE:
+      return ObjectKind::kFree;
+    default:
+      return Invalid(where + ".kind",
+                     "must be OBJECT_KIND_FIXED, OBJECT_KIND_TOOL or OBJECT_KIND_FREE");
+  }
+}
+
+absl::StatusOr<BodyOptions> ToBodyOptions(const pb::SceneObject& o, const std::string& where) {
+  BodyOptions body;
+  if (!o.has_free_body()) return body;
+  const std::string at = where + ".free_body";
+  if (o.kind() != pb::OBJECT_KIND_FREE) return Invalid(at, "only for OBJECT_KIND_FREE");
+  const pb::FreeBody& b = o.free_body();
+  if (!(std::isfinite(b.mass_kg()) && b.mass_kg() >= 0)) {
+    return Invalid(at + ".mass_kg", "must be finite and >= 0");
+  }
+  if (!(std::isfinite(b.density_kg_per_m3()) && b.density_kg_per_m3() >= 0)) {
+    return Invalid(at + ".density_kg_per_m3", "must be finite and >= 0");
+  }
+  body.mass_kg = b.mass_kg();
+  if (b.density_kg_per_m3() != 0) body.density_kg_per_m3 = b.density_kg_per_m3();
+  HS_ASSIGN_OR_RETURN(body.v_W, ToVector(b.velocity_m_per_s(), at + ".velocity_m_per_s"));
+  HS_ASSIGN_OR_RETURN(body.w_W,
+                      ToVector(b.angular_velocity_rad_per_s(), at + ".angular_velocity_rad_per_s"));
+  return body;
+}
+
 absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
   SceneOptions options;
   if (spec.step_s() != 0) options.step_s = spec.step_s();
@@ -146,12 +180,15 @@ absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
     options.enabled = EffectSet();
     for (int i = 0; i < spec.effects_size(); ++i) {
       const int e = spec.effects(i);
-      if (e <= pb::EFFECT_UNSPECIFIED || e > pb::EFFECT_CONTINUOUS_COLLISION) {
+      if (e <= pb::EFFECT_UNSPECIFIED || e > pb::EFFECT_FREE_BODY_MOTION) {
         return Invalid(absl::StrCat("effects[", i, "]"), "unknown effect");
       }
       // The proto's effects follow Effect's order, from 1.
       options.enabled = options.enabled.With(static_cast<Effect>(e - 1));
     }
+  }
+  if (spec.has_gravity_m_per_s2()) {
+    HS_ASSIGN_OR_RETURN(options.gravity_W, ToVector(spec.gravity_m_per_s2(), "gravity_m_per_s2"));
   }
   switch (spec.contact_method()) {
     case pb::CONTACT_METHOD_PAPER_2D:
@@ -222,20 +259,15 @@ absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const std::str
     if (o.name().empty() || !names.insert(o.name()).second) {
       return Invalid(where, "name must be non-empty and unique");
     }
-    ObjectKind kind;
-    if (o.kind() == pb::OBJECT_KIND_FIXED) {
-      kind = ObjectKind::kFixed;
-    } else if (o.kind() == pb::OBJECT_KIND_TOOL) {
-      kind = ObjectKind::kTool;
-    } else {
-      return Invalid(where + ".kind", "must be OBJECT_KIND_FIXED or OBJECT_KIND_TOOL");
-    }
+    HS_ASSIGN_OR_RETURN(const ObjectKind kind, ToKind(o, where));
+    HS_ASSIGN_OR_RETURN(const BodyOptions body, ToBodyOptions(o, where));
     HS_ASSIGN_OR_RETURN(const Isometry3d X_WO, ToPose(o.pose(), where + ".pose"));
     HS_ASSIGN_OR_RETURN(HapticObject object, LoadModel(o, where, base_dir));
     HS_RETURN_IF_ERROR(ApplyMaterials(o, where, object));
-    HS_ASSIGN_OR_RETURN(const ObjectId id, loaded.scene->AddObject(std::move(object), kind, X_WO));
+    absl::StatusOr<ObjectId> id = loaded.scene->AddObject(std::move(object), kind, X_WO, body);
+    if (!id.ok()) return Invalid(where, std::string(id.status().message()));
     loaded.names.push_back(o.name());
-    if (kind == ObjectKind::kTool) loaded.tools.push_back(id);
+    if (kind == ObjectKind::kTool) loaded.tools.push_back(*id);
   }
   return loaded;
 }

@@ -1,17 +1,10 @@
 #include "common/sim/proxy.h"
 
 #include "common/core/status_macros.h"
+#include "common/sim/touched_face.h"
 
 namespace hs {
 namespace {
-
-// A face of `object` that holds the contact `side`, for its material.
-FaceId TouchedFace(const HapticObject& object, const SideContact& side) {
-  if (!side.faces.empty()) return side.faces.front();
-  if (!side.edges.empty()) return object.EdgeFaces(side.edges.front()).front();
-  if (!side.vertices.empty()) return object.VertexFaces(side.vertices.front()).front();
-  return 0;
-}
 
 struct EarliestTouch {
   int obstacle = -1;

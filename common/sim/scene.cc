@@ -1,17 +1,22 @@
 #include "common/sim/scene.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
 #include "common/core/rigid_pose.h"
 #include "common/core/status_macros.h"
+#include "common/sim/motion_bounds.h"
 
 namespace hs {
 namespace {
 
 // Collision models are grown for query tolerances up to this (relative).
 constexpr double kMaxRelativeTolerance = 1e-6;
+// A step is split into at most this many sub-steps: a tool moving farther
+// than this many shortest box edges in one step may pass through.
+constexpr int kMaxSubsteps = 256;
 
 // Adds the wall time of its scope to one stage's statistics.
 class StageTimer {
@@ -42,22 +47,54 @@ absl::StatusOr<std::unique_ptr<Scene>> Scene::Create(const SceneOptions& options
   if (!(std::isfinite(options.force_clamp_n) && options.force_clamp_n > 0)) {
     return absl::InvalidArgumentError("force_clamp_n must be finite and > 0");
   }
+  if (!(std::isfinite(options.contact_angular_damping_per_s) &&
+        options.contact_angular_damping_per_s >= 0)) {
+    return absl::InvalidArgumentError("contact_angular_damping_per_s must be finite and >= 0");
+  }
+  if (!options.gravity_W.allFinite()) {
+    return absl::InvalidArgumentError("gravity_W must be finite");
+  }
   return std::unique_ptr<Scene>(new Scene(options));
 }
 
 absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
-                                          const Isometry3d& X_WO) {
+                                          const Isometry3d& X_WO, const BodyOptions& body) {
   HS_RETURN_IF_ERROR(ValidateRigidPose(X_WO, "object"));
+  MassProperties mass;
+  if (kind == ObjectKind::kFree) {
+    HS_ASSIGN_OR_RETURN(mass, ComputeMassProperties(object, body.mass_kg, body.density_kg_per_m3));
+    if (!body.v_W.allFinite() || !body.w_W.allFinite()) {
+      return absl::InvalidArgumentError("free body velocities must be finite");
+    }
+  }
   const double margin = kMaxRelativeTolerance * object.bounding_box().diagonal().norm();
   CollisionModel model(object, options_.bv, margin);
   const auto id = static_cast<ObjectId>(objects_.size());
+  smallest_edge_m_ = std::min(smallest_edge_m_, object.smallest_box_edge());
   objects_.push_back(
       std::make_unique<Object>(Object{std::move(object), std::move(model), kind, X_WO}));
-  if (kind == ObjectKind::kTool) tools_.push_back(Tool{id, X_WO, X_WO, X_WO, true});
-  if (kind == ObjectKind::kFixed) {
-    obstacles_.push_back(Posed(*objects_.back(), X_WO));
-    obstacle_ids_.push_back(id);
+  const Object& added = *objects_.back();
+  broad_phase_.Add(id, added.model, X_WO);
+  switch (kind) {
+    case ObjectKind::kTool:
+      slots_.push_back(static_cast<int>(tools_.size()));
+      tools_.push_back(Tool{id, X_WO, X_WO, X_WO, X_WO, true});
+      target_index_.push_back(-1);
+      return id;
+    case ObjectKind::kFixed:
+      slots_.push_back(-1);
+      obstacles_.push_back(Posed(added, X_WO));
+      obstacle_ids_.push_back(id);
+      break;
+    case ObjectKind::kFree:
+      slots_.push_back(static_cast<int>(bodies_.size()));
+      bodies_.push_back(Body{id, mass, FreeBodyState{X_WO, body.v_W, body.w_W}, X_WO});
+      break;
   }
+  target_index_.push_back(static_cast<int>(targets_.size()));
+  targets_.push_back(Posed(added, X_WO));
+  target_ids_.push_back(id);
+  target_boxes_.push_back(GrowBox(WorldBox(added.object, X_WO), added.model.margin_m()));
   return id;
 }
 
@@ -80,22 +117,132 @@ absl::Status Scene::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
 const StepFrame& Scene::Step() {
   ++frame_.step;
   frame_.time_s = static_cast<double>(frame_.step) * options_.step_s;
-  bool anything_moved = false;
+  EffectSet stages = StagesToRun(options_.enabled, needed_);
+  if (bodies_.empty()) stages = stages.Without(Effect::kFreeBodyMotion);
+  bool anything_moved = stages.Has(Effect::kFreeBodyMotion);
   for (const Tool& tool : tools_) anything_moved = anything_moved || tool.moved;
   // Nothing moves: the contacts are those of the last step, so no stage runs.
   if (!anything_moved) {
     frame_.stages_run = EffectSet();
     return frame_;
   }
-  // No object is free yet (ObjectKind has none), so free-body motion never runs.
-  frame_.stages_run = StagesToRun(options_.enabled, needed_).Without(Effect::kFreeBodyMotion);
+  frame_.stages_run = stages;
+  broad_pairs_fresh_ = false;
+  for (const Tool& tool : tools_) {
+    if (tool.moved) broad_phase_.SetPose(tool.id, tool.X_WD);
+  }
   frame_.tools.resize(tools_.size());
   for (size_t i = 0; i < tools_.size(); ++i) {
+    tools_[i].X_WP_previous = tools_[i].X_WP;
     StepTool(tools_[i], frame_.stages_run, frame_.tools[i]);
     tools_[i].X_WD_previous = tools_[i].X_WD;
     tools_[i].moved = false;
   }
+  frame_.bodies.resize(bodies_.size());
+  if (stages.Has(Effect::kFreeBodyMotion)) {
+    StageTimer timer(stats_[static_cast<int>(Effect::kFreeBodyMotion)]);
+    for (Body& body : bodies_) body.X_WO_start = body.state.X_WO;
+    for (Tool& tool : tools_) tool.push_impulse_W.setZero();
+    // Serially, in id order: each body meets the others where they are now
+    // (paper s.5), so a body moved earlier this step is met at its new pose.
+    for (size_t i = 0; i < bodies_.size(); ++i) MoveFreeBody(bodies_[i], frame_.bodies[i]);
+    for (const Body& body : bodies_) {
+      const Object& o = *objects_[body.id];
+      const int k = target_index_[body.id];
+      targets_[k].X_WO = o.X_WO;
+      target_boxes_[k] = GrowBox(WorldBox(o.object, o.X_WO), o.model.margin_m());
+      broad_phase_.SetPose(body.id, o.X_WO);
+    }
+    if (stages.Has(Effect::kForce)) {
+      for (size_t i = 0; i < tools_.size(); ++i) AddPushReaction(tools_[i], frame_.tools[i]);
+    }
+  }
   return frame_;
+}
+
+void Scene::FindCandidates(const Tool& tool, Candidates which) {
+  const HapticObject& t = objects_[tool.id]->object;
+  candidates_.clear();
+  if (which != Candidates::kAtDevicePose) {
+    const AlignedBox3d box =
+        GrowBox(SweptBox(t, tool.X_WD_previous, tool.X_WD), objects_[tool.id]->model.margin_m());
+    for (int k = 0; k < static_cast<int>(targets_.size()); ++k) {
+      if (which == Candidates::kEvery || box.intersects(target_boxes_[k])) candidates_.push_back(k);
+    }
+    return;
+  }
+  if (!broad_pairs_fresh_) {
+    broad_pairs_ = broad_phase_.CandidatePairs();
+    broad_pairs_fresh_ = true;
+  }
+  for (const auto& [a, b] : broad_pairs_) {
+    if (a != tool.id && b != tool.id) continue;
+    const int k = target_index_[a == tool.id ? b : a];
+    if (k >= 0) candidates_.push_back(k);
+  }
+  std::sort(candidates_.begin(), candidates_.end());
+}
+
+void Scene::FindProxyObstacles(const Tool& tool) {
+  proxy_obstacles_.clear();
+  proxy_obstacle_ids_.clear();
+  const Object& t = *objects_[tool.id];
+  // The proxy only moves toward the device: every pose it takes lies within
+  // the device's distance of the device pose (plus a stand-off per slide,
+  // far under the margin added here).
+  const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
+                       1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
+  const AlignedBox3d box = GrowBox(WorldBox(t.object, tool.X_WD), reach);
+  for (size_t k = 0; k < obstacles_.size(); ++k) {
+    const ObjectId id = obstacle_ids_[k];
+    if (options_.broad_phase && !box.intersects(target_boxes_[target_index_[id]])) continue;
+    proxy_obstacles_.push_back(obstacles_[k]);
+    proxy_obstacle_ids_.push_back(id);
+  }
+}
+
+void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame) {
+  const Object& t = *objects_[tool.id];
+  const Isometry3d& from = tool.X_WD_previous;
+  const Isometry3d& to = tool.X_WD;
+  // Without continuous collision, a step longer than the shortest box edge
+  // of the objects it may meet is split so that none is passed through
+  // (paper s.4, fig. 3 c). Which objects it may meet: the swept boxes.
+  if (!continuous) {
+    FindCandidates(tool, Candidates::kSwept);
+    double edge = t.object.smallest_box_edge();
+    for (const int k : candidates_) edge = std::min(edge, targets_[k].object->smallest_box_edge());
+    frame.substeps = SubstepCount(Travel(t.object, from, to), edge, kMaxSubsteps);
+  }
+  const bool swept = continuous || frame.substeps > 1;
+  const Candidates which = !options_.broad_phase ? Candidates::kEvery
+                           : swept               ? Candidates::kSwept
+                                                 : Candidates::kAtDevicePose;
+  if (continuous || which != Candidates::kSwept) FindCandidates(tool, which);
+  const Vector3d motion = to.translation() - from.translation();
+  const PosedObject device = Posed(t, to);
+  for (const int k : candidates_) {
+    int substep = frame.substeps;
+    auto colliding_at = [&](const PosedObject& moving) {
+      const absl::StatusOr<bool> colliding =
+          AreColliding(moving, targets_[k], options_.relative_tolerance,
+                       continuous ? std::optional<Vector3d>(motion) : std::nullopt);
+      return colliding.ok() && *colliding;
+    };
+    // At the device pose first; if not there, at the first sub-step that touches.
+    bool found = colliding_at(device);
+    for (int i = 1; !found && i < frame.substeps; ++i) {
+      found = colliding_at(
+          Posed(t, InterpolatePose(from, to, static_cast<double>(i) / frame.substeps)));
+      substep = i;
+    }
+    if (!found) continue;
+    PairContact& pair = frame.contacts.emplace_back();
+    pair.object = target_ids_[k];
+    pair.substep = substep;
+    pair.contact = ContactSet{};
+    pair.contact.colliding = true;
+  }
 }
 
 void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
@@ -109,6 +256,7 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   frame.torque_W.setZero();
   frame.force_clamped = false;
   frame.contacts.clear();
+  frame.substeps = 1;
   const PosedObject device = Posed(t, tool.X_WD);
   // Continuous collision and friction run inside the collision and proxy
   // stages: their runs are counted here, their time is their hosts'.
@@ -119,16 +267,7 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
 
   if (stages.Has(Effect::kCollision)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kCollision)]);
-    for (size_t k = 0; k < obstacles_.size(); ++k) {
-      const absl::StatusOr<bool> colliding =
-          AreColliding(device, obstacles_[k], options_.relative_tolerance,
-                       continuous ? std::optional<Vector3d>(motion) : std::nullopt);
-      if (colliding.ok() && *colliding) {
-        PairContact pair{obstacle_ids_[k], {}};
-        pair.contact.colliding = true;
-        frame.contacts.push_back(std::move(pair));
-      }
-    }
+    FindToolContacts(tool, continuous, frame);
   }
   if (stages.Has(Effect::kContactSet)) {
     StageTimer timer(stats_[static_cast<int>(Effect::kContactSet)]);
@@ -143,16 +282,26 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
     // A device that passed through an object in this step (the collision
     // stage's swept query caught it) is reconstructed at its first touch
     // along the step; the swept query is not paid for when the device is in.
-    ContactQuery along_step = at_device;
-    along_step.direction_W = motion;
+    ContactQuery along_motion = at_device;
+    along_motion.direction_W = motion;
+    ContactQuery along_step = along_motion;
     along_step.continuous = true;
     for (PairContact& pair : frame.contacts) {
       const Object& o = *objects_[pair.object];
-      absl::StatusOr<ContactSet> contact = ComputeContact(device, Posed(o, o.X_WO), at_device);
+      // A pair found at an earlier sub-step is reported at that sub-step's
+      // pose, along the motion: the tool passed through and no longer
+      // touches at the end.
+      const bool at_end = pair.substep == frame.substeps;
+      const PosedObject at =
+          at_end ? device
+                 : Posed(t, InterpolatePose(tool.X_WD_previous, tool.X_WD,
+                                            static_cast<double>(pair.substep) / frame.substeps));
+      absl::StatusOr<ContactSet> contact =
+          ComputeContact(at, Posed(o, o.X_WO), at_end ? at_device : along_motion);
       if (continuous && contact.ok() && !contact->colliding) {
         contact = ComputeContact(device, Posed(o, o.X_WO), along_step);
       }
-      if (contact.ok()) pair.contact = *contact;
+      if (contact.ok()) pair.contact = *std::move(contact);
     }
   }
   if (!stages.Has(Effect::kReversingVector)) {
@@ -164,9 +313,11 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
     StageTimer timer(stats_[static_cast<int>(Effect::kReversingVector)]);
     const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
                                .friction = stages.Has(Effect::kFriction)};
-    absl::StatusOr<ProxyState> moved = MoveProxy(device, tool.X_WP, tool.X_WD, obstacles_, options);
+    FindProxyObstacles(tool);
+    absl::StatusOr<ProxyState> moved =
+        MoveProxy(device, tool.X_WP, tool.X_WD, proxy_obstacles_, options);
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
-    if (proxy.touching) proxy.obstacle = obstacle_ids_[proxy.obstacle];
+    if (proxy.touching) proxy.obstacle = proxy_obstacle_ids_[proxy.obstacle];
     tool.X_WP = proxy.X_WP;
     frame.X_WP = proxy.X_WP;
   }

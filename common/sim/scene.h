@@ -1,14 +1,18 @@
 #pragma once
-// A scene: fixed objects and tools (posed from outside each step), stepped
-// at a fixed rate. Each step runs only the stages (effects) the scene
-// enables and its consumers need, and counts their runs and time.
+// A scene: fixed objects, free bodies (moved by the simulation) and tools
+// (posed from outside each step), stepped at a fixed rate. Each step runs
+// only the stages (effects) the scene enables and its consumers need, and
+// counts their runs and time.
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "common/collision/broad_phase.h"
 #include "common/collision/collision_model.h"
+#include "common/sim/free_body.h"
 #include "common/sim/proxy.h"
 #include "common/sim/step_frame.h"
 
@@ -17,6 +21,19 @@ namespace hs {
 enum class ObjectKind {
   kFixed,  ///< Never moves.
   kTool,   ///< Posed by a device before each step.
+  kFree,   ///< Moved by the simulation (free-body motion), pushed by the others.
+};
+
+/// The inertia and start velocities of a free body (ignored for other kinds).
+struct BodyOptions {
+  /// Mass, kilograms; 0 takes density x the mesh's volume.
+  double mass_kg = 0;
+  /// Density, kg/m^3, used when mass_kg is 0.
+  double density_kg_per_m3 = 1000;
+  /// Start velocity of the centre of mass and angular velocity, world frame,
+  /// m/s and rad/s.
+  Vector3d v_W = Vector3d::Zero();
+  Vector3d w_W = Vector3d::Zero();
 };
 
 struct SceneOptions {
@@ -30,6 +47,18 @@ struct SceneOptions {
   double relative_tolerance = 1e-9;
   /// The largest force rendered on a tool, newtons. Finite and > 0.
   double force_clamp_n = 10;
+  /// Acceleration of free bodies by gravity, world frame, m/s^2. Finite.
+  Vector3d gravity_W = Vector3d(0, 0, -9.81);
+  /// How fast a free body's spin dies while it touches something, 1/s
+  /// (w decays as exp(-rate t)); finite and >= 0. One impulse point per
+  /// contact leaves a body rocking on a face without it; free flight is
+  /// not damped.
+  double contact_angular_damping_per_s = 20;
+  /// Pick the pairs to test by their boxes: FCL's dynamic AABB tree
+  /// (BroadPhase) at the step's end poses, or the boxes swept along the
+  /// step when continuous collision or sub-stepping is on. False tests
+  /// every pair (same results, slower: the oracle of the tests).
+  bool broad_phase = true;
 };
 
 class Scene {
@@ -37,9 +66,12 @@ class Scene {
   /// INVALID_ARGUMENT when an option is out of range.
   static absl::StatusOr<std::unique_ptr<Scene>> Create(const SceneOptions& options);
 
-  /// Adds `object` at X_WO (world frame, metres) and returns its id.
-  /// INVALID_ARGUMENT when the pose is not finite or not rigid.
-  absl::StatusOr<ObjectId> AddObject(HapticObject object, ObjectKind kind, const Isometry3d& X_WO);
+  /// Adds `object` at X_WO (world frame, metres) and returns its id; `body`
+  /// gives a free body's inertia and start velocities. INVALID_ARGUMENT when
+  /// the pose is not finite or not rigid, or a free body's mass, density or
+  /// velocities are not finite and positive (velocities: finite).
+  absl::StatusOr<ObjectId> AddObject(HapticObject object, ObjectKind kind, const Isometry3d& X_WO,
+                                     const BodyOptions& body = {});
 
   /// The device pose of tool `id` for the next step. NOT_FOUND for an
   /// unknown id, FAILED_PRECONDITION when it is not a tool,
@@ -70,21 +102,84 @@ class Scene {
     Isometry3d X_WD_previous;  // device pose of the last step
     Isometry3d X_WD;           // device pose for the next step
     Isometry3d X_WP;           // proxy pose
+    Isometry3d X_WP_previous;  // proxy pose of the last step
     bool moved = true;
+    // Impulse the tool gave free bodies this step, world frame, N*s.
+    Vector3d push_impulse_W = Vector3d::Zero();
+  };
+  struct Body {
+    ObjectId id;
+    MassProperties mass;
+    FreeBodyState state;
+    Isometry3d X_WO_start;  // pose at the start of the current step
+  };
+  // The other side of a free body's contact, as the response needs it.
+  struct Counterpart {
+    Isometry3d X_WO = Isometry3d::Identity();
+    Vector3d motion_W = Vector3d::Zero();  // its displacement this step, metres
+    Vector3d v_W = Vector3d::Zero();       // its velocity, m/s (tools)
+    OtherBody body;                        // set when it is free
   };
 
   explicit Scene(const SceneOptions& options) : options_(options) {}
   PosedObject Posed(const Object& o, const Isometry3d& X) const { return {&o.object, &o.model, X}; }
   void StepTool(Tool& tool, EffectSet stages, ToolFrame& frame);
+  void MoveFreeBody(Body& body, BodyFrame& frame);
+  // Adds the reaction of the free bodies the tool pushed to its force.
+  void AddPushReaction(const Tool& tool, ToolFrame& frame) const;
+  Counterpart CounterpartOf(ObjectId id);
+  enum class Candidates {
+    kAtDevicePose,  // the broad phase's pairs at the device pose
+    kSwept,         // boxes overlapping the tool's box swept along the step
+    kEvery,         // every target (options_.broad_phase off)
+  };
+  // Fills candidates_ with the targets the tool may touch this step.
+  void FindCandidates(const Tool& tool, Candidates which);
+  // Fills proxy_obstacles_ with the fixed objects the proxy may touch.
+  void FindProxyObstacles(const Tool& tool);
+  // The collision stage of one tool, sub-stepped when its step is long.
+  void FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame);
+  // How far to move `self` (at X_WO) along the unit normal n to stop
+  // penetrating `that`, from `contact` found along `motion_W`.
+  double SeparationAlongNormal(const Object& self, const Isometry3d& X_WO, const Object& that,
+                               const Isometry3d& X_WO_other, const ContactSet& contact,
+                               const Vector3d& motion_W, const Vector3d& n) const;
+  // Resolves one contact of `body` (moved from X_WO_from this sub-step)
+  // with object `other`; returns whether they were in contact.
+  bool ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId other);
 
   SceneOptions options_;
   EffectSet needed_ = EffectSet::All();
   std::vector<std::unique_ptr<Object>> objects_;
+  // Per object id: its index in tools_ or bodies_ (-1 when fixed).
+  std::vector<int> slots_;
   std::vector<Tool> tools_;
+  std::vector<Body> bodies_;
   // The fixed objects, posed, and their ids: built once as objects are
-  // added, not every step.
+  // added, not every step. The proxy keeps out of these.
   std::vector<PosedObject> obstacles_;
   std::vector<ObjectId> obstacle_ids_;
+  // The fixed objects and free bodies, posed (free bodies as of the start
+  // of the step), and their ids: a tool's contacts are reported with these.
+  std::vector<PosedObject> targets_;
+  std::vector<ObjectId> target_ids_;
+  // targets_' world boxes, grown by their models' margins.
+  std::vector<AlignedBox3d> target_boxes_;
+  // Per object id: its index in targets_ (-1 for tools).
+  std::vector<int> target_index_;
+  // The shortest bounding-box edge of any object, metres: no free body
+  // moves farther in one sub-step.
+  double smallest_edge_m_ = std::numeric_limits<double>::infinity();
+  // Every object at its current pose (tools at the device pose), keyed by
+  // id; its pairs are computed at most once per step.
+  BroadPhase broad_phase_;
+  std::vector<std::pair<BroadPhase::Key, BroadPhase::Key>> broad_pairs_;
+  bool broad_pairs_fresh_ = false;
+  // Scratch of FindCandidates: indices into targets_, ascending.
+  std::vector<int> candidates_;
+  // Scratch of FindProxyObstacles: a subset of obstacles_, in order.
+  std::vector<PosedObject> proxy_obstacles_;
+  std::vector<ObjectId> proxy_obstacle_ids_;
   StageStatsTable stats_{};
   StepFrame frame_;
 };

@@ -17,6 +17,10 @@ using ObjectId = int32_t;
 /// A tool's contact with one other object at the device pose.
 struct PairContact {
   ObjectId object = -1;
+  /// The sub-step (1 to ToolFrame::substeps) whose tool pose the contact
+  /// is at: the last one (the device pose) when the pair touches there,
+  /// else the first that touched (the tool passed through).
+  int substep = 1;
   /// Filled as far as the stages that ran allow: `colliding` by collision,
   /// features and normal by the contact set, depth and reversing vector by
   /// the reversing-vector stage.
@@ -36,8 +40,28 @@ struct ToolFrame {
   Vector3d torque_W = Vector3d::Zero();
   /// The force was limited to the scene's clamp.
   bool force_clamped = false;
+  /// How many sub-steps the collision stage split the device's motion
+  /// into: more than 1 when, without continuous collision, the tool moved
+  /// farther than the shortest box edge of itself and the objects its
+  /// swept box meets (paper s.4, fig. 3 c).
+  int substeps = 1;
   /// One entry per object the tool touches or penetrates, by object id.
   std::vector<PairContact> contacts;
+};
+
+/// Where a free body ended a step.
+struct BodyFrame {
+  ObjectId body = -1;
+  /// X_WO at the end of the step, world frame, metres.
+  Isometry3d X_WO = Isometry3d::Identity();
+  /// Velocity of the centre of mass and angular velocity, world frame, m/s
+  /// and rad/s.
+  Vector3d v_W = Vector3d::Zero();
+  Vector3d w_W = Vector3d::Zero();
+  /// Contacts resolved this step (one per object per sub-step).
+  int contacts = 0;
+  /// Sub-steps the body's motion was split into (1: not split).
+  int substeps = 1;
 };
 
 struct StepFrame {
@@ -49,6 +73,8 @@ struct StepFrame {
   EffectSet stages_run;
   /// One entry per tool, by tool id.
   std::vector<ToolFrame> tools;
+  /// One entry per free body, by id.
+  std::vector<BodyFrame> bodies;
 };
 
 /// How often and how long one stage ran, since the scene was created.

@@ -49,6 +49,28 @@ TEST(SceneFileTest, ModelFileWithMaterialOverride) {
   ASSERT_TRUE(loaded.ok()) << loaded.status();
 }
 
+// A free body loads with its mass and start velocity, the scene's gravity
+// applies, and it moves when stepped: 1 kg given, dropping from rest under
+// gravity (0, 0, -2) it has v = -2 dt after one step.
+TEST(SceneFileTest, FreeBodyLoadsAndFalls) {
+  const auto spec = Parse(TwoObjects("", R"(
+    gravity_m_per_s2 { z: -2 }
+    effects: EFFECT_FREE_BODY_MOTION effects: EFFECT_COLLISION
+    objects { name: "ball" kind: OBJECT_KIND_FREE
+              model { procedural { sphere { radius_m: 0.01 subdivisions: 1 } } }
+              pose { position_m { z: 0.5 } }
+              free_body { mass_kg: 1 velocity_m_per_s { x: 0.5 } } })"));
+  absl::StatusOr<LoadedScene> loaded = BuildScene(spec, ".");
+  ASSERT_TRUE(loaded.ok()) << loaded.status();
+  EXPECT_EQ(loaded->scene->options().gravity_W, Vector3d(0, 0, -2));
+  const StepFrame& frame = loaded->scene->Step();
+  ASSERT_EQ(frame.bodies.size(), 1u);
+  EXPECT_EQ(loaded->names[frame.bodies[0].body], "ball");
+  EXPECT_NEAR(frame.bodies[0].v_W.z(), -2 * 0.001, 1e-15);
+  EXPECT_NEAR(frame.bodies[0].v_W.x(), 0.5, 1e-15);
+  EXPECT_TRUE(frame.stages_run.Has(Effect::kFreeBodyMotion));
+}
+
 // Every bad field is rejected with INVALID_ARGUMENT naming where it is.
 TEST(SceneFileTest, RejectsBadSpecs) {
   const std::pair<std::string, std::string> cases[] = {
@@ -60,6 +82,15 @@ TEST(SceneFileTest, RejectsBadSpecs) {
       {TwoObjects("", "step_s: -1"), "step_s"},
       {TwoObjects("", "relative_tolerance: 0.1"), "relative_tolerance"},
       {TwoObjects("", "effects: EFFECT_UNSPECIFIED"), "effect"},
+      {TwoObjects("", "gravity_m_per_s2 { z: inf }"), "gravity_m_per_s2"},
+      {TwoObjects("free_body { mass_kg: 1 }"), "only for OBJECT_KIND_FREE"},
+      {R"(objects { name: "a" kind: OBJECT_KIND_FREE free_body { mass_kg: -1 }
+                    model { procedural { box { size_m { x: 1 y: 1 z: 1 } } } } })",
+       "free_body.mass_kg"},
+      {R"(objects { name: "a" kind: OBJECT_KIND_FREE
+                    free_body { velocity_m_per_s { y: nan } }
+                    model { procedural { box { size_m { x: 1 y: 1 z: 1 } } } } })",
+       "velocity_m_per_s"},
       {R"(objects { name: "a" kind: OBJECT_KIND_FIXED model { procedural { box {} } } })",
        "size_m"},
       {R"(objects { name: "a" model { procedural { box { size_m { x: 1 y: 1 z: 1 } } } } })",

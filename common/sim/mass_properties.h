@@ -1,0 +1,28 @@
+#pragma once
+// Mass, centre of mass and rotational inertia of a rigid object from its
+// closed triangle mesh (uniform density), for free-body motion.
+
+#include "absl/status/statusor.h"
+#include "common/hds/haptic_object.h"
+
+namespace hs {
+
+/// A rigid body's inertia, in its object frame O.
+struct MassProperties {
+  /// Mass, kilograms, > 0.
+  double mass_kg = 1;
+  /// Centre of mass p_OC, object frame, metres.
+  Vector3d p_OC = Vector3d::Zero();
+  /// Rotational inertia about the centre of mass, axes of frame O, kg*m^2.
+  Matrix3d I_C = Matrix3d::Identity();
+};
+
+/// The mass properties of `object` as a solid of uniform density. When
+/// `mass_kg` > 0 it is the body's mass; otherwise the mass is
+/// `density_kg_per_m3` times the enclosed volume. A mesh that encloses no
+/// volume (open, flat, inside out) is taken as its solid bounding box.
+/// INVALID_ARGUMENT when neither number is finite and > 0.
+absl::StatusOr<MassProperties> ComputeMassProperties(const HapticObject& object, double mass_kg,
+                                                     double density_kg_per_m3);
+
+}  // namespace hs
