@@ -135,18 +135,25 @@ class Locator {
     }
     out.moving = AggregateSide(c_.moving, vertices[0], edges[0], faces[0]);
     out.fixed = AggregateSide(c_.fixed, vertices[1], edges[1], faces[1]);
-    out.normal_F = normal_sum.squaredNorm() > 1e-24 ? normal_sum.normalized() : -c_.direction_F;
+    // A face contact's own faces give its normal: corner and edge entries
+    // of aligned faces also meet the side faces at the rim, whose normals
+    // would tilt the sum.
+    if (out.fixed.kind == FeatureKind::kFace) {
+      normal_sum = FacesNormal(c_.fixed, Isometry3d::Identity(), out.fixed.faces);
+    } else if (out.moving.kind == FeatureKind::kFace) {
+      normal_sum = -FacesNormal(c_.moving, X_FM_, out.moving.faces);
+    }
+    out.normal_F = normal_sum.squaredNorm() > 1e-24 ? Oriented(normal_sum.normalized(), normal_sum)
+                                                    : -c_.direction_F;
     return out;
   }
 
  private:
-  // Records a contact point. Its normal is turned to oppose the motion (a
-  // soup has no reliable outside), unless the motion runs along the
-  // surface: then a rounding-sized tilt would flip it, so the mesh's own
-  // orientation (`outward`: the fixed face's normal, or the moving face's
-  // reversed) decides.
-  void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, Vector3d normal,
-           const Vector3d& outward) {
+  // `normal` turned to oppose the motion (a soup has no reliable outside),
+  // unless the motion runs along the surface: then a rounding-sized tilt
+  // would flip it, so the mesh's own orientation (`outward`: the fixed
+  // face's normal, or the moving face's reversed) decides.
+  Vector3d Oriented(Vector3d normal, const Vector3d& outward) const {
     constexpr double kAlongSurface = 1e-6;  // |cos| of the angle between normal and D
     const double along = normal.dot(c_.direction_F);
     if (std::abs(along) > kAlongSurface * normal.norm()) {
@@ -154,7 +161,25 @@ class Locator {
     } else if (normal.dot(outward) < 0) {
       normal = -normal;
     }
-    points_.push_back({{moving, fixed}, p, normal});
+    return normal;
+  }
+
+  // Records a contact point with its normal, oriented.
+  void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, const Vector3d& normal,
+           const Vector3d& outward) {
+    points_.push_back({{moving, fixed}, p, Oriented(normal, outward)});
+  }
+
+  // The sum of the unit normals of `faces` of `object` posed at X_FO.
+  static Vector3d FacesNormal(const HapticObject& object, const Isometry3d& X_FO,
+                              const std::vector<FaceId>& faces) {
+    Vector3d sum = Vector3d::Zero();
+    for (FaceId f : faces) {
+      const auto& v = object.face(f).vertices;
+      sum += UnitNormal({X_FO * object.position(v[0]), X_FO * object.position(v[1]),
+                         X_FO * object.position(v[2])});
+    }
+    return sum;
   }
 
   struct Entry {

@@ -19,6 +19,33 @@ Isometry3d MovedBack(const ContactContext& c, double t) {
   return X;
 }
 
+// Whether M and F overlap by more than the tolerance rather than touch.
+// Mostly some pair overlaps by more than it along every separating axis.
+// When none does, the objects touch, or they are boxes penetrating with
+// aligned sides (every pair then meets at an edge of one of the two): M
+// moved 2 eps off the touched fixed faces is apart in the first case only.
+bool Penetrating(const ContactContext& c) {
+  const bool deep_pair = std::any_of(c.pairs.begin(), c.pairs.end(), [&](const TrianglePair& p) {
+    return !SweptIntersection(c.MovingTriangle(p.a), c.FixedTriangle(p.b), c.direction_F,
+                              -c.tolerance_m, {0, 0})
+                .empty();
+  });
+  if (deep_pair) return true;
+  Vector3d off = Vector3d::Zero();  // out of the touched fixed faces
+  for (const TrianglePair& pair : c.pairs) {
+    const Vector3d n = TriangleNormal(c.FixedTriangle(pair.b));
+    if (n.squaredNorm() > 0) off += n.normalized();
+  }
+  if (!(off.squaredNorm() > 1e-24)) return true;  // no way off: do not drop a contact
+  Isometry3d X_FM = c.X_FM;
+  X_FM.pretranslate(2 * c.tolerance_m * off.normalized());
+  thread_local std::vector<TrianglePair> pairs;
+  pairs.clear();
+  FindIntersectingTriangles(c.moving_model, X_FM, c.fixed_model, Isometry3d::Identity(),
+                            c.tolerance_m, pairs);
+  return !pairs.empty();
+}
+
 }  // namespace
 
 ContactSet ReconstructBySweep(const ContactContext& c) {
@@ -47,14 +74,8 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
   add_pairs(c.pairs);
 
   // Objects that only touch need no reversing, whatever D is: a D along
-  // the touching faces would otherwise chain across their whole overlap. A
-  // pair penetrates when it overlaps by more than the tolerance along every
-  // separating axis at t = 0.
-  const bool penetrating = std::any_of(c.pairs.begin(), c.pairs.end(), [&](const TrianglePair& p) {
-    return !SweptIntersection(c.MovingTriangle(p.a), c.FixedTriangle(p.b), D, -c.tolerance_m,
-                              {0, 0})
-                .empty();
-  });
+  // the touching faces would otherwise chain across their whole overlap.
+  const bool penetrating = Penetrating(c);
   double t_star = 0;
   auto extend_run = [&] {
     std::sort(intervals.begin(), intervals.end(),

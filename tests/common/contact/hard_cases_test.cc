@@ -159,6 +159,21 @@ std::vector<HardCase> Cases() {
                           .moving_kind = FeatureKind::kFace,
                           .fixed_kind = FeatureKind::kFace};
   cases.push_back(coplanar);
+  // Same-size cubes, sides aligned: every face pair meets at an edge of one
+  // of the two, so no single pair overlaps deeply, and the rims' side faces
+  // must not tilt the normal.
+  cases.push_back({.name = "AlignedBoxesPenetrating",
+                   .moving_mesh = UnitCube,
+                   .fixed_mesh = UnitCube,
+                   .X_WM = Translation(0, 0, 0.99),
+                   .depth = 0.01,
+                   .moving_kind = FeatureKind::kFace,
+                   .fixed_kind = FeatureKind::kFace});
+  HardCase aligned_touch = cases.back();
+  aligned_touch.name = "AlignedBoxesTouching";
+  aligned_touch.X_WM = Translation(0, 0, 1);
+  aligned_touch.depth = 0;
+  cases.push_back(aligned_touch);
   HardCase apart = coplanar;
   apart.name = "FaceBesideFaceCoplanarApart";
   apart.X_WM = Translation(2.6, 0.1, -0.5);  // beside the slab, faces in its planes
