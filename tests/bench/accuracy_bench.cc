@@ -20,7 +20,6 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -113,9 +112,21 @@ struct Point {
   double depth_error_m = 0, normal_error_rad = 0;
   double missed = -1;  // tunnelling: fraction of passes missed
 };
-std::map<std::string, Point>& Results() {
-  static std::map<std::string, Point> results;
+// Results in the order the benchmarks run (their registration order); a
+// benchmark run again for more iterations replaces its point.
+std::vector<Point>& Results() {
+  static std::vector<Point> results;
   return results;
+}
+
+void Record(const Point& point) {
+  for (Point& p : Results()) {
+    if (p.family == point.family && p.label == point.label) {
+      p = point;
+      return;
+    }
+  }
+  Results().push_back(point);
 }
 
 void Percentiles(std::vector<double>& us, Point& point) {
@@ -165,7 +176,7 @@ void BM_Accuracy(benchmark::State& state, const std::string& family, const std::
   state.counters["p50_us"] = point.median_us;
   state.counters["p99_us"] = point.p99_us;
   state.counters["depth_err_m"] = point.depth_error_m;
-  Results()[family + "/" + label] = point;
+  Record(point);
 }
 
 // How a 1 cm sphere passing a 1 mm plate in steps of `step_m` is checked.
@@ -222,7 +233,7 @@ void BM_Tunnelling(benchmark::State& state, Check check, double step_m) {
   point.missed = static_cast<double>(missed) / kPasses;
   state.counters["missed"] = point.missed;
   state.counters["p99_us"] = point.p99_us;
-  Results()["tunnelling/" + point.label] = point;
+  Record(point);
 }
 
 void Register() {
@@ -272,7 +283,7 @@ void WriteResults(const std::string& dir) {
   table << "| knob | point | median us | p99 us | depth error m | normal error rad |\n"
            "| --- | --- | --- | --- | --- | --- |\n";
   std::string family;
-  for (const auto& [key, p] : Results()) {
+  for (const Point& p : Results()) {
     if (p.missed >= 0) continue;
     table << "| " << p.family << " | " << p.label << " | " << p.median_us << " | " << p.p99_us
           << " | " << p.depth_error_m << " | " << p.normal_error_rad << " |\n";
@@ -287,7 +298,7 @@ void WriteResults(const std::string& dir) {
   }
   table << "\n| tunnelling | median us per step | p99 us | passes missed |\n"
            "| --- | --- | --- | --- |\n";
-  for (const auto& [key, p] : Results()) {
+  for (const Point& p : Results()) {
     if (p.missed < 0) continue;
     table << "| " << p.label << " | " << p.median_us << " | " << p.p99_us << " | " << 100 * p.missed
           << "% |\n";
