@@ -1,0 +1,68 @@
+#include "server/haptic_server.h"
+
+#include <grpcpp/generic/generic_stub.h>
+#include <gtest/gtest.h>
+
+#include <future>
+
+#include "tests/server/test_server.h"
+
+namespace hs::testing {
+namespace {
+
+// grpc.health.v1.Health/Check for the whole server; the response's bytes.
+std::string HealthCheck(TestServer& server, grpc::Status& status) {
+  grpc::GenericStub stub(server.channel());
+  auto context = ContextWithin(10);
+  grpc::Slice empty("");  // HealthCheckRequest{service: ""} is empty
+  grpc::ByteBuffer request(&empty, 1);
+  grpc::ByteBuffer response;
+  std::promise<grpc::Status> done;
+  stub.UnaryCall(context.get(), "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
+                 &response, [&](grpc::Status s) { done.set_value(s); });
+  status = done.get_future().get();
+  std::vector<grpc::Slice> slices;
+  std::string bytes;
+  if (status.ok() && response.Dump(&slices).ok()) {
+    for (const grpc::Slice& s : slices)
+      bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  }
+  return bytes;
+}
+
+// The server answers grpc.health.v1 checks with SERVING while it runs.
+TEST(HapticServerTest, HealthIsServing) {
+  TestServer server;
+  grpc::Status status;
+  const std::string bytes = HealthCheck(server, status);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(bytes, std::string("\x08\x01", 2));  // status: SERVING
+}
+
+// Streams past max_clients are refused with RESOURCE_EXHAUSTED; one frees
+// its place when it ends.
+TEST(HapticServerTest, ClientLimit) {
+  ServerLimits limits;
+  limits.max_clients = 1;
+  TestServer server(limits);
+  server.Create(SmallScene("one"));
+  pb::WatchRequest watch;
+  watch.set_scene("one");
+  auto first_context = ContextWithin(10);
+  auto first = server.sessions().Watch(first_context.get(), watch);
+  pb::Frame frame;
+  ASSERT_TRUE(first->Read(&frame));
+  auto second_context = ContextWithin(10);
+  auto second = server.sessions().Watch(second_context.get(), watch);
+  while (second->Read(&frame)) {
+  }
+  EXPECT_EQ(second->Finish().error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  first_context->TryCancel();
+  while (first->Read(&frame)) {
+  }
+  first->Finish();
+  EXPECT_NE(server.metrics().Text().find("hs_frames_sent_total"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hs::testing
