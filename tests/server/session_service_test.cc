@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <map>
+#include <set>
 #include <thread>
 
 #include "client/tool_path.h"
@@ -21,11 +22,13 @@ const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
 // A device on an Interact stream, driven from the test thread.
 class Device {
  public:
-  Device(TestServer& server, const std::string& scene, const std::string& tool)
+  Device(TestServer& server, const std::string& scene, const std::string& tool,
+         std::vector<pb::Effect> needs = {})
       : context_(ContextWithin(60)), stream_(server.sessions().Interact(context_.get())) {
     pb::InteractRequest open;
     open.mutable_open()->set_scene(scene);
     open.mutable_open()->set_tool(tool);
+    for (pb::Effect e : needs) open.mutable_open()->add_needs(e);
     stream_->Write(open);
   }
   bool Send(uint64_t sequence, const pb::Pose& pose) {
@@ -256,6 +259,55 @@ TEST(SessionServiceTest, ShutdownMidStreamEndsStreamsUnavailable) {
   EXPECT_EQ(viewer->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
   stop.join();
   EXPECT_GT(device_frames, 0);
+}
+
+// The stages a scene runs are the union of what its streams need: a
+// collision-only device with a poses-only viewer runs collision alone; a
+// contacts viewer joining adds the contact set and reversing vector but
+// not the force, and it receives contacts but no forces.
+TEST(SessionServiceTest, StagesAreTheUnionOfStreamNeeds) {
+  TestServer server;
+  server.Create(SmallScene("needs"));
+  Device device(server, "needs", "probe", {pb::EFFECT_COLLISION});
+  auto watch_context = ContextWithin(30);
+  pb::WatchRequest watch;
+  watch.set_scene("needs");
+  watch.add_parts(pb::WATCH_PART_POSES);
+  auto poses_viewer = server.sessions().Watch(watch_context.get(), watch);
+  pb::Frame frame;
+  ASSERT_TRUE(poses_viewer->Read(&frame));
+
+  auto stages_after_move = [&](uint64_t sequence) {
+    device.Send(sequence, PoseAt(0, 0, 0.0195 - 1e-5 * static_cast<double>(sequence)));
+    EXPECT_TRUE(device.ReadUntil(sequence, frame));
+    std::set<int> stages(frame.stages_run().begin(), frame.stages_run().end());
+    return stages;
+  };
+  EXPECT_EQ(stages_after_move(1),
+            (std::set<int>{pb::EFFECT_COLLISION, pb::EFFECT_CONTINUOUS_COLLISION}));
+  EXPECT_EQ(frame.tools(0).contacts_size(), 1);
+
+  auto contacts_context = ContextWithin(30);
+  watch.set_parts(0, pb::WATCH_PART_CONTACTS);
+  auto contacts_viewer = server.sessions().Watch(contacts_context.get(), watch);
+  ASSERT_TRUE(contacts_viewer->Read(&frame));
+  EXPECT_EQ(stages_after_move(2),
+            (std::set<int>{pb::EFFECT_COLLISION, pb::EFFECT_CONTINUOUS_COLLISION,
+                           pb::EFFECT_CONTACT_SET, pb::EFFECT_REVERSING_VECTOR}));
+  const int64_t moved_step = frame.step();
+  while (contacts_viewer->Read(&frame) && frame.step() < moved_step) {
+  }
+  ASSERT_EQ(frame.tools_size(), 1);
+  EXPECT_EQ(frame.tools(0).contacts_size(), 1);
+  EXPECT_GT(frame.tools(0).contacts(0).depth_m(), 0);
+  EXPECT_FALSE(frame.tools(0).has_force_w_n());
+  EXPECT_FALSE(frame.tools(0).has_device_pose());
+
+  watch_context->TryCancel();
+  contacts_context->TryCancel();
+  poses_viewer->Finish();
+  contacts_viewer->Finish();
+  device.Finish();
 }
 
 // Bad session input gets its specific code and leaves the scene as it was:
