@@ -1,6 +1,7 @@
 #include "server/session_service.h"
 
 #include <chrono>
+#include <mutex>
 
 #include "absl/strings/str_cat.h"
 #include "server/frame_outbox.h"
@@ -80,7 +81,13 @@ class FrameStream : public Base, public FrameSink {
     return true;
   }
 
-  bool closed() const { return outbox_.closed(); }
+  // Runs `start_operation` unless the stream is closed, atomically with
+  // Finish: no operation starts after Finish.
+  template <class F>
+  void UnlessClosed(F start_operation) {
+    std::lock_guard lock(finish_mu_);
+    if (!outbox_.closed()) start_operation();
+  }
 
   SceneRegistry& registry_;
   const bool device_;
@@ -95,6 +102,7 @@ class FrameStream : public Base, public FrameSink {
       Fill(*next.snapshot, next.dropped);
       this->StartWrite(&frame_);
     } else if (next.kind == FrameOutbox::Next::kFinish) {
+      std::lock_guard lock(finish_mu_);
       this->Finish(ToGrpcStatus(next.status));
     }
   }
@@ -118,6 +126,7 @@ class FrameStream : public Base, public FrameSink {
   }
 
   FrameOutbox outbox_;
+  std::mutex finish_mu_;
   bool counted_ = false;
   pb::Frame frame_;  // the write in flight
 };
@@ -126,7 +135,7 @@ class InteractReactor
     : public FrameStream<grpc::ServerBidiReactor<pb::InteractRequest, pb::Frame>> {
  public:
   explicit InteractReactor(SceneRegistry& registry) : FrameStream(registry, true) {
-    StartRead(&request_);
+    UnlessClosed([this] { StartRead(&request_); });
   }
 
   void OnReadDone(bool ok) override {
@@ -136,7 +145,7 @@ class InteractReactor
       return;
     }
     if (!(opened_ ? ApplyPose() : OpenSession())) return;
-    if (!closed()) StartRead(&request_);
+    UnlessClosed([this] { StartRead(&request_); });
   }
 
  private:
