@@ -294,5 +294,68 @@ TEST(SceneServiceTest, HeldToolCannotBeRemoved) {
   EXPECT_TRUE(stream->Finish().ok());
 }
 
+// A change whose build outlasts the call's deadline is not applied: the
+// caller gets DEADLINE_EXCEEDED and the scene never appears.
+TEST(SceneServiceTest, BuildPastDeadlineChangesNothing) {
+  TestServer server;
+  pb::SceneSpec slow = SmallScene("slow");
+  pb::Procedural::Torus* torus =
+      slow.mutable_objects(0)->mutable_model()->mutable_procedural()->mutable_torus();
+  torus->set_major_radius_m(0.2);
+  torus->set_minor_radius_m(0.05);
+  torus->set_major_segments(200);
+  torus->set_minor_segments(200);
+  pb::CreateSceneRequest request;
+  *request.mutable_spec() = slow;
+  pb::SceneInfo info;
+  EXPECT_EQ(server.scenes().CreateScene(ContextWithin(0.02).get(), request, &info).error_code(),
+            grpc::StatusCode::DEADLINE_EXCEEDED);
+  // Changes run one at a time: once this one is done, so is the slow one.
+  server.Create(SmallScene("after"));
+  pb::ListScenesResponse list;
+  ASSERT_TRUE(server.scenes().ListScenes(ContextWithin(10).get(), {}, &list).ok());
+  ASSERT_EQ(list.scenes_size(), 1);
+  EXPECT_EQ(list.scenes(0).spec().name(), "after");
+}
+
+// Changes while a device streams keep the stream, the step ids (no
+// restart) and the tool where the device put it.
+TEST(SceneServiceTest, ChangesKeepStreamsStepsAndToolPoses) {
+  TestServer server;
+  server.Create(SmallScene("live"));
+  auto context = ContextWithin(30);
+  auto stream = server.sessions().Interact(context.get());
+  pb::InteractRequest request;
+  request.mutable_open()->set_scene("live");
+  request.mutable_open()->set_tool("probe");
+  stream->Write(request);
+  request.mutable_pose()->set_sequence(1);
+  *request.mutable_pose()->mutable_pose() = PoseAt(0.01, 0, 0.04);
+  stream->Write(request);
+  pb::Frame frame;
+  while (stream->Read(&frame) && frame.last_pose_sequence() < 1) {
+  }
+  const int64_t step_before = frame.step();
+
+  pb::AddObjectRequest add;
+  add.set_scene("live");
+  pb::SceneObject* ball = add.mutable_object();
+  ball->set_name("ball");
+  ball->set_kind(pb::OBJECT_KIND_FIXED);
+  ball->mutable_model()->mutable_procedural()->mutable_sphere()->set_radius_m(0.01);
+  *ball->mutable_pose() = PoseAt(0.5, 0, 0);
+  pb::SceneInfo info;
+  ASSERT_TRUE(server.scenes().AddObject(ContextWithin(10).get(), add, &info).ok());
+  for (int n = 0; n < 20; ++n) ASSERT_TRUE(stream->Read(&frame));
+  EXPECT_GT(frame.step(), step_before + 19);
+  ASSERT_EQ(frame.tools_size(), 1);
+  EXPECT_DOUBLE_EQ(frame.tools(0).device_pose().position_m().x(), 0.01);
+  EXPECT_DOUBLE_EQ(frame.tools(0).device_pose().position_m().z(), 0.04);
+  stream->WritesDone();
+  while (stream->Read(&frame)) {
+  }
+  EXPECT_TRUE(stream->Finish().ok());
+}
+
 }  // namespace
 }  // namespace hs::testing

@@ -151,7 +151,8 @@ TEST(SessionServiceTest, TwoDevicesAndViewerSeeTheSameSteps) {
       EXPECT_EQ(it->second, tools) << "step " << step;
     }
   }
-  EXPECT_GT(common, 100);
+  // Device streams are latest-wins, so on a loaded machine they skip steps.
+  EXPECT_GT(common, 40);
   viewer_context->TryCancel();
   viewer->Finish();
   EXPECT_TRUE(a.Finish().ok());
@@ -173,7 +174,7 @@ TEST(SessionServiceTest, ToolHeldUntilCancelled) {
   EXPECT_EQ(first.Finish().error_code(), grpc::StatusCode::CANCELLED);
   // The server lets go of the tool when the cancelled stream is done.
   bool claimed = false;
-  for (int attempt = 0; attempt < 50 && !claimed; ++attempt) {
+  for (int attempt = 0; attempt < 200 && !claimed; ++attempt) {
     Device third(server, "claim", "probe");
     claimed = third.Read(frame);
     third.Finish();
