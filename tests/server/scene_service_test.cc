@@ -84,12 +84,15 @@ TEST(SceneServiceTest, LifecycleAndLargeUpload) {
   update.set_scene("a");
   update.set_object("block");
   *update.mutable_pose() = PoseAt(0.4, 0, 0);
+  update.set_set_materials(true);
+  update.add_materials()->mutable_material()->set_stiffness_n_per_m(500);
   pb::VertexMove* move = update.add_vertex_moves();
   move->set_vertex_id(0);
   move->mutable_position_m()->set_z(-0.001);
   ASSERT_TRUE(server.scenes().UpdateObject(ContextWithin(10).get(), update, &info).ok());
   EXPECT_EQ(info.spec().objects(2).pose().position_m().x(), 0.4);
   EXPECT_EQ(info.spec().objects(2).vertex_moves_size(), 1);
+  EXPECT_EQ(info.spec().objects(2).materials(0).material().stiffness_n_per_m(), 500);
 
   pb::SetEffectsRequest effects;
   effects.set_scene("a");
@@ -183,6 +186,10 @@ TEST(SceneServiceTest, BadInputGetsSpecificCodeAndChangesNothing) {
   bad_quaternion.set_object("table");
   *bad_quaternion.mutable_pose() = PoseAt(0, 0, 0);
   bad_quaternion.mutable_pose()->mutable_orientation()->set_w(0.9);
+  pb::UpdateObjectRequest bad_material = bad_quaternion;
+  bad_material.clear_pose();
+  bad_material.set_set_materials(true);
+  bad_material.add_materials()->mutable_material()->set_stiffness_n_per_m(nan);
   pb::UpdateObjectRequest bad_vertex = bad_quaternion;
   bad_vertex.clear_pose();
   bad_vertex.add_vertex_moves()->set_vertex_id(100000);
@@ -229,6 +236,7 @@ TEST(SceneServiceTest, BadInputGetsSpecificCodeAndChangesNothing) {
       {grpc::StatusCode::RESOURCE_EXHAUSTED, add(sphere)},
       {grpc::StatusCode::NOT_FOUND, update(unknown_object)},
       {grpc::StatusCode::INVALID_ARGUMENT, update(bad_quaternion)},
+      {grpc::StatusCode::INVALID_ARGUMENT, update(bad_material)},
       {grpc::StatusCode::INVALID_ARGUMENT, update(bad_vertex)},
       {grpc::StatusCode::INVALID_ARGUMENT, update(inf_vertex)},
       {grpc::StatusCode::NOT_FOUND,
@@ -263,6 +271,28 @@ TEST(SceneServiceTest, BadInputGetsSpecificCodeAndChangesNothing) {
   EXPECT_NE(server.metrics().Text().find("hs_rejected_requests_total{code=\"NOT_FOUND\",method="
                                          "\"GetScene\"} 1"),
             std::string::npos);
+}
+
+// Past the server's limits on scenes and objects per scene, requests are
+// RESOURCE_EXHAUSTED.
+TEST(SceneServiceTest, SceneAndObjectLimits) {
+  ServerLimits limits;
+  limits.max_scenes = 1;
+  limits.max_objects_per_scene = 2;
+  TestServer server(limits);
+  server.Create(SmallScene("only"));
+  pb::CreateSceneRequest create;
+  *create.mutable_spec() = SmallScene("second");
+  pb::SceneInfo info;
+  EXPECT_EQ(server.scenes().CreateScene(ContextWithin(10).get(), create, &info).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+  pb::AddObjectRequest add;
+  add.set_scene("only");
+  *add.mutable_object() = SmallScene("x").objects(1);
+  add.mutable_object()->set_name("third");
+  EXPECT_EQ(server.scenes().AddObject(ContextWithin(10).get(), add, &info).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(server.Get("only").spec().objects_size(), 2);
 }
 
 // A tool held by a device cannot be removed (FAILED_PRECONDITION) and the
