@@ -59,11 +59,17 @@ HapticServer::~HapticServer() {
   }
 }
 
+void HapticServer::Drain() {
+  if (drained_ || server_ == nullptr) return;
+  drained_ = true;
+  server_->GetHealthCheckService()->SetServingStatus(false);
+  registry_->StopAll(absl::UnavailableError("the server is shutting down"));
+}
+
 void HapticServer::Shutdown(double grace_s) {
   if (shut_down_ || server_ == nullptr) return;
   shut_down_ = true;
-  server_->GetHealthCheckService()->SetServingStatus(false);
-  registry_->StopAll(absl::UnavailableError("the server is shutting down"));
+  Drain();
   server_->Shutdown(std::chrono::system_clock::now() +
                     std::chrono::milliseconds(static_cast<int64_t>(grace_s * 1000)));
   server_->Wait();

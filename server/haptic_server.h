@@ -39,9 +39,13 @@ class HapticServer {
   int port() const { return port_; }
   SceneRegistry& registry() { return *registry_; }
 
-  /// Graceful stop: health NOT_SERVING, every scene runs a final step and
-  /// ends its streams with UNAVAILABLE, then calls in flight get up to
-  /// `grace_s` seconds before they are cancelled. Later calls do nothing.
+  /// First half of a graceful stop: health goes NOT_SERVING and every
+  /// scene runs a final step and ends its streams with UNAVAILABLE; the
+  /// port stays open (health checks see NOT_SERVING) until Shutdown.
+  /// Later calls do nothing.
+  void Drain();
+  /// Graceful stop: Drain, then calls in flight get up to `grace_s`
+  /// seconds before they are cancelled. Later calls do nothing.
   void Shutdown(double grace_s = 2.0);
 
  private:
@@ -53,6 +57,7 @@ class HapticServer {
   std::unique_ptr<SceneServiceImpl> scene_service_;
   std::unique_ptr<SessionServiceImpl> session_service_;
   std::unique_ptr<grpc::Server> server_;
+  bool drained_ = false;
   bool shut_down_ = false;
 };
 

@@ -30,13 +30,27 @@ std::string HealthCheck(TestServer& server, grpc::Status& status) {
   return bytes;
 }
 
-// The server answers grpc.health.v1 checks with SERVING while it runs.
-TEST(HapticServerTest, HealthIsServing) {
+// The server answers grpc.health.v1 checks with SERVING while it runs and
+// NOT_SERVING once it drains for shutdown; draining ends streams with
+// UNAVAILABLE.
+TEST(HapticServerTest, HealthServingThenNotServing) {
   TestServer server;
+  server.Create(SmallScene("h"));
   grpc::Status status;
-  const std::string bytes = HealthCheck(server, status);
+  EXPECT_EQ(HealthCheck(server, status), std::string("\x08\x01", 2));  // SERVING
   ASSERT_TRUE(status.ok()) << status.error_message();
-  EXPECT_EQ(bytes, std::string("\x08\x01", 2));  // status: SERVING
+
+  pb::WatchRequest watch;
+  watch.set_scene("h");
+  auto context = ContextWithin(10);
+  auto viewer = server.sessions().Watch(context.get(), watch);
+  pb::Frame frame;
+  ASSERT_TRUE(viewer->Read(&frame));
+  server.server().Drain();
+  EXPECT_EQ(HealthCheck(server, status), std::string("\x08\x02", 2));  // NOT_SERVING
+  while (viewer->Read(&frame)) {
+  }
+  EXPECT_EQ(viewer->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
 }
 
 // Streams past max_clients are refused with RESOURCE_EXHAUSTED; one frees
