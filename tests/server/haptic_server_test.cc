@@ -53,6 +53,47 @@ TEST(HapticServerTest, HealthServingThenNotServing) {
   EXPECT_EQ(viewer->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
 }
 
+// Server reflection lists the haptics.v1 services
+// (grpc.reflection.v1alpha, list_services).
+TEST(HapticServerTest, ReflectionListsServices) {
+  TestServer server;
+  grpc::GenericStub stub(server.channel());
+  auto context = ContextWithin(10);
+  grpc::CompletionQueue cq;
+  auto call = stub.PrepareCall(
+      context.get(), "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo", &cq);
+  void* tag = nullptr;
+  bool ok = false;
+  auto await = [&](intptr_t expected) {
+    EXPECT_TRUE(cq.Next(&tag, &ok));
+    EXPECT_EQ(reinterpret_cast<intptr_t>(tag), expected);
+    return ok;
+  };
+  call->StartCall(reinterpret_cast<void*>(1));
+  ASSERT_TRUE(await(1));
+  // ServerReflectionRequest{list_services: "*"}: field 7, length 1.
+  grpc::Slice request_bytes(std::string("\x3a\x01*", 3));
+  grpc::ByteBuffer request(&request_bytes, 1);
+  call->Write(request, reinterpret_cast<void*>(2));
+  ASSERT_TRUE(await(2));
+  grpc::ByteBuffer response;
+  call->Read(&response, reinterpret_cast<void*>(3));
+  ASSERT_TRUE(await(3));
+  std::vector<grpc::Slice> slices;
+  ASSERT_TRUE(response.Dump(&slices).ok());
+  std::string bytes;
+  for (const grpc::Slice& s : slices) {
+    bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  }
+  EXPECT_NE(bytes.find("haptics.v1.SceneService"), std::string::npos);
+  EXPECT_NE(bytes.find("haptics.v1.SessionService"), std::string::npos);
+  EXPECT_NE(bytes.find("grpc.health.v1.Health"), std::string::npos);
+  context->TryCancel();
+  grpc::Status status;
+  call->Finish(&status, reinterpret_cast<void*>(4));
+  await(4);
+}
+
 // Streams past max_clients are refused with RESOURCE_EXHAUSTED; one frees
 // its place when it ends.
 TEST(HapticServerTest, ClientLimit) {
