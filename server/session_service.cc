@@ -35,16 +35,14 @@ class FrameStream : public Base, public FrameSink {
   void OnWriteDone(bool ok) override {
     if (ok) {
       registry_.metrics().AddFramesSent(1);
-    } else {
-      outbox_.Abort(absl::CancelledError("the client is gone"));
+      outbox_.WriteDone();
+      Pump();
+      return;
     }
     outbox_.WriteDone();
-    Pump();
+    End(absl::CancelledError("the client is gone"), /*abort=*/true);
   }
-  void OnCancel() override {
-    outbox_.Abort(absl::CancelledError("cancelled by the client"));
-    Pump();
-  }
+  void OnCancel() override { End(absl::CancelledError("cancelled by the client"), true); }
   void OnDone() override {
     if (runner_) runner_->Detach(this);
     if (counted_) {
@@ -58,10 +56,28 @@ class FrameStream : public Base, public FrameSink {
   FrameStream(SceneRegistry& registry, bool device)
       : registry_(registry), device_(device), outbox_(device ? 1 : kViewerQueueFrames) {}
 
+  // Ends the stream from this side: lets go of the scene (and the tool) at
+  // once, so that the client seeing the end can claim the tool again; then
+  // sends the frames waiting (none when `abort`) and finishes.
+  void End(const absl::Status& status, bool abort) {
+    std::shared_ptr<SceneRunner> runner;
+    {
+      std::lock_guard lock(runner_mu_);
+      runner = runner_;
+    }
+    if (runner) runner->Detach(this);
+    if (abort) {
+      outbox_.Abort(status);
+    } else {
+      outbox_.Close(status);
+    }
+    Pump();
+  }
+
   // Ends the stream with `status` (after the frames already waiting).
   void Fail(const absl::Status& status, const char* method) {
     registry_.metrics().AddRejected(method, absl::StatusCodeToString(status.code()));
-    Close(status);
+    End(status, /*abort=*/false);
   }
 
   // Counts the client and finds its scene; on error the stream is failed.
@@ -77,6 +93,7 @@ class FrameStream : public Base, public FrameSink {
       Fail(runner.status(), method);
       return false;
     }
+    std::lock_guard lock(runner_mu_);
     runner_ = *runner;
     return true;
   }
@@ -91,6 +108,8 @@ class FrameStream : public Base, public FrameSink {
 
   SceneRegistry& registry_;
   const bool device_;
+  // Set once by Open, on the reading thread; End may read it from others.
+  std::mutex runner_mu_;
   std::shared_ptr<SceneRunner> runner_;
   FrameParts parts_;
   std::string tool_;  // devices only
@@ -141,7 +160,7 @@ class InteractReactor
   void OnReadDone(bool ok) override {
     if (!ok) {
       // The device stopped sending: the stream ends once it has its frame.
-      Close(absl::OkStatus());
+      End(absl::OkStatus(), /*abort=*/false);
       return;
     }
     if (!(opened_ ? ApplyPose() : OpenSession())) return;

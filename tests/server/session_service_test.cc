@@ -220,11 +220,13 @@ TEST(SessionServiceTest, StalledViewerDropsFramesOthersKeepPace) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double steps = static_cast<double>(frame.step() - start_step);
-  // 1 kHz when the machine is idle; a scene held up by the stalled viewer
-  // would stop once the viewer's buffers are full. A fifth of the rate
-  // leaves room for a loaded machine (other builds share its 2 cores).
-  EXPECT_GT(steps / seconds, 200);
-  EXPECT_GT(frames, 200);
+  // 1 kHz on an idle machine. A scene held up by the stalled viewer would
+  // stop once the viewer's buffers are full; the bound only tells "goes
+  // on" from "stopped", since other builds may share the 2 cores. That the
+  // viewer is told of drops below is the direct proof that the scene did
+  // not wait for it.
+  EXPECT_GT(steps / seconds, 50);
+  EXPECT_GT(frames, 50);
 
   uint64_t dropped = 0;
   int64_t last_step = first_step;
