@@ -181,11 +181,12 @@ class InteractReactor
       Fail(needs.status(), "Interact");
       return false;
     }
+    // Set before attaching: the scene thread reads it as soon as frames come.
+    tool_ = open.tool();
     if (absl::Status s = runner_->AttachDevice(this, open.tool(), *needs); !s.ok()) {
       Fail(s, "Interact");
       return false;
     }
-    tool_ = open.tool();
     opened_ = true;
     return true;
   }
