@@ -20,7 +20,7 @@ namespace pb = haptics::v1;
 /// `second_tool`, another cube tool "stylus" beside the probe.
 pb::SceneSpec SmallScene(const std::string& name, bool second_tool = false);
 
-/// A pose at `z` metres straight above the origin, no rotation.
+/// A pose at (x, y, z), metres, world frame, no rotation.
 pb::Pose PoseAt(double x, double y, double z);
 
 class TestServer {
