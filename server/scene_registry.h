@@ -28,6 +28,10 @@ struct ServerLimits {
   int max_clients = 64;
   int64_t max_model_bytes = int64_t{256} << 20;
   int max_models = 64;
+  /// The step lengths a scene may have, seconds (INVALID_ARGUMENT
+  /// outside): one thread per scene must keep up with its rate.
+  double min_step_s = 1e-4;
+  double max_step_s = 1.0;
 };
 
 class SceneRegistry {

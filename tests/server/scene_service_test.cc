@@ -199,6 +199,8 @@ TEST(SceneServiceTest, BadInputGetsSpecificCodeAndChangesNothing) {
 
   pb::SceneSpec nan_scene = SmallScene("t");
   nan_scene.set_step_s(nan);
+  pb::SceneSpec too_fast = SmallScene("t");
+  too_fast.set_step_s(1e-7);
   pb::SceneSpec too_big = SmallScene("t");
   *too_big.add_objects() = sphere;
 
@@ -206,6 +208,7 @@ TEST(SceneServiceTest, BadInputGetsSpecificCodeAndChangesNothing) {
   const std::string garbage = "this is not a mesh\n";
   const std::vector<std::pair<grpc::StatusCode, Call>> cases = {
       {grpc::StatusCode::INVALID_ARGUMENT, create(nan_scene)},
+      {grpc::StatusCode::INVALID_ARGUMENT, create(too_fast)},
       {grpc::StatusCode::ALREADY_EXISTS, create(SmallScene("s"))},
       {grpc::StatusCode::PERMISSION_DENIED,
        [&, s = SmallScene("t")]() mutable {
