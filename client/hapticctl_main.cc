@@ -3,6 +3,7 @@
 
 #include "CLI/CLI.hpp"
 #include "client/contact_command.h"
+#include "client/drive_command.h"
 #include "client/exit_codes.h"
 #include "client/inspect_command.h"
 #include "client/simulate_command.h"
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   hs::cli::AddInspectCommand(app, exit_code);
   hs::cli::AddContactCommand(app, exit_code);
   hs::cli::AddSimulateCommand(app, exit_code);
+  hs::cli::AddDriveCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

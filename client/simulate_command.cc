@@ -1,34 +1,14 @@
 #include "client/simulate_command.h"
 
-#include <fstream>
 #include <memory>
 
 #include "client/contact_json.h"
 #include "client/exit_codes.h"
-#include "client/pose_args.h"
+#include "client/tool_path.h"
 #include "server/scene_file.h"
 
 namespace hs::cli {
 namespace {
-
-absl::StatusOr<std::vector<Isometry3d>> ReadToolPath(const std::string& path) {
-  std::vector<Isometry3d> poses;
-  if (path.empty()) return poses;
-  std::ifstream in(path);
-  if (!in) return absl::NotFoundError(path + ": cannot open");
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    absl::StatusOr<Isometry3d> pose = ParsePose(line);
-    if (!pose.ok()) {
-      return absl::InvalidArgumentError(path + ":" + std::to_string(number) + ": " +
-                                        std::string(pose.status().message()));
-    }
-    poses.push_back(*pose);
-  }
-  return poses;
-}
 
 nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& loaded) {
   nlohmann::ordered_json tools = nlohmann::ordered_json::array();

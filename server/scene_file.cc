@@ -14,6 +14,7 @@
 #include "common/core/status_macros.h"
 #include "common/model/import.h"
 #include "common/model/procedural.h"
+#include "server/proto_convert.h"
 
 namespace hs {
 namespace {
@@ -24,39 +25,18 @@ absl::Status Invalid(const std::string& where, const std::string& what) {
   return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
 }
 
-absl::StatusOr<Vector3d> ToVector(const pb::Vector3& v, const std::string& where) {
-  const Vector3d out(v.x(), v.y(), v.z());
-  if (!out.allFinite()) return Invalid(where, "not finite");
-  return out;
-}
-
-absl::StatusOr<Isometry3d> ToPose(const pb::Pose& pose, const std::string& where) {
-  HS_ASSIGN_OR_RETURN(const Vector3d p, ToVector(pose.position_m(), where + ".position_m"));
-  const pb::Quaternion& q = pose.orientation();
-  Eigen::Quaterniond rotation(q.w(), q.x(), q.y(), q.z());
-  if (!rotation.coeffs().allFinite()) return Invalid(where + ".orientation", "not finite");
-  if (rotation.coeffs().isZero()) {
-    rotation = Eigen::Quaterniond::Identity();
-  } else if (std::abs(rotation.norm() - 1) > 1e-6) {
-    return Invalid(where + ".orientation", "not a unit quaternion");
-  }
-  Isometry3d X = Isometry3d::Identity();
-  X.linear() = rotation.normalized().toRotationMatrix();
-  X.translation() = p;
-  return X;
-}
-
 absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::string& where) {
   switch (p.shape_case()) {
     case pb::Procedural::kBox: {
-      HS_ASSIGN_OR_RETURN(const Vector3d size, ToVector(p.box().size_m(), where + ".box.size_m"));
+      HS_ASSIGN_OR_RETURN(const Vector3d size,
+                          VectorFromProto(p.box().size_m(), where + ".box.size_m"));
       if (!(size.array() > 0).all()) return Invalid(where + ".box.size_m", "must be > 0");
       return MakeBox(size);
     }
     case pb::Procedural::kSphere: {
       const auto& s = p.sphere();
-      if (!(std::isfinite(s.radius_m()) && s.radius_m() > 0)) {
-        return Invalid(where + ".sphere.radius_m", "must be finite and > 0");
+      if (!(s.radius_m() > 0 && s.radius_m() <= kMaxCoordinate)) {
+        return Invalid(where + ".sphere.radius_m", "must be in (0, 1e6]");
       }
       if (s.subdivisions() < 0 || s.subdivisions() > 6) {
         return Invalid(where + ".sphere.subdivisions", "must be in [0, 6]");
@@ -65,9 +45,9 @@ absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::str
     }
     case pb::Procedural::kTorus: {
       const auto& t = p.torus();
-      if (!(std::isfinite(t.major_radius_m()) && std::isfinite(t.minor_radius_m()) &&
-            0 < t.minor_radius_m() && t.minor_radius_m() < t.major_radius_m())) {
-        return Invalid(where + ".torus", "radii must be finite with 0 < minor < major");
+      if (!(0 < t.minor_radius_m() && t.minor_radius_m() < t.major_radius_m() &&
+            t.major_radius_m() <= kMaxCoordinate)) {
+        return Invalid(where + ".torus", "radii must be 0 < minor < major <= 1e6");
       }
       if (t.major_segments() < 3 || t.minor_segments() < 3 || t.major_segments() > 1000 ||
           t.minor_segments() > 1000) {
@@ -82,22 +62,40 @@ absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::str
   return Invalid(where, "no shape");
 }
 
+absl::StatusOr<HapticObject> ImportFile(const std::string& path, double unit_scale,
+                                        const std::string& where) {
+  ImportOptions options;
+  options.unit_scale = unit_scale;
+  absl::StatusOr<ImportedModel> model = ImportModel(path, options);
+  if (!model.ok()) return Invalid(where + ".model", std::string(model.status().message()));
+  return std::move(model->object);
+}
+
 absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::string& where,
-                                       const std::string& base_dir) {
+                                       const BuildPaths& paths) {
   const pb::ModelSource& source = o.model();
   const double unit_scale = source.unit_scale() == 0 ? 1.0 : source.unit_scale();
-  if (!(std::isfinite(unit_scale) && unit_scale > 0)) {
-    return Invalid(where + ".model.unit_scale", "must be finite and > 0");
+  if (!(unit_scale >= 1e-9 && unit_scale <= kMaxCoordinate)) {
+    return Invalid(where + ".model.unit_scale", "must be in [1e-9, 1e6]");
   }
   switch (source.source_case()) {
     case pb::ModelSource::kPath: {
       std::filesystem::path path(source.path());
-      if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
-      ImportOptions options;
-      options.unit_scale = unit_scale;
-      absl::StatusOr<ImportedModel> model = ImportModel(path.string(), options);
-      if (!model.ok()) return Invalid(where + ".model", std::string(model.status().message()));
-      return std::move(model->object);
+      if (path.is_relative()) path = std::filesystem::path(paths.base_dir) / path;
+      return ImportFile(path.string(), unit_scale, where);
+    }
+    case pb::ModelSource::kUploadedModelId: {
+      const std::string& id = source.uploaded_model_id();
+      const std::string at = where + ".model.uploaded_model_id";
+      if (paths.uploaded_dir.empty()) return Invalid(at, "uploaded models need a server");
+      if (id.empty() || id.find('/') != std::string::npos || id.starts_with(".")) {
+        return Invalid(at, "not a model id");
+      }
+      const std::filesystem::path path = std::filesystem::path(paths.uploaded_dir) / id;
+      if (!std::filesystem::exists(path)) {
+        return absl::NotFoundError(absl::StrCat(at, ": no uploaded model '", id, "'"));
+      }
+      return ImportFile(path.string(), unit_scale, where);
     }
     case pb::ModelSource::kProcedural: {
       HS_ASSIGN_OR_RETURN(MeshInput mesh, ProceduralMesh(source.procedural(), where + ".model"));
@@ -165,10 +163,24 @@ absl::StatusOr<BodyOptions> ToBodyOptions(const pb::SceneObject& o, const std::s
   }
   body.mass_kg = b.mass_kg();
   if (b.density_kg_per_m3() != 0) body.density_kg_per_m3 = b.density_kg_per_m3();
-  HS_ASSIGN_OR_RETURN(body.v_W, ToVector(b.velocity_m_per_s(), at + ".velocity_m_per_s"));
-  HS_ASSIGN_OR_RETURN(body.w_W,
-                      ToVector(b.angular_velocity_rad_per_s(), at + ".angular_velocity_rad_per_s"));
+  HS_ASSIGN_OR_RETURN(body.v_W, VectorFromProto(b.velocity_m_per_s(), at + ".velocity_m_per_s"));
+  HS_ASSIGN_OR_RETURN(body.w_W, VectorFromProto(b.angular_velocity_rad_per_s(),
+                                                at + ".angular_velocity_rad_per_s"));
   return body;
+}
+
+absl::Status ApplyVertexMoves(const pb::SceneObject& o, const std::string& where,
+                              HapticObject& object) {
+  for (int i = 0; i < o.vertex_moves_size(); ++i) {
+    const pb::VertexMove& move = o.vertex_moves(i);
+    const std::string at = absl::StrCat(where, ".vertex_moves[", i, "]");
+    HS_ASSIGN_OR_RETURN(const Vector3d p, VectorFromProto(move.position_m(), at + ".position_m"));
+    const VertexId id = move.vertex_id();
+    if (absl::Status s = object.MoveVertices({&id, 1}, {&p, 1}); !s.ok()) {
+      return Invalid(at, std::string(s.message()));
+    }
+  }
+  return absl::OkStatus();
 }
 
 absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
@@ -176,19 +188,11 @@ absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
   if (spec.step_s() != 0) options.step_s = spec.step_s();
   if (spec.relative_tolerance() != 0) options.relative_tolerance = spec.relative_tolerance();
   if (spec.force_clamp_n() != 0) options.force_clamp_n = spec.force_clamp_n();
-  if (spec.effects_size() > 0) {
-    options.enabled = EffectSet();
-    for (int i = 0; i < spec.effects_size(); ++i) {
-      const int e = spec.effects(i);
-      if (e <= pb::EFFECT_UNSPECIFIED || e > pb::EFFECT_FREE_BODY_MOTION) {
-        return Invalid(absl::StrCat("effects[", i, "]"), "unknown effect");
-      }
-      // The proto's effects follow Effect's order, from 1.
-      options.enabled = options.enabled.With(static_cast<Effect>(e - 1));
-    }
-  }
+  HS_ASSIGN_OR_RETURN(options.enabled,
+                      EffectsFromProto(spec.effects(), EffectSet::All(), "effects"));
   if (spec.has_gravity_m_per_s2()) {
-    HS_ASSIGN_OR_RETURN(options.gravity_W, ToVector(spec.gravity_m_per_s2(), "gravity_m_per_s2"));
+    HS_ASSIGN_OR_RETURN(options.gravity_W,
+                        VectorFromProto(spec.gravity_m_per_s2(), "gravity_m_per_s2"));
   }
   switch (spec.contact_method()) {
     case pb::CONTACT_METHOD_PAPER_2D:
@@ -249,6 +253,10 @@ absl::StatusOr<pb::SceneSpec> ReadSceneFile(const std::string& path) {
 }
 
 absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const std::string& base_dir) {
+  return BuildScene(spec, BuildPaths{base_dir, ""});
+}
+
+absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const BuildPaths& paths) {
   HS_ASSIGN_OR_RETURN(const SceneOptions options, ToOptions(spec));
   LoadedScene loaded;
   HS_ASSIGN_OR_RETURN(loaded.scene, Scene::Create(options));
@@ -261,9 +269,11 @@ absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const std::str
     }
     HS_ASSIGN_OR_RETURN(const ObjectKind kind, ToKind(o, where));
     HS_ASSIGN_OR_RETURN(const BodyOptions body, ToBodyOptions(o, where));
-    HS_ASSIGN_OR_RETURN(const Isometry3d X_WO, ToPose(o.pose(), where + ".pose"));
-    HS_ASSIGN_OR_RETURN(HapticObject object, LoadModel(o, where, base_dir));
+    HS_ASSIGN_OR_RETURN(const Isometry3d X_WO, PoseFromProto(o.pose(), where + ".pose"));
+    HS_ASSIGN_OR_RETURN(HapticObject object, LoadModel(o, where, paths));
     HS_RETURN_IF_ERROR(ApplyMaterials(o, where, object));
+    HS_RETURN_IF_ERROR(ApplyVertexMoves(o, where, object));
+    loaded.triangles += object.num_faces();
     absl::StatusOr<ObjectId> id = loaded.scene->AddObject(std::move(object), kind, X_WO, body);
     if (!id.ok()) return Invalid(where, std::string(id.status().message()));
     loaded.names.push_back(o.name());

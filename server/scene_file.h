@@ -19,6 +19,17 @@ struct LoadedScene {
   std::vector<std::string> names;
   /// The tools' ids, in file order.
   std::vector<ObjectId> tools;
+  /// Triangles over all objects.
+  int64_t triangles = 0;
+};
+
+/// Where BuildScene finds model files.
+struct BuildPaths {
+  /// Relative ModelSource paths are taken from here.
+  std::string base_dir;
+  /// Uploaded models (ModelSource.uploaded_model_id) are files here named by
+  /// their id; empty: uploaded models are rejected.
+  std::string uploaded_dir;
 };
 
 /// Reads a SceneSpec from `path`: JSON when the name ends in ".json",
@@ -32,6 +43,10 @@ absl::StatusOr<haptics::v1::SceneSpec> ReadSceneFile(const std::string& path);
 /// effects, duplicate names, unknown face groups, bad models.
 absl::StatusOr<LoadedScene> BuildScene(const haptics::v1::SceneSpec& spec,
                                        const std::string& base_dir);
+/// As above, with uploaded models from `paths.uploaded_dir` (NOT_FOUND for
+/// an id that is not there). Vertex moves are applied after the model is
+/// loaded (INVALID_ARGUMENT for an id out of range).
+absl::StatusOr<LoadedScene> BuildScene(const haptics::v1::SceneSpec& spec, const BuildPaths& paths);
 
 /// ReadSceneFile then BuildScene with the file's folder.
 absl::StatusOr<LoadedScene> LoadSceneFile(const std::string& path);

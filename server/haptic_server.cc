@@ -1,0 +1,78 @@
+#include "server/haptic_server.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/server_builder.h>
+#include <stdlib.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "absl/strings/str_cat.h"
+
+namespace hs {
+
+absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOptions& options,
+                                                                  Metrics& metrics) {
+  std::unique_ptr<HapticServer> server(new HapticServer());
+  std::string model_dir = options.model_dir;
+  if (model_dir.empty()) {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "haptic-models-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      return absl::UnavailableError("cannot make a folder for uploaded models");
+    }
+    model_dir = server->temporary_model_dir_ = pattern;
+  }
+  server->registry_ = std::make_unique<SceneRegistry>(options.limits, model_dir, metrics);
+  server->scene_service_ = std::make_unique<SceneServiceImpl>(*server->registry_);
+  server->session_service_ = std::make_unique<SessionServiceImpl>(*server->registry_);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(options.listen, grpc::InsecureServerCredentials(), &server->port_);
+  builder.RegisterService(server->scene_service_.get());
+  builder.RegisterService(server->session_service_.get());
+  builder.SetMaxReceiveMessageSize(options.max_receive_bytes);
+  builder.SetMaxSendMessageSize(64 << 20);
+  // Long streams: ping idle connections every 20 s, drop them when a ping
+  // goes unanswered for 10 s; let clients ping every 10 s even when idle.
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 20000);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 10000);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_PERMIT_WITHOUT_CALLS, 1);
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 10000);
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MAX_PINGS_WITHOUT_DATA, 0);
+  server->server_ = builder.BuildAndStart();
+  if (server->server_ == nullptr || server->port_ == 0) {
+    return absl::UnavailableError(absl::StrCat("cannot listen on ", options.listen));
+  }
+  server->server_->GetHealthCheckService()->SetServingStatus(true);
+  return server;
+}
+
+HapticServer::~HapticServer() {
+  Shutdown();
+  if (!temporary_model_dir_.empty()) {
+    std::error_code error;
+    std::filesystem::remove_all(temporary_model_dir_, error);
+  }
+}
+
+void HapticServer::Drain() {
+  if (drained_ || server_ == nullptr) return;
+  drained_ = true;
+  server_->GetHealthCheckService()->SetServingStatus(false);
+  registry_->StopAll(absl::UnavailableError("the server is shutting down"));
+}
+
+void HapticServer::Shutdown(double grace_s) {
+  if (shut_down_ || server_ == nullptr) return;
+  shut_down_ = true;
+  Drain();
+  server_->Shutdown(std::chrono::system_clock::now() +
+                    std::chrono::milliseconds(static_cast<int64_t>(grace_s * 1000)));
+  server_->Wait();
+}
+
+}  // namespace hs

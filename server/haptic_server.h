@@ -1,0 +1,64 @@
+#pragma once
+// The whole server: the gRPC services, health checking, reflection, the
+// scene registry and metrics, with the channel settings for long streams.
+
+#include <grpcpp/server.h>
+
+#include <memory>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "server/metrics.h"
+#include "server/scene_registry.h"
+#include "server/scene_service.h"
+#include "server/session_service.h"
+
+namespace hs {
+
+struct ServerOptions {
+  /// host:port to listen on; port 0 picks a free one (see port()).
+  std::string listen = "127.0.0.1:50051";
+  ServerLimits limits;
+  /// Folder for uploaded models; empty: a fresh temporary folder, removed
+  /// when the server is destroyed.
+  std::string model_dir;
+  /// Largest message received, bytes (model chunks, scene specs).
+  int max_receive_bytes = 16 << 20;
+};
+
+class HapticServer {
+ public:
+  /// Starts serving. UNAVAILABLE when it cannot listen on options.listen.
+  /// `metrics` outlives the server.
+  static absl::StatusOr<std::unique_ptr<HapticServer>> Start(const ServerOptions& options,
+                                                             Metrics& metrics);
+  /// Shutdown() if not done yet; removes a temporary model folder.
+  ~HapticServer();
+
+  /// The port it listens on.
+  int port() const { return port_; }
+  SceneRegistry& registry() { return *registry_; }
+
+  /// First half of a graceful stop: health goes NOT_SERVING and every
+  /// scene runs a final step and ends its streams with UNAVAILABLE; the
+  /// port stays open (health checks see NOT_SERVING) until Shutdown.
+  /// Later calls do nothing.
+  void Drain();
+  /// Graceful stop: Drain, then calls in flight get up to `grace_s`
+  /// seconds before they are cancelled. Later calls do nothing.
+  void Shutdown(double grace_s = 2.0);
+
+ private:
+  HapticServer() = default;
+
+  int port_ = 0;
+  std::string temporary_model_dir_;
+  std::unique_ptr<SceneRegistry> registry_;
+  std::unique_ptr<SceneServiceImpl> scene_service_;
+  std::unique_ptr<SessionServiceImpl> session_service_;
+  std::unique_ptr<grpc::Server> server_;
+  bool drained_ = false;
+  bool shut_down_ = false;
+};
+
+}  // namespace hs

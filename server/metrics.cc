@@ -1,0 +1,99 @@
+#include "server/metrics.h"
+
+#include <prometheus/counter.h>
+#include <prometheus/exposer.h>
+#include <prometheus/gauge.h>
+#include <prometheus/histogram.h>
+#include <prometheus/registry.h>
+#include <prometheus/text_serializer.h>
+
+#include "absl/strings/str_cat.h"
+
+namespace hs {
+
+Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
+  using namespace prometheus;
+  // From 50 us to 20 ms: the 1 kHz budget is 1 ms.
+  step_seconds_ = &BuildHistogram()
+                       .Name("hs_step_seconds")
+                       .Help("Wall time of one simulation step")
+                       .Register(*registry_)
+                       .Add({}, Histogram::BucketBoundaries{50e-6, 100e-6, 200e-6, 500e-6, 1e-3,
+                                                            2e-3, 5e-3, 10e-3, 20e-3});
+  auto& effect_seconds = BuildCounter()
+                             .Name("hs_effect_seconds_total")
+                             .Help("Wall time spent in each effect (stage)")
+                             .Register(*registry_);
+  auto& effect_runs = BuildCounter()
+                          .Name("hs_effect_runs_total")
+                          .Help("Runs of each effect (stage)")
+                          .Register(*registry_);
+  for (int i = 0; i < kNumEffects; ++i) {
+    const std::string name(EffectName(static_cast<Effect>(i)));
+    effect_seconds_[i] = &effect_seconds.Add({{"effect", name}});
+    effect_runs_[i] = &effect_runs.Add({{"effect", name}});
+  }
+  missed_steps_ = &BuildCounter()
+                       .Name("hs_missed_steps_total")
+                       .Help("Steps started more than one step late")
+                       .Register(*registry_)
+                       .Add({});
+  auto& clients = BuildGauge().Name("hs_clients").Help("Open streams by kind").Register(*registry_);
+  devices_ = &clients.Add({{"kind", "device"}});
+  viewers_ = &clients.Add({{"kind", "viewer"}});
+  frames_sent_ = &BuildCounter()
+                      .Name("hs_frames_sent_total")
+                      .Help("Frames written to streams")
+                      .Register(*registry_)
+                      .Add({});
+  frames_dropped_ = &BuildCounter()
+                         .Name("hs_frames_dropped_total")
+                         .Help("Frames dropped because a stream read too slowly")
+                         .Register(*registry_)
+                         .Add({});
+  rejected_ = &BuildCounter()
+                   .Name("hs_rejected_requests_total")
+                   .Help("Requests that failed, by method and status code")
+                   .Register(*registry_);
+}
+
+Metrics::~Metrics() = default;
+
+absl::Status Metrics::Expose(const std::string& address) {
+  try {
+    exposer_ = std::make_unique<prometheus::Exposer>(address);
+  } catch (const std::exception& e) {
+    return absl::UnavailableError(absl::StrCat("metrics on ", address, ": ", e.what()));
+  }
+  exposer_->RegisterCollectable(registry_);
+  return absl::OkStatus();
+}
+
+void Metrics::ObserveStep(double step_s, const StageStatsTable& stats_delta) {
+  step_seconds_->Observe(step_s);
+  for (int i = 0; i < kNumEffects; ++i) {
+    if (stats_delta[i].runs == 0) continue;
+    effect_runs_[i]->Increment(static_cast<double>(stats_delta[i].runs));
+    effect_seconds_[i]->Increment(1e-9 * static_cast<double>(stats_delta[i].total_ns));
+  }
+}
+
+void Metrics::AddMissedSteps(int64_t n) { missed_steps_->Increment(static_cast<double>(n)); }
+
+void Metrics::AddClients(bool device, int delta) {
+  (device ? devices_ : viewers_)->Increment(delta);
+}
+
+void Metrics::AddFramesSent(int64_t n) { frames_sent_->Increment(static_cast<double>(n)); }
+
+void Metrics::AddFramesDropped(int64_t n) { frames_dropped_->Increment(static_cast<double>(n)); }
+
+void Metrics::AddRejected(const std::string& method, const std::string& code) {
+  rejected_->Add({{"method", method}, {"code", code}}).Increment();
+}
+
+std::string Metrics::Text() const {
+  return prometheus::TextSerializer().Serialize(registry_->Collect());
+}
+
+}  // namespace hs

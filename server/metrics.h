@@ -1,0 +1,63 @@
+#pragma once
+// The server's Prometheus metrics (prometheus-cpp): step time, per-effect
+// time, clients, frames sent and dropped, rejected requests. Exposed over
+// HTTP at /metrics when an address is given. Thread-safe.
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "common/sim/step_frame.h"
+
+namespace prometheus {
+class Counter;
+class Exposer;
+class Gauge;
+class Histogram;
+class Registry;
+template <typename T>
+class Family;
+}  // namespace prometheus
+
+namespace hs {
+
+class Metrics {
+ public:
+  /// Metrics kept in memory only.
+  Metrics();
+  ~Metrics();
+
+  /// Serves /metrics on `address` ("127.0.0.1:9464"). INVALID_ARGUMENT or
+  /// UNAVAILABLE when it cannot listen there.
+  absl::Status Expose(const std::string& address);
+
+  /// One step took `step_s` seconds (wall time); `stats_delta` is what each
+  /// stage added to its counters during it.
+  void ObserveStep(double step_s, const StageStatsTable& stats_delta);
+  void AddMissedSteps(int64_t n);
+  /// A device (Interact) or viewer (Watch) stream opened (+1) or closed (-1).
+  void AddClients(bool device, int delta);
+  void AddFramesSent(int64_t n);
+  void AddFramesDropped(int64_t n);
+  /// A request of `method` failed with status `code` (a gRPC code name).
+  void AddRejected(const std::string& method, const std::string& code);
+
+  /// The text exposition of every metric (as /metrics serves it).
+  std::string Text() const;
+
+ private:
+  std::shared_ptr<prometheus::Registry> registry_;
+  std::unique_ptr<prometheus::Exposer> exposer_;
+  prometheus::Histogram* step_seconds_;
+  std::array<prometheus::Counter*, kNumEffects> effect_seconds_;
+  std::array<prometheus::Counter*, kNumEffects> effect_runs_;
+  prometheus::Counter* missed_steps_;
+  prometheus::Gauge* devices_;
+  prometheus::Gauge* viewers_;
+  prometheus::Counter* frames_sent_;
+  prometheus::Counter* frames_dropped_;
+  prometheus::Family<prometheus::Counter>* rejected_;
+};
+
+}  // namespace hs

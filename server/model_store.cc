@@ -1,0 +1,95 @@
+#include "server/model_store.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "absl/strings/str_cat.h"
+#include "common/model/import.h"
+#include "server/sha256.h"
+
+namespace hs {
+namespace {
+
+bool IsIdText(const std::string& s, size_t max_size) {
+  if (s.empty() || s.size() > max_size || s.front() == '.') return false;
+  for (char c : s) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+absl::Status ModelUpload::Add(const haptics::v1::UploadModelChunk& chunk) {
+  if (chunk.has_header()) {
+    if (has_header_) return absl::InvalidArgumentError("header repeated after the first chunk");
+    const auto& h = chunk.header();
+    if (!IsIdText(h.name(), 64)) {
+      return absl::InvalidArgumentError("header.name: 1..64 of [A-Za-z0-9_.-], not starting '.'");
+    }
+    if (!IsIdText(h.format(), 8) || h.format().find('.') != std::string::npos) {
+      return absl::InvalidArgumentError("header.format: a file extension such as 'stl'");
+    }
+    if (h.size_bytes() < 0) return absl::InvalidArgumentError("header.size_bytes: negative");
+    if (h.size_bytes() > max_bytes_) {
+      return absl::ResourceExhaustedError(
+          absl::StrCat("model of ", h.size_bytes(), " bytes is over the limit of ", max_bytes_));
+    }
+    if (h.sha256().size() != 32) return absl::InvalidArgumentError("header.sha256: not 32 bytes");
+    header_ = h;
+    has_header_ = true;
+  } else if (!has_header_) {
+    return absl::InvalidArgumentError("the first chunk must carry the header");
+  }
+  if (static_cast<int64_t>(data_.size() + chunk.data().size()) > header_.size_bytes()) {
+    return absl::InvalidArgumentError("more bytes than header.size_bytes");
+  }
+  data_ += chunk.data();
+  return absl::OkStatus();
+}
+
+absl::Status ModelUpload::Verify() const {
+  if (!has_header_) return absl::InvalidArgumentError("no header");
+  if (static_cast<int64_t>(data_.size()) != header_.size_bytes()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("got ", data_.size(), " bytes, header.size_bytes is ", header_.size_bytes()));
+  }
+  if (Sha256Of(data_) != header_.sha256()) {
+    return absl::InvalidArgumentError("sha256 does not match the data");
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<StoredModel> ModelStore::Store(const ModelUpload& upload) {
+  if (absl::Status s = upload.Verify(); !s.ok()) return s;
+  const std::string id = absl::StrCat(upload.header().name(), ".", upload.header().format());
+  std::lock_guard lock(mu_);
+  if (ids_.count(id)) return absl::AlreadyExistsError(absl::StrCat("model '", id, "' exists"));
+  if (static_cast<int>(ids_.size()) >= max_models_) {
+    return absl::ResourceExhaustedError(absl::StrCat("at most ", max_models_, " models"));
+  }
+  std::error_code error;
+  std::filesystem::create_directories(dir_, error);
+  // Written under a hidden name first: BuildScene never sees a model that
+  // failed to import.
+  const std::filesystem::path staged = std::filesystem::path(dir_) / ("." + id);
+  {
+    std::ofstream out(staged, std::ios::binary);
+    out.write(upload.data().data(), static_cast<std::streamsize>(upload.data().size()));
+    if (!out) return absl::InternalError(absl::StrCat("cannot write ", staged.string()));
+  }
+  absl::StatusOr<ImportedModel> model = ImportModel(staged.string(), ImportOptions{});
+  if (!model.ok()) {
+    std::filesystem::remove(staged, error);
+    return absl::InvalidArgumentError(
+        absl::StrCat("model '", id, "' does not import: ", model.status().message()));
+  }
+  std::filesystem::rename(staged, std::filesystem::path(dir_) / id, error);
+  if (error) return absl::InternalError(absl::StrCat("cannot keep model: ", error.message()));
+  ids_.insert(id);
+  return StoredModel{id, model->object.num_vertices(), model->object.num_faces()};
+}
+
+}  // namespace hs

@@ -1,0 +1,55 @@
+#pragma once
+// Conversions between haptics.v1 messages and the simulation's types: the
+// proto <-> domain edge. Incoming values are validated here, before they
+// reach the simulation core.
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "common/sim/effects.h"
+#include "common/sim/step_frame.h"
+#include "haptics/v1/scene.pb.h"
+#include "haptics/v1/session_service.pb.h"
+
+namespace hs {
+
+/// The largest coordinate, length or size accepted, metres: far beyond any
+/// scene, small enough that sums and squares stay finite (a box of 1e308
+/// is finite but its diagonal is not).
+inline constexpr double kMaxCoordinate = 1e6;
+
+/// A vector, unchanged. INVALID_ARGUMENT naming `where` when not finite or
+/// a component is beyond +-kMaxCoordinate.
+absl::StatusOr<Vector3d> VectorFromProto(const haptics::v1::Vector3& v, const std::string& where);
+
+/// A pose X_WO. The all-zero quaternion means no rotation; any other must
+/// have length 1 within 1e-6. INVALID_ARGUMENT naming `where` otherwise or
+/// when a number is not finite.
+absl::StatusOr<Isometry3d> PoseFromProto(const haptics::v1::Pose& pose, const std::string& where);
+
+void VectorToProto(const Vector3d& v, haptics::v1::Vector3* out);
+void PoseToProto(const Isometry3d& X, haptics::v1::Pose* out);
+
+/// The effects a list of haptics.v1.Effect values names; `empty_means`
+/// when the list is empty. INVALID_ARGUMENT naming `where` for an
+/// unspecified or unknown value.
+absl::StatusOr<EffectSet> EffectsFromProto(const google::protobuf::RepeatedField<int>& effects,
+                                           EffectSet empty_means, const std::string& where);
+
+/// The haptics.v1.Effect value of `effect`.
+haptics::v1::Effect EffectToProto(Effect effect);
+
+/// Which parts of a step a stream receives.
+struct FrameParts {
+  bool poses = true;
+  bool contacts = true;
+  bool forces = true;
+};
+
+/// Fills `out`'s tools and stages from `frame`, keeping the `parts` asked
+/// for; `names` gives object names by ObjectId.
+void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& names,
+                      const FrameParts& parts, haptics::v1::Frame* out);
+
+}  // namespace hs

@@ -1,0 +1,122 @@
+#include "server/scene_registry.h"
+
+#include "absl/strings/str_cat.h"
+#include "common/core/status_macros.h"
+#include "server/spec_edit.h"
+
+namespace hs {
+
+namespace pb = haptics::v1;
+
+SceneRegistry::SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics)
+    : limits_(limits), metrics_(metrics), models_(std::move(model_dir), limits.max_models) {}
+
+SceneRegistry::~SceneRegistry() { StopAll(absl::UnavailableError("the server is stopping")); }
+
+absl::StatusOr<LoadedScene> SceneRegistry::BuildChecked(const pb::SceneSpec& spec,
+                                                        const std::string& base_dir,
+                                                        Deadline deadline) {
+  if (spec.objects_size() > limits_.max_objects_per_scene) {
+    return absl::ResourceExhaustedError(
+        absl::StrCat("at most ", limits_.max_objects_per_scene, " objects per scene"));
+  }
+  HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildScene(spec, BuildPaths{base_dir, models_.dir()}));
+  const double step_s = loaded.scene->options().step_s;
+  if (!(step_s >= limits_.min_step_s && step_s <= limits_.max_step_s)) {
+    return absl::InvalidArgumentError(absl::StrCat("step_s: ", step_s, " is outside [",
+                                                   limits_.min_step_s, ", ", limits_.max_step_s,
+                                                   "] on this server"));
+  }
+  if (loaded.triangles > limits_.max_triangles_per_scene) {
+    return absl::ResourceExhaustedError(
+        absl::StrCat(loaded.triangles, " triangles; at most ", limits_.max_triangles_per_scene));
+  }
+  if (std::chrono::system_clock::now() > deadline) {
+    return absl::DeadlineExceededError("the deadline passed while building the scene");
+  }
+  return loaded;
+}
+
+absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::string& base_dir,
+                                                 Deadline deadline) {
+  std::lock_guard edit(edit_mu_);
+  if (spec.name().empty()) return absl::InvalidArgumentError("name: empty");
+  {
+    std::lock_guard lock(mu_);
+    if (stopped_) return absl::UnavailableError("the server is stopping");
+    if (scenes_.count(spec.name())) {
+      return absl::AlreadyExistsError(absl::StrCat("scene '", spec.name(), "' exists"));
+    }
+    if (static_cast<int>(scenes_.size()) >= limits_.max_scenes) {
+      return absl::ResourceExhaustedError(absl::StrCat("at most ", limits_.max_scenes, " scenes"));
+    }
+  }
+  AbsoluteModelPaths(base_dir, spec);
+  HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildChecked(spec, base_dir, deadline));
+  auto runner = std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_);
+  std::lock_guard lock(mu_);
+  scenes_[spec.name()] = runner;
+  return runner->Info();
+}
+
+absl::StatusOr<RunnerInfo> SceneRegistry::Edit(const std::string& name, const SpecEdit& edit,
+                                               Deadline deadline) {
+  std::lock_guard lock(edit_mu_);
+  HS_ASSIGN_OR_RETURN(std::shared_ptr<SceneRunner> runner, Find(name));
+  pb::SceneSpec spec = runner->spec();
+  HS_RETURN_IF_ERROR(edit(spec));
+  if (spec.name() != name) return absl::InvalidArgumentError("a scene cannot be renamed");
+  HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildChecked(spec, "", deadline));
+  HS_RETURN_IF_ERROR(runner->Replace(std::move(spec), std::move(loaded)));
+  return runner->Info();
+}
+
+absl::Status SceneRegistry::Delete(const std::string& name) {
+  std::shared_ptr<SceneRunner> runner;
+  {
+    std::lock_guard edit(edit_mu_);
+    std::lock_guard lock(mu_);
+    const auto it = scenes_.find(name);
+    if (it == scenes_.end()) return absl::NotFoundError(absl::StrCat("no scene '", name, "'"));
+    runner = std::move(it->second);
+    scenes_.erase(it);
+  }
+  runner->Stop(absl::UnavailableError(absl::StrCat("scene '", name, "' was deleted")));
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::shared_ptr<SceneRunner>> SceneRegistry::Find(const std::string& name) const {
+  std::lock_guard lock(mu_);
+  const auto it = scenes_.find(name);
+  if (it == scenes_.end()) return absl::NotFoundError(absl::StrCat("no scene '", name, "'"));
+  return it->second;
+}
+
+std::vector<std::shared_ptr<SceneRunner>> SceneRegistry::List() const {
+  std::lock_guard lock(mu_);
+  std::vector<std::shared_ptr<SceneRunner>> out;
+  for (const auto& [name, runner] : scenes_) out.push_back(runner);
+  return out;
+}
+
+void SceneRegistry::StopAll(const absl::Status& status) {
+  std::map<std::string, std::shared_ptr<SceneRunner>> scenes;
+  {
+    std::lock_guard lock(mu_);
+    stopped_ = true;
+    scenes.swap(scenes_);
+  }
+  for (auto& [name, runner] : scenes) runner->Stop(status);
+}
+
+absl::Status SceneRegistry::AddClient() {
+  if (clients_.fetch_add(1) >= limits_.max_clients) {
+    clients_.fetch_sub(1);
+    return absl::ResourceExhaustedError(absl::StrCat("at most ", limits_.max_clients, " clients"));
+  }
+  return absl::OkStatus();
+}
+
+void SceneRegistry::RemoveClient() { clients_.fetch_sub(1); }
+
+}  // namespace hs

@@ -1,0 +1,91 @@
+#pragma once
+// The scenes a server holds, by name, with the server's limits. Every
+// change builds a new scene from an edited spec and swaps it in only when
+// it builds and fits the limits, so a rejected request changes nothing.
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "server/metrics.h"
+#include "server/model_store.h"
+#include "server/scene_runner.h"
+
+namespace hs {
+
+/// What one server accepts at most (RESOURCE_EXHAUSTED past these).
+struct ServerLimits {
+  int max_scenes = 16;
+  int max_objects_per_scene = 256;
+  int64_t max_triangles_per_scene = 2'000'000;
+  /// Open Interact and Watch streams over all scenes.
+  int max_clients = 64;
+  int64_t max_model_bytes = int64_t{256} << 20;
+  int max_models = 64;
+  /// The step lengths a scene may have, seconds (INVALID_ARGUMENT
+  /// outside): one thread per scene must keep up with its rate.
+  double min_step_s = 1e-4;
+  double max_step_s = 1.0;
+};
+
+class SceneRegistry {
+ public:
+  using Deadline = std::chrono::system_clock::time_point;
+  using SpecEdit = std::function<absl::Status(haptics::v1::SceneSpec&)>;
+
+  /// Uploaded models live in `model_dir`.
+  SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics);
+  ~SceneRegistry();
+
+  /// Builds and starts a scene. `base_dir` resolves relative model paths
+  /// (made absolute in the kept spec). INVALID_ARGUMENT for a bad spec,
+  /// ALREADY_EXISTS for a taken name, RESOURCE_EXHAUSTED past the limits,
+  /// DEADLINE_EXCEEDED when building outlasted `deadline` (nothing kept).
+  absl::StatusOr<RunnerInfo> Create(haptics::v1::SceneSpec spec, const std::string& base_dir,
+                                    Deadline deadline = Deadline::max());
+  /// Applies `edit` to scene `name`'s spec and swaps in the rebuilt scene.
+  /// NOT_FOUND for an unknown scene; else as `edit`, Create and
+  /// SceneRunner::Replace.
+  absl::StatusOr<RunnerInfo> Edit(const std::string& name, const SpecEdit& edit,
+                                  Deadline deadline = Deadline::max());
+  /// Stops scene `name` (its streams end with UNAVAILABLE). NOT_FOUND.
+  absl::Status Delete(const std::string& name);
+
+  /// NOT_FOUND for an unknown scene.
+  absl::StatusOr<std::shared_ptr<SceneRunner>> Find(const std::string& name) const;
+  /// Every scene, by name.
+  std::vector<std::shared_ptr<SceneRunner>> List() const;
+
+  /// Stops every scene with `status`, each after a final frame.
+  void StopAll(const absl::Status& status);
+
+  /// Counts a new stream; RESOURCE_EXHAUSTED past max_clients.
+  absl::Status AddClient();
+  void RemoveClient();
+
+  ModelStore& models() { return models_; }
+  const ServerLimits& limits() const { return limits_; }
+  Metrics& metrics() { return metrics_; }
+
+ private:
+  absl::StatusOr<LoadedScene> BuildChecked(const haptics::v1::SceneSpec& spec,
+                                           const std::string& base_dir, Deadline deadline);
+
+  const ServerLimits limits_;
+  Metrics& metrics_;
+  ModelStore models_;
+  // Changes run one at a time (builds included); lookups only take mu_.
+  std::mutex edit_mu_;
+  mutable std::mutex mu_;
+  std::map<std::string, std::shared_ptr<SceneRunner>> scenes_;
+  bool stopped_ = false;
+  std::atomic<int> clients_{0};
+};
+
+}  // namespace hs

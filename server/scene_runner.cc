@@ -1,0 +1,221 @@
+#include "server/scene_runner.h"
+
+#include <chrono>
+
+#include "absl/strings/str_cat.h"
+
+namespace hs {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int64_t Nanoseconds(Clock::duration d) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(d).count();
+}
+
+// The id of tool `name` in `scene`, or -1.
+ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
+  for (ObjectId id : scene.tools) {
+    if (scene.names[id] == name) return id;
+  }
+  return -1;
+}
+
+}  // namespace
+
+SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics)
+    : metrics_(metrics),
+      step_s_(scene.scene->options().step_s),
+      spec_(std::move(spec)),
+      loaded_(std::move(scene)),
+      names_(std::make_shared<const std::vector<std::string>>(loaded_.names)) {
+  loaded_.scene->SetNeeded(EffectSet());
+  thread_ = std::thread([this] { Run(); });
+}
+
+SceneRunner::~SceneRunner() { Stop(absl::UnavailableError("the scene was deleted")); }
+
+void SceneRunner::Stop(const absl::Status& status) {
+  {
+    std::lock_guard lock(stop_mu_);
+    if (stop_) return;
+    stop_ = true;
+    stop_status_ = status;
+  }
+  stop_cv_.notify_all();
+  thread_.join();
+}
+
+void SceneRunner::Run() {
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(step_s_));
+  Clock::time_point next = Clock::now();
+  absl::Status status;
+  while (true) {
+    next += period;
+    {
+      std::unique_lock lock(stop_mu_);
+      if (stop_cv_.wait_until(lock, next, [this] { return stop_; })) {
+        status = stop_status_;
+        break;
+      }
+    }
+    const Clock::duration lag = Clock::now() - next;
+    if (lag > period) {
+      // Too late to catch up: skip the missed steps rather than run a burst.
+      const int64_t missed = lag / period;
+      missed_steps_ += missed;
+      metrics_.AddMissedSteps(missed);
+      next += missed * period;
+    }
+    StepOnce(Nanoseconds(lag));
+  }
+  StepOnce(0);  // the final frame
+  std::lock_guard lock(io_mu_);
+  stopping_ = true;
+  for (auto& [sink, attached] : sinks_) sink->Close(status);
+}
+
+void SceneRunner::StepOnce(int64_t start_lag_ns) {
+  std::vector<std::pair<std::string, PendingPose>> fresh;
+  EffectSet needs;
+  {
+    std::lock_guard lock(io_mu_);
+    for (auto& [tool, pose] : pending_) {
+      if (!pose.fresh) continue;
+      fresh.emplace_back(tool, pose);
+      pose.fresh = false;
+    }
+    needs = NeedsLocked();
+  }
+  auto snapshot = std::make_shared<StepSnapshot>();
+  {
+    std::lock_guard lock(scene_mu_);
+    Scene& scene = *loaded_.scene;
+    for (const auto& [tool, pose] : fresh) {
+      const ObjectId id = FindTool(loaded_, tool);
+      // Poses are validated at the edge; a tool removed meanwhile is skipped.
+      if (id < 0 || !scene.SetDevicePose(id, pose.X_WD).ok()) continue;
+      applied_[tool] = pose;
+    }
+    scene.SetNeeded(needs);
+    const Clock::time_point start = Clock::now();
+    const StepFrame& frame = scene.Step();
+    snapshot->step_ns = Nanoseconds(Clock::now() - start);
+    snapshot->step = ++step_;
+    snapshot->time_s = static_cast<double>(step_) * step_s_;
+    snapshot->frame = frame;
+    snapshot->names = names_;
+    for (const ToolFrame& t : frame.tools) {
+      const auto it = applied_.find(loaded_.names[t.tool]);
+      snapshot->applied.push_back(it == applied_.end() ? AppliedPose{} : it->second.stamp);
+    }
+    StageStatsTable delta;
+    for (int i = 0; i < kNumEffects; ++i) {
+      delta[i].runs = scene.stats()[i].runs - last_stats_[i].runs;
+      delta[i].total_ns = scene.stats()[i].total_ns - last_stats_[i].total_ns;
+    }
+    last_stats_ = scene.stats();
+    metrics_.ObserveStep(1e-9 * static_cast<double>(snapshot->step_ns), delta);
+  }
+  snapshot->start_lag_ns = start_lag_ns;
+  snapshot->missed_steps = missed_steps_;
+  std::lock_guard lock(io_mu_);
+  for (auto& [sink, attached] : sinks_) sink->Offer(snapshot);
+}
+
+EffectSet SceneRunner::NeedsLocked() const {
+  EffectSet needs;
+  for (const auto& [sink, attached] : sinks_) needs = needs | attached.needs;
+  return needs;
+}
+
+absl::Status SceneRunner::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs) {
+  std::lock_guard io(io_mu_);
+  if (stopping_) return absl::UnavailableError("the scene is stopping");
+  {
+    std::lock_guard scene(scene_mu_);
+    if (FindTool(loaded_, tool) < 0) {
+      return absl::NotFoundError(absl::StrCat("no tool '", tool, "' in the scene"));
+    }
+  }
+  for (const auto& [other, attached] : sinks_) {
+    if (attached.tool == tool) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("tool '", tool, "' is held by another device"));
+    }
+  }
+  sinks_[sink] = Attached{tool, needs};
+  return absl::OkStatus();
+}
+
+absl::Status SceneRunner::AttachViewer(FrameSink* sink, EffectSet needs) {
+  std::lock_guard io(io_mu_);
+  if (stopping_) return absl::UnavailableError("the scene is stopping");
+  sinks_[sink] = Attached{"", needs};
+  return absl::OkStatus();
+}
+
+void SceneRunner::Detach(FrameSink* sink) {
+  std::lock_guard io(io_mu_);
+  sinks_.erase(sink);
+}
+
+void SceneRunner::SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp) {
+  std::lock_guard io(io_mu_);
+  const auto it = sinks_.find(sink);
+  if (it == sinks_.end() || it->second.tool.empty()) return;
+  pending_[it->second.tool] = PendingPose{X_WD, stamp, true};
+}
+
+haptics::v1::SceneSpec SceneRunner::spec() const {
+  std::lock_guard lock(scene_mu_);
+  return spec_;
+}
+
+absl::Status SceneRunner::Replace(haptics::v1::SceneSpec spec, LoadedScene scene) {
+  std::lock_guard io(io_mu_);
+  for (const auto& [sink, attached] : sinks_) {
+    if (!attached.tool.empty() && FindTool(scene, attached.tool) < 0) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("tool '", attached.tool, "' is held by a device"));
+    }
+  }
+  std::lock_guard lock(scene_mu_);
+  // Tools keep where their devices put them; the proxies start over there.
+  for (auto it = applied_.begin(); it != applied_.end();) {
+    const ObjectId id = FindTool(scene, it->first);
+    if (id < 0 || !scene.scene->SetDevicePose(id, it->second.X_WD).ok()) {
+      it = applied_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  spec_ = std::move(spec);
+  loaded_ = std::move(scene);
+  names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
+  last_stats_ = StageStatsTable{};
+  ++revision_;
+  return absl::OkStatus();
+}
+
+RunnerInfo SceneRunner::Info() const {
+  RunnerInfo info;
+  std::lock_guard io(io_mu_);
+  for (const auto& [sink, attached] : sinks_) {
+    if (attached.tool.empty()) {
+      ++info.viewers;
+    } else {
+      ++info.devices;
+      info.claimed_tools.push_back(attached.tool);
+    }
+  }
+  std::lock_guard lock(scene_mu_);
+  info.spec = spec_;
+  info.step = step_;
+  info.triangles = loaded_.triangles;
+  info.revision = revision_;
+  return info;
+}
+
+}  // namespace hs

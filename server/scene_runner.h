@@ -1,0 +1,114 @@
+#pragma once
+// One running scene: the spec it was built from, its simulation, and the
+// thread that steps it at the scene's rate with the latest device poses.
+// hs::Scene is not thread-safe: only the runner's thread steps it; requests
+// reach it through the runner's mutexes, never by touching the Scene.
+
+#include <condition_variable>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "haptics/v1/scene.pb.h"
+#include "server/metrics.h"
+#include "server/scene_file.h"
+#include "server/step_snapshot.h"
+
+namespace hs {
+
+/// A runner's state for SceneService.GetScene.
+struct RunnerInfo {
+  haptics::v1::SceneSpec spec;
+  int64_t step = 0;
+  int64_t triangles = 0;
+  int64_t revision = 0;
+  int devices = 0;
+  int viewers = 0;
+  std::vector<std::string> claimed_tools;
+};
+
+class SceneRunner {
+ public:
+  /// Starts stepping `scene`, built from `spec`. `metrics` outlives the runner.
+  SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics);
+  /// Stop(UNAVAILABLE) if not stopped yet.
+  ~SceneRunner();
+  SceneRunner(const SceneRunner&) = delete;
+  SceneRunner& operator=(const SceneRunner&) = delete;
+
+  /// Runs one last step, sends it, ends every stream with `status` and
+  /// stops the thread. Later calls do nothing.
+  void Stop(const absl::Status& status);
+
+  /// Lets `sink` drive tool `tool` and receive every frame; the scene
+  /// computes `needs` (with prerequisites) from now on. NOT_FOUND when
+  /// there is no such tool, FAILED_PRECONDITION when another device holds
+  /// it, UNAVAILABLE when stopped.
+  absl::Status AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs);
+  /// Lets `sink` receive every frame. UNAVAILABLE when stopped.
+  absl::Status AttachViewer(FrameSink* sink, EffectSet needs);
+  /// Stops sending to `sink` and releases its tool. When it returns, no
+  /// Offer or Close to `sink` is running or will run.
+  void Detach(FrameSink* sink);
+
+  /// The device pose of `sink`'s tool for the next step (latest wins). The
+  /// pose was validated by the caller.
+  void SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp);
+
+  /// The spec the scene runs now.
+  haptics::v1::SceneSpec spec() const;
+  /// Replaces the scene by `scene`, built from `spec`, between two steps;
+  /// tools keep their device poses. FAILED_PRECONDITION (and no change)
+  /// when a tool held by a device is missing from `scene`.
+  absl::Status Replace(haptics::v1::SceneSpec spec, LoadedScene scene);
+
+  RunnerInfo Info() const;
+  double step_s() const { return step_s_; }
+
+ private:
+  struct Attached {
+    std::string tool;  // empty for viewers
+    EffectSet needs;
+  };
+  struct PendingPose {
+    Isometry3d X_WD;
+    AppliedPose stamp;
+    bool fresh = false;
+  };
+
+  void Run();
+  void StepOnce(int64_t start_lag_ns);
+  EffectSet NeedsLocked() const;
+
+  Metrics& metrics_;
+  const double step_s_;
+
+  // The simulation; only the runner's thread steps it, Replace swaps it.
+  mutable std::mutex scene_mu_;
+  haptics::v1::SceneSpec spec_;
+  LoadedScene loaded_;
+  std::shared_ptr<const std::vector<std::string>> names_;
+  int64_t revision_ = 0;
+  int64_t step_ = 0;
+  StageStatsTable last_stats_{};
+  std::map<std::string, PendingPose> applied_;  // by tool name
+
+  // What the streams send and need.
+  mutable std::mutex io_mu_;
+  std::map<FrameSink*, Attached> sinks_;
+  std::map<std::string, PendingPose> pending_;  // by tool name
+  bool stopping_ = false;
+
+  std::mutex stop_mu_;
+  std::condition_variable stop_cv_;
+  bool stop_ = false;
+  absl::Status stop_status_;
+  std::thread thread_;
+  int64_t missed_steps_ = 0;  // runner thread only
+};
+
+}  // namespace hs

@@ -1,0 +1,196 @@
+#include "server/scene_service.h"
+
+#include <exception>
+
+#include "server/grpc_status.h"
+#include "server/spec_edit.h"
+
+namespace hs {
+namespace {
+
+namespace pb = haptics::v1;
+
+// Runs `handler` and ends the call with its status; counts failures and
+// keeps exceptions inside.
+template <class Handler>
+absl::Status Guarded(Metrics& metrics, const char* method, Handler&& handler) {
+  absl::Status status;
+  try {
+    status = handler();
+  } catch (const std::exception& e) {
+    status = absl::InternalError(e.what());
+  } catch (...) {
+    status = absl::InternalError("unknown exception");
+  }
+  if (!status.ok()) metrics.AddRejected(method, absl::StatusCodeToString(status.code()));
+  return status;
+}
+
+template <class Handler>
+grpc::ServerUnaryReactor* Respond(grpc::CallbackServerContext* context, Metrics& metrics,
+                                  const char* method, Handler&& handler) {
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  reactor->Finish(ToGrpcStatus(Guarded(metrics, method, handler)));
+  return reactor;
+}
+
+void InfoToProto(const RunnerInfo& info, double step_s, pb::SceneInfo* out) {
+  *out->mutable_spec() = info.spec;
+  out->set_step(info.step);
+  out->set_step_s(step_s);
+  out->set_triangles(info.triangles);
+  out->set_devices(info.devices);
+  out->set_viewers(info.viewers);
+  for (const std::string& tool : info.claimed_tools) out->add_claimed_tools(tool);
+  out->set_revision(info.revision);
+}
+
+// Edits scene `name` and answers with its new state.
+absl::Status EditAndAnswer(SceneRegistry& registry, grpc::CallbackServerContext* context,
+                           const std::string& name, const SceneRegistry::SpecEdit& edit,
+                           pb::SceneInfo* response) {
+  absl::StatusOr<RunnerInfo> info = registry.Edit(name, edit, context->deadline());
+  if (!info.ok()) return info.status();
+  absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry.Find(name);
+  InfoToProto(*info, runner.ok() ? (*runner)->step_s() : 0, response);
+  return absl::OkStatus();
+}
+
+class UploadReactor : public grpc::ServerReadReactor<pb::UploadModelChunk> {
+ public:
+  UploadReactor(SceneRegistry& registry, pb::UploadModelResponse* response)
+      : registry_(registry), response_(response), upload_(registry.limits().max_model_bytes) {
+    StartRead(&chunk_);
+  }
+
+  void OnReadDone(bool ok) override {
+    absl::Status status = Guarded(registry_.metrics(), "UploadModel", [&] {
+      if (!ok) return Store();
+      return upload_.Add(chunk_);
+    });
+    if (ok && status.ok()) {
+      StartRead(&chunk_);
+      return;
+    }
+    Finish(ToGrpcStatus(status));
+  }
+  void OnDone() override { delete this; }
+
+ private:
+  absl::Status Store() {
+    absl::StatusOr<StoredModel> stored = registry_.models().Store(upload_);
+    if (!stored.ok()) return stored.status();
+    response_->set_model_id(stored->model_id);
+    response_->set_vertices(stored->vertices);
+    response_->set_triangles(stored->triangles);
+    return absl::OkStatus();
+  }
+
+  SceneRegistry& registry_;
+  pb::UploadModelResponse* response_;
+  ModelUpload upload_;
+  pb::UploadModelChunk chunk_;
+};
+
+}  // namespace
+
+grpc::ServerUnaryReactor* SceneServiceImpl::CreateScene(grpc::CallbackServerContext* context,
+                                                        const pb::CreateSceneRequest* request,
+                                                        pb::SceneInfo* response) {
+  return Respond(context, registry_.metrics(), "CreateScene", [&]() -> absl::Status {
+    if (absl::Status s = RejectModelPaths(request->spec()); !s.ok()) return s;
+    absl::StatusOr<RunnerInfo> info = registry_.Create(request->spec(), "", context->deadline());
+    if (!info.ok()) return info.status();
+    absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(request->spec().name());
+    InfoToProto(*info, runner.ok() ? (*runner)->step_s() : 0, response);
+    return absl::OkStatus();
+  });
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::GetScene(grpc::CallbackServerContext* context,
+                                                     const pb::GetSceneRequest* request,
+                                                     pb::SceneInfo* response) {
+  return Respond(context, registry_.metrics(), "GetScene", [&]() -> absl::Status {
+    absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(request->scene());
+    if (!runner.ok()) return runner.status();
+    InfoToProto((*runner)->Info(), (*runner)->step_s(), response);
+    return absl::OkStatus();
+  });
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::ListScenes(grpc::CallbackServerContext* context,
+                                                       const pb::ListScenesRequest*,
+                                                       pb::ListScenesResponse* response) {
+  return Respond(context, registry_.metrics(), "ListScenes", [&]() -> absl::Status {
+    for (const std::shared_ptr<SceneRunner>& runner : registry_.List()) {
+      RunnerInfo info = runner->Info();
+      const std::string name = info.spec.name();
+      info.spec.Clear();
+      info.spec.set_name(name);
+      InfoToProto(info, runner->step_s(), response->add_scenes());
+    }
+    return absl::OkStatus();
+  });
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::DeleteScene(grpc::CallbackServerContext* context,
+                                                        const pb::DeleteSceneRequest* request,
+                                                        pb::DeleteSceneResponse*) {
+  return Respond(context, registry_.metrics(), "DeleteScene",
+                 [&] { return registry_.Delete(request->scene()); });
+}
+
+grpc::ServerReadReactor<pb::UploadModelChunk>* SceneServiceImpl::UploadModel(
+    grpc::CallbackServerContext*, pb::UploadModelResponse* response) {
+  return new UploadReactor(registry_, response);
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::AddObject(grpc::CallbackServerContext* context,
+                                                      const pb::AddObjectRequest* request,
+                                                      pb::SceneInfo* response) {
+  return Respond(context, registry_.metrics(), "AddObject", [&]() -> absl::Status {
+    pb::SceneSpec alone;
+    *alone.add_objects() = request->object();
+    if (absl::Status s = RejectModelPaths(alone); !s.ok()) return s;
+    return EditAndAnswer(
+        registry_, context, request->scene(),
+        [&](pb::SceneSpec& spec) { return AddObjectToSpec(request->object(), spec); }, response);
+  });
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::UpdateObject(grpc::CallbackServerContext* context,
+                                                         const pb::UpdateObjectRequest* request,
+                                                         pb::SceneInfo* response) {
+  return Respond(context, registry_.metrics(), "UpdateObject", [&] {
+    return EditAndAnswer(
+        registry_, context, request->scene(),
+        [&](pb::SceneSpec& spec) { return UpdateObjectInSpec(*request, spec); }, response);
+  });
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::RemoveObject(grpc::CallbackServerContext* context,
+                                                         const pb::RemoveObjectRequest* request,
+                                                         pb::SceneInfo* response) {
+  return Respond(context, registry_.metrics(), "RemoveObject", [&] {
+    return EditAndAnswer(
+        registry_, context, request->scene(),
+        [&](pb::SceneSpec& spec) { return RemoveObjectFromSpec(request->object(), spec); },
+        response);
+  });
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::SetEffects(grpc::CallbackServerContext* context,
+                                                       const pb::SetEffectsRequest* request,
+                                                       pb::SceneInfo* response) {
+  return Respond(context, registry_.metrics(), "SetEffects", [&] {
+    return EditAndAnswer(
+        registry_, context, request->scene(),
+        [&](pb::SceneSpec& spec) {
+          SetEffectsInSpec(*request, spec);
+          return absl::OkStatus();
+        },
+        response);
+  });
+}
+
+}  // namespace hs

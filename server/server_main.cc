@@ -1,0 +1,71 @@
+// haptic-server: serves haptics.v1 SceneService and SessionService.
+// Only wiring and flags: the server itself is HapticServer.
+
+#include <signal.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "CLI/CLI.hpp"
+#include "server/haptic_server.h"
+#include "server/scene_file.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"haptic-server: the haptic simulation service"};
+  hs::ServerOptions options;
+  std::vector<std::string> scene_files;
+  std::string metrics_address;
+  app.add_option("--listen", options.listen, "host:port to serve gRPC on (port 0: any free)")
+      ->capture_default_str();
+  app.add_option("--scene", scene_files, "Scene file to load at start (repeatable)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--metrics", metrics_address, "host:port to serve Prometheus /metrics on");
+  app.add_option("--model-dir", options.model_dir,
+                 "Folder for uploaded models (default: a temporary folder)");
+  app.add_option("--max-scenes", options.limits.max_scenes)->capture_default_str();
+  app.add_option("--max-clients", options.limits.max_clients)->capture_default_str();
+  app.add_option("--max-objects", options.limits.max_objects_per_scene)->capture_default_str();
+  app.add_option("--max-triangles", options.limits.max_triangles_per_scene)->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  // SIGTERM and SIGINT are taken by sigwait below, not by any thread.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  hs::Metrics metrics;
+  if (!metrics_address.empty()) {
+    if (absl::Status s = metrics.Expose(metrics_address); !s.ok()) {
+      std::cerr << "haptic-server: " << s.message() << "\n";
+      return 1;
+    }
+  }
+  absl::StatusOr<std::unique_ptr<hs::HapticServer>> server =
+      hs::HapticServer::Start(options, metrics);
+  if (!server.ok()) {
+    std::cerr << "haptic-server: " << server.status().message() << "\n";
+    return 1;
+  }
+  for (const std::string& file : scene_files) {
+    absl::StatusOr<haptics::v1::SceneSpec> spec = hs::ReadSceneFile(file);
+    absl::StatusOr<hs::RunnerInfo> info =
+        spec.ok() ? (*server)->registry().Create(*spec,
+                                                 std::filesystem::path(file).parent_path().string())
+                  : absl::StatusOr<hs::RunnerInfo>(spec.status());
+    if (!info.ok()) {
+      std::cerr << "haptic-server: " << file << ": " << info.status().message() << "\n";
+      return 1;
+    }
+    std::cerr << "haptic-server: scene '" << info->spec.name() << "' from " << file << "\n";
+  }
+  std::cerr << "haptic-server: listening on port " << (*server)->port() << std::endl;
+
+  int signal = 0;
+  sigwait(&signals, &signal);
+  std::cerr << "haptic-server: " << (signal == SIGTERM ? "SIGTERM" : "SIGINT")
+            << ", shutting down\n";
+  (*server)->Shutdown();
+  return 0;
+}

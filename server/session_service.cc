@@ -1,0 +1,265 @@
+#include "server/session_service.h"
+
+#include <chrono>
+#include <mutex>
+
+#include "absl/strings/str_cat.h"
+#include "server/frame_outbox.h"
+#include "server/grpc_status.h"
+#include "server/proto_convert.h"
+
+namespace hs {
+namespace {
+
+namespace pb = haptics::v1;
+
+int64_t UnixNanoseconds() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// The frame-writing half shared by both stream kinds: `Base` is a
+// ServerBidiReactor or ServerWriteReactor. Deletes itself when done.
+template <class Base>
+class FrameStream : public Base, public FrameSink {
+ public:
+  void Offer(std::shared_ptr<const StepSnapshot> snapshot) override {
+    if (outbox_.Push(std::move(snapshot))) registry_.metrics().AddFramesDropped(1);
+    Pump();
+  }
+  void Close(const absl::Status& status) override {
+    outbox_.Close(status);
+    Pump();
+  }
+  void OnWriteDone(bool ok) override {
+    if (ok) {
+      registry_.metrics().AddFramesSent(1);
+      outbox_.WriteDone();
+      Pump();
+      return;
+    }
+    outbox_.WriteDone();
+    End(absl::CancelledError("the client is gone"), /*abort=*/true);
+  }
+  void OnCancel() override { End(absl::CancelledError("cancelled by the client"), true); }
+  void OnDone() override {
+    if (runner_) runner_->Detach(this);
+    if (counted_) {
+      registry_.RemoveClient();
+      registry_.metrics().AddClients(device_, -1);
+    }
+    delete this;
+  }
+
+ protected:
+  FrameStream(SceneRegistry& registry, bool device)
+      : registry_(registry), device_(device), outbox_(device ? 1 : kViewerQueueFrames) {}
+
+  // Ends the stream from this side: lets go of the scene (and the tool) at
+  // once, so that the client seeing the end can claim the tool again; then
+  // sends the frames waiting (none when `abort`) and finishes.
+  void End(const absl::Status& status, bool abort) {
+    std::shared_ptr<SceneRunner> runner;
+    {
+      std::lock_guard lock(runner_mu_);
+      runner = runner_;
+    }
+    if (runner) runner->Detach(this);
+    if (abort) {
+      outbox_.Abort(status);
+    } else {
+      outbox_.Close(status);
+    }
+    Pump();
+  }
+
+  // Ends the stream with `status` (after the frames already waiting).
+  void Fail(const absl::Status& status, const char* method) {
+    registry_.metrics().AddRejected(method, absl::StatusCodeToString(status.code()));
+    End(status, /*abort=*/false);
+  }
+
+  // Counts the client and finds its scene; on error the stream is failed.
+  bool Open(const std::string& scene, const char* method) {
+    if (absl::Status s = registry_.AddClient(); !s.ok()) {
+      Fail(s, method);
+      return false;
+    }
+    counted_ = true;
+    registry_.metrics().AddClients(device_, +1);
+    absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(scene);
+    if (!runner.ok()) {
+      Fail(runner.status(), method);
+      return false;
+    }
+    std::lock_guard lock(runner_mu_);
+    runner_ = *runner;
+    return true;
+  }
+
+  // Runs `start_operation` unless the stream is closed, atomically with
+  // Finish: no operation starts after Finish.
+  template <class F>
+  void UnlessClosed(F start_operation) {
+    std::lock_guard lock(finish_mu_);
+    if (!outbox_.closed()) start_operation();
+  }
+
+  SceneRegistry& registry_;
+  const bool device_;
+  // Set once by Open, on the reading thread; End may read it from others.
+  std::mutex runner_mu_;
+  std::shared_ptr<SceneRunner> runner_;
+  FrameParts parts_;
+  std::string tool_;  // devices only
+
+ private:
+  void Pump() {
+    FrameOutbox::Next next = outbox_.TakeNext();
+    if (next.kind == FrameOutbox::Next::kWrite) {
+      Fill(*next.snapshot, next.dropped);
+      this->StartWrite(&frame_);
+    } else if (next.kind == FrameOutbox::Next::kFinish) {
+      std::lock_guard lock(finish_mu_);
+      this->Finish(ToGrpcStatus(next.status));
+    }
+  }
+
+  void Fill(const StepSnapshot& s, uint64_t dropped) {
+    frame_.Clear();
+    frame_.set_step(s.step);
+    frame_.set_time_s(s.time_s);
+    StepFrameToProto(s.frame, *s.names, parts_, &frame_);
+    for (size_t i = 0; i < s.frame.tools.size() && !tool_.empty(); ++i) {
+      if ((*s.names)[s.frame.tools[i].tool] != tool_) continue;
+      frame_.set_last_pose_sequence(s.applied[i].sequence);
+      frame_.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
+    }
+    pb::ServerTimings* timings = frame_.mutable_timings();
+    timings->set_step_ns(s.step_ns);
+    timings->set_start_lag_ns(s.start_lag_ns);
+    timings->set_sent_unix_ns(UnixNanoseconds());
+    frame_.set_dropped_frames(dropped);
+    frame_.set_missed_steps(s.missed_steps);
+  }
+
+  FrameOutbox outbox_;
+  std::mutex finish_mu_;
+  bool counted_ = false;
+  pb::Frame frame_;  // the write in flight
+};
+
+class InteractReactor
+    : public FrameStream<grpc::ServerBidiReactor<pb::InteractRequest, pb::Frame>> {
+ public:
+  explicit InteractReactor(SceneRegistry& registry) : FrameStream(registry, true) {
+    UnlessClosed([this] { StartRead(&request_); });
+  }
+
+  void OnReadDone(bool ok) override {
+    if (!ok) {
+      // The device stopped sending: the stream ends once it has its frame.
+      End(absl::OkStatus(), /*abort=*/false);
+      return;
+    }
+    if (!(opened_ ? ApplyPose() : OpenSession())) return;
+    UnlessClosed([this] { StartRead(&request_); });
+  }
+
+ private:
+  bool OpenSession() {
+    if (!request_.has_open()) {
+      Fail(absl::InvalidArgumentError("the first message must be 'open'"), "Interact");
+      return false;
+    }
+    const pb::InteractRequest::Open& open = request_.open();
+    if (!Open(open.scene(), "Interact")) return false;
+    absl::StatusOr<EffectSet> needs =
+        EffectsFromProto(open.needs(), EffectSet::All(), "open.needs");
+    if (!needs.ok()) {
+      Fail(needs.status(), "Interact");
+      return false;
+    }
+    // Set before attaching: the scene thread reads it as soon as frames come.
+    tool_ = open.tool();
+    if (absl::Status s = runner_->AttachDevice(this, open.tool(), *needs); !s.ok()) {
+      Fail(s, "Interact");
+      return false;
+    }
+    opened_ = true;
+    return true;
+  }
+
+  bool ApplyPose() {
+    if (!request_.has_pose()) {
+      Fail(absl::InvalidArgumentError("'open' may only come first"), "Interact");
+      return false;
+    }
+    const pb::ToolPose& pose = request_.pose();
+    absl::StatusOr<Isometry3d> X_WD = PoseFromProto(pose.pose(), "pose.pose");
+    if (!X_WD.ok()) {
+      Fail(X_WD.status(), "Interact");
+      return false;
+    }
+    runner_->SetDevicePose(this, *X_WD, AppliedPose{pose.sequence(), pose.device_time_ns()});
+    return true;
+  }
+
+  pb::InteractRequest request_;
+  bool opened_ = false;
+};
+
+// What a viewer's parts need the scene to compute.
+absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequest& request) {
+  if (request.parts().empty()) return std::pair{FrameParts{}, EffectSet::All()};
+  FrameParts parts{false, false, false};
+  EffectSet needs;
+  for (int i = 0; i < request.parts_size(); ++i) {
+    switch (request.parts(i)) {
+      case pb::WATCH_PART_POSES:
+        parts.poses = true;
+        break;
+      case pb::WATCH_PART_CONTACTS:
+        parts.contacts = true;
+        needs = needs | EffectSet{Effect::kContactSet, Effect::kReversingVector};
+        break;
+      case pb::WATCH_PART_FORCES:
+        parts.forces = true;
+        needs = needs | EffectSet{Effect::kForce, Effect::kFriction};
+        break;
+      default:
+        return absl::InvalidArgumentError(absl::StrCat("parts[", i, "]: unknown part"));
+    }
+  }
+  return std::pair{parts, needs};
+}
+
+class WatchReactor : public FrameStream<grpc::ServerWriteReactor<pb::Frame>> {
+ public:
+  WatchReactor(SceneRegistry& registry, const pb::WatchRequest& request)
+      : FrameStream(registry, false) {
+    if (!Open(request.scene(), "Watch")) return;
+    absl::StatusOr<std::pair<FrameParts, EffectSet>> needs = ViewerNeeds(request);
+    if (!needs.ok()) {
+      Fail(needs.status(), "Watch");
+      return;
+    }
+    parts_ = needs->first;
+    if (absl::Status s = runner_->AttachViewer(this, needs->second); !s.ok()) Fail(s, "Watch");
+  }
+};
+
+}  // namespace
+
+grpc::ServerBidiReactor<pb::InteractRequest, pb::Frame>* SessionServiceImpl::Interact(
+    grpc::CallbackServerContext*) {
+  return new InteractReactor(registry_);
+}
+
+grpc::ServerWriteReactor<pb::Frame>* SessionServiceImpl::Watch(grpc::CallbackServerContext*,
+                                                               const pb::WatchRequest* request) {
+  return new WatchReactor(registry_, *request);
+}
+
+}  // namespace hs

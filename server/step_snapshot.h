@@ -1,0 +1,53 @@
+#pragma once
+// What a scene's runner hands to its streams after each step: one shared,
+// read-only copy of the step's frame with the server-side extras.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "common/sim/step_frame.h"
+
+namespace hs {
+
+/// The latest device pose applied to one tool.
+struct AppliedPose {
+  /// The ToolPose's sequence; 0 before the first.
+  uint64_t sequence = 0;
+  /// The ToolPose's device clock, nanoseconds.
+  int64_t device_time_ns = 0;
+};
+
+struct StepSnapshot {
+  /// The runner's step id: 1 for the first step, +1 per step, across scene
+  /// rebuilds (StepFrame::step restarts when the scene is rebuilt).
+  int64_t step = 0;
+  /// Simulated time at the end of the step, seconds.
+  double time_s = 0;
+  /// The simulation's frame; its tool and object ids index `names`.
+  StepFrame frame;
+  /// Object names by ObjectId (shared until the scene is rebuilt).
+  std::shared_ptr<const std::vector<std::string>> names;
+  /// Per entry of frame.tools: the last device pose applied to it.
+  std::vector<AppliedPose> applied;
+  /// Wall time of the step, and how late it started, nanoseconds.
+  int64_t step_ns = 0;
+  int64_t start_lag_ns = 0;
+  /// Steps started late by more than one step, since the runner began.
+  int64_t missed_steps = 0;
+};
+
+/// A stream's end of a scene: receives every step's snapshot.
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;
+  /// Called on the scene thread after each step; must not block.
+  virtual void Offer(std::shared_ptr<const StepSnapshot> snapshot) = 0;
+  /// The scene ends (deleted, server shutting down): send what is pending,
+  /// then end the stream with `status`. Called at most once; no Offer after.
+  virtual void Close(const absl::Status& status) = 0;
+};
+
+}  // namespace hs

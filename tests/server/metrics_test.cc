@@ -1,0 +1,47 @@
+#include "server/metrics.h"
+
+#include <gtest/gtest.h>
+
+namespace hs {
+namespace {
+
+bool Has(const std::string& text, const std::string& line) {
+  return text.find(line) != std::string::npos;
+}
+
+// Each metric adds up what it is told, by label, in the text exposition.
+TEST(MetricsTest, CountsAppearInExposition) {
+  Metrics metrics;
+  StageStatsTable delta{};
+  delta[static_cast<int>(Effect::kCollision)] = {2, 3'000'000};
+  metrics.ObserveStep(0.0004, delta);
+  metrics.ObserveStep(0.003, StageStatsTable{});
+  metrics.AddClients(true, +1);
+  metrics.AddClients(false, +1);
+  metrics.AddClients(false, -1);
+  metrics.AddFramesSent(5);
+  metrics.AddFramesDropped(2);
+  metrics.AddMissedSteps(3);
+  metrics.AddRejected("GetScene", "NOT_FOUND");
+  metrics.AddRejected("GetScene", "NOT_FOUND");
+  const std::string text = metrics.Text();
+  EXPECT_TRUE(Has(text, "hs_step_seconds_count 2"));
+  EXPECT_TRUE(Has(text, "hs_step_seconds_bucket{le=\"0.0005\"} 1"));
+  EXPECT_TRUE(Has(text, "hs_effect_runs_total{effect=\"collision\"} 2"));
+  EXPECT_TRUE(Has(text, "hs_effect_seconds_total{effect=\"collision\"} 0.003"));
+  EXPECT_TRUE(Has(text, "hs_clients{kind=\"device\"} 1"));
+  EXPECT_TRUE(Has(text, "hs_clients{kind=\"viewer\"} 0"));
+  EXPECT_TRUE(Has(text, "hs_frames_sent_total 5"));
+  EXPECT_TRUE(Has(text, "hs_frames_dropped_total 2"));
+  EXPECT_TRUE(Has(text, "hs_missed_steps_total 3"));
+  EXPECT_TRUE(Has(text, "hs_rejected_requests_total{code=\"NOT_FOUND\",method=\"GetScene\"} 2"));
+}
+
+// An address it cannot listen on is an error, not an exception.
+TEST(MetricsTest, BadAddressIsAnError) {
+  Metrics metrics;
+  EXPECT_FALSE(metrics.Expose("256.0.0.1:1").ok());
+}
+
+}  // namespace
+}  // namespace hs

@@ -1,0 +1,93 @@
+#include "server/model_store.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "server/sha256.h"
+
+namespace hs {
+namespace {
+
+namespace pb = haptics::v1;
+
+const char kTetrahedronObj[] =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
+pb::UploadModelChunk Header(const std::string& name, const std::string& data) {
+  pb::UploadModelChunk chunk;
+  chunk.mutable_header()->set_name(name);
+  chunk.mutable_header()->set_format("obj");
+  chunk.mutable_header()->set_size_bytes(static_cast<int64_t>(data.size()));
+  chunk.mutable_header()->set_sha256(Sha256Of(data));
+  return chunk;
+}
+
+pb::UploadModelChunk Data(const std::string& data) {
+  pb::UploadModelChunk chunk;
+  chunk.set_data(data);
+  return chunk;
+}
+
+std::string TempDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("model_store_test_" + name);
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+// Chunks assemble into the file; it is kept under "<name>.<format>" once,
+// and a second upload of that id is ALREADY_EXISTS.
+TEST(ModelStoreTest, AssemblesVerifiesAndKeeps) {
+  const std::string data = kTetrahedronObj;
+  ModelUpload upload(1 << 20);
+  ASSERT_TRUE(upload.Add(Header("tet", data)).ok());
+  ASSERT_TRUE(upload.Add(Data(data.substr(0, 10))).ok());
+  ASSERT_TRUE(upload.Add(Data(data.substr(10))).ok());
+  ModelStore store(TempDir("keeps"), 4);
+  absl::StatusOr<StoredModel> stored = store.Store(upload);
+  ASSERT_TRUE(stored.ok()) << stored.status();
+  EXPECT_EQ(stored->model_id, "tet.obj");
+  EXPECT_EQ(stored->triangles, 4);
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(store.dir()) / "tet.obj"));
+  EXPECT_EQ(store.Store(upload).status().code(), absl::StatusCode::kAlreadyExists);
+  std::filesystem::remove_all(store.dir());
+}
+
+// Out-of-order, oversized, short, corrupted and unreadable uploads are
+// refused and leave nothing in the store.
+TEST(ModelStoreTest, RefusesBadUploads) {
+  const std::string data = kTetrahedronObj;
+  EXPECT_EQ(ModelUpload(1 << 20).Add(Data(data)).code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(ModelUpload(8).Add(Header("tet", data)).code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_EQ(ModelUpload(1 << 20).Add(Header("a/b", data)).code(),
+            absl::StatusCode::kInvalidArgument);
+
+  ModelUpload too_much(1 << 20);
+  ASSERT_TRUE(too_much.Add(Header("tet", data)).ok());
+  EXPECT_EQ(too_much.Add(Data(data + "x")).code(), absl::StatusCode::kInvalidArgument);
+
+  ModelUpload short_upload(1 << 20);
+  ASSERT_TRUE(short_upload.Add(Header("tet", data)).ok());
+  ASSERT_TRUE(short_upload.Add(Data(data.substr(1))).ok());
+  EXPECT_EQ(short_upload.Verify().code(), absl::StatusCode::kInvalidArgument);
+
+  std::string corrupted = data;
+  corrupted[0] = 'x';
+  ModelUpload wrong_sum(1 << 20);
+  pb::UploadModelChunk header = Header("tet", data);
+  ASSERT_TRUE(wrong_sum.Add(header).ok());
+  ASSERT_TRUE(wrong_sum.Add(Data(corrupted)).ok());
+  EXPECT_EQ(wrong_sum.Verify().code(), absl::StatusCode::kInvalidArgument);
+
+  const std::string garbage = "solid nothing\nendsolid\n";
+  ModelUpload unreadable(1 << 20);
+  ASSERT_TRUE(unreadable.Add(Header("empty", garbage)).ok());
+  ASSERT_TRUE(unreadable.Add(Data(garbage)).ok());
+  ModelStore store(TempDir("refuses"), 4);
+  EXPECT_EQ(store.Store(unreadable).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_TRUE(!std::filesystem::exists(store.dir()) || std::filesystem::is_empty(store.dir()));
+  std::filesystem::remove_all(store.dir());
+}
+
+}  // namespace
+}  // namespace hs

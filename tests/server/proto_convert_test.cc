@@ -1,0 +1,58 @@
+#include "server/proto_convert.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace hs {
+namespace {
+
+namespace pb = haptics::v1;
+
+// A pose survives Isometry3d -> proto -> Isometry3d (to rounding), and the
+// all-zero quaternion means no rotation.
+TEST(ProtoConvertTest, PoseRoundTrip) {
+  Isometry3d X = Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  X.translation() = Vector3d(0.1, -0.2, 0.3);
+  pb::Pose pose;
+  PoseToProto(X, &pose);
+  absl::StatusOr<Isometry3d> back = PoseFromProto(pose, "pose");
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_TRUE(back->isApprox(X, 1e-12));  // one quaternion round trip
+
+  pb::Pose zero;
+  absl::StatusOr<Isometry3d> identity = PoseFromProto(zero, "pose");
+  ASSERT_TRUE(identity.ok());
+  EXPECT_TRUE(identity->isApprox(Isometry3d::Identity(), 0.0));
+}
+
+// Non-finite numbers, huge coordinates and non-unit quaternions are
+// INVALID_ARGUMENT naming the field.
+TEST(ProtoConvertTest, RejectsBadNumbers) {
+  pb::Pose pose;
+  pose.mutable_position_m()->set_x(std::nan(""));
+  EXPECT_EQ(PoseFromProto(pose, "p").status().code(), absl::StatusCode::kInvalidArgument);
+  pose.mutable_position_m()->set_x(1e300);
+  EXPECT_EQ(PoseFromProto(pose, "p").status().code(), absl::StatusCode::kInvalidArgument);
+  pose.mutable_position_m()->set_x(0);
+  pose.mutable_orientation()->set_w(0.5);
+  const absl::Status s = PoseFromProto(pose, "p").status();
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("p.orientation"), std::string::npos);
+}
+
+// Effects map one to one, in order; unspecified and unknown values are
+// rejected, and an empty list takes the default.
+TEST(ProtoConvertTest, Effects) {
+  google::protobuf::RepeatedField<int> effects;
+  EXPECT_EQ(*EffectsFromProto(effects, EffectSet::All(), "e"), EffectSet::All());
+  effects.Add(pb::EFFECT_FORCE);
+  EXPECT_EQ(*EffectsFromProto(effects, EffectSet::All(), "e"), EffectSet{Effect::kForce});
+  EXPECT_EQ(EffectToProto(Effect::kForce), pb::EFFECT_FORCE);
+  effects.Add(0);
+  EXPECT_FALSE(EffectsFromProto(effects, EffectSet::All(), "e").ok());
+}
+
+}  // namespace
+}  // namespace hs

@@ -1,0 +1,122 @@
+#include "server/scene_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <mutex>
+
+#include "tests/server/test_server.h"
+
+namespace hs {
+namespace {
+
+// Keeps what the runner hands over, for the test thread to wait on.
+class RecordingSink : public FrameSink {
+ public:
+  void Offer(std::shared_ptr<const StepSnapshot> snapshot) override {
+    std::lock_guard lock(mu_);
+    last_ = std::move(snapshot);
+    ++offers_;
+    cv_.notify_all();
+  }
+  void Close(const absl::Status& status) override {
+    std::lock_guard lock(mu_);
+    closed_ = status;
+    ++closes_;
+    cv_.notify_all();
+  }
+  // The latest snapshot once `n` or more have been offered in all.
+  std::shared_ptr<const StepSnapshot> WaitForOffers(int n) {
+    std::unique_lock lock(mu_);
+    cv_.wait(lock, [&] { return offers_ >= n; });
+    return last_;
+  }
+  int offers() {
+    std::lock_guard lock(mu_);
+    return offers_;
+  }
+  int closes() {
+    std::lock_guard lock(mu_);
+    return closes_;
+  }
+  absl::Status closed() {
+    std::lock_guard lock(mu_);
+    return closed_;
+  }
+
+ private:
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::shared_ptr<const StepSnapshot> last_;
+  int offers_ = 0;
+  int closes_ = 0;
+  absl::Status closed_;
+};
+
+std::unique_ptr<SceneRunner> Runner(Metrics& metrics) {
+  const haptics::v1::SceneSpec spec = testing::SmallScene("r", /*second_tool=*/true);
+  absl::StatusOr<LoadedScene> loaded = BuildScene(spec, "");
+  EXPECT_TRUE(loaded.ok());
+  return std::make_unique<SceneRunner>(spec, std::move(loaded).value(), metrics);
+}
+
+// A device's pose is applied at the next step and stamped with its
+// sequence; a second device on the same tool is FAILED_PRECONDITION, an
+// unknown tool NOT_FOUND.
+TEST(SceneRunnerTest, PosesAppliedAndToolsHeldOnce) {
+  Metrics metrics;
+  auto runner = Runner(metrics);
+  RecordingSink device, other;
+  ASSERT_TRUE(runner->AttachDevice(&device, "probe", EffectSet::All()).ok());
+  EXPECT_EQ(runner->AttachDevice(&other, "probe", EffectSet()).code(),
+            absl::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(runner->AttachDevice(&other, "table", EffectSet()).code(), absl::StatusCode::kNotFound);
+  Isometry3d X = Isometry3d::Identity();
+  X.translation() = Vector3d(0, 0, 0.0195);
+  runner->SetDevicePose(&device, X, AppliedPose{7, 123});
+  std::shared_ptr<const StepSnapshot> s;
+  for (int n = 1; n < 1000; ++n) {
+    s = device.WaitForOffers(n);
+    if (!s->applied.empty() && s->applied[0].sequence == 7) break;
+  }
+  ASSERT_EQ(s->frame.tools.size(), 2u);
+  EXPECT_EQ(s->applied[0].device_time_ns, 123);
+  EXPECT_TRUE(s->frame.tools[0].X_WD.isApprox(X, 0.0));
+  EXPECT_EQ(s->frame.tools[0].contacts.size(), 1u);  // the probe presses on the table
+  runner->Detach(&device);
+  EXPECT_EQ(runner->Info().devices, 0);
+}
+
+// Replacing the scene keeps step ids going and refuses (changing nothing)
+// a scene without a held tool; Stop sends a last frame and closes every
+// sink once with the given status.
+TEST(SceneRunnerTest, ReplaceAndStop) {
+  Metrics metrics;
+  auto runner = Runner(metrics);
+  RecordingSink device;
+  ASSERT_TRUE(runner->AttachDevice(&device, "stylus", EffectSet::All()).ok());
+  const int64_t before = device.WaitForOffers(3)->step;
+
+  haptics::v1::SceneSpec without_stylus = testing::SmallScene("r");
+  absl::StatusOr<LoadedScene> loaded = BuildScene(without_stylus, "");
+  ASSERT_TRUE(loaded.ok());
+  EXPECT_EQ(runner->Replace(without_stylus, std::move(loaded).value()).code(),
+            absl::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(runner->Info().revision, 0);
+
+  haptics::v1::SceneSpec same = testing::SmallScene("r", true);
+  loaded = BuildScene(same, "");
+  ASSERT_TRUE(loaded.ok());
+  ASSERT_TRUE(runner->Replace(same, std::move(loaded).value()).ok());
+  EXPECT_EQ(runner->Info().revision, 1);
+  EXPECT_GT(device.WaitForOffers(device.offers() + 1)->step, before);
+
+  runner->Stop(absl::UnavailableError("bye"));
+  EXPECT_EQ(device.closes(), 1);
+  EXPECT_EQ(device.closed().code(), absl::StatusCode::kUnavailable);
+  RecordingSink late;
+  EXPECT_EQ(runner->AttachViewer(&late, EffectSet()).code(), absl::StatusCode::kUnavailable);
+}
+
+}  // namespace
+}  // namespace hs

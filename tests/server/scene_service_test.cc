@@ -1,0 +1,394 @@
+#include "server/scene_service.h"
+
+#include <google/protobuf/util/message_differencer.h>
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "server/sha256.h"
+#include "tests/server/test_server.h"
+
+namespace hs::testing {
+namespace {
+
+using google::protobuf::util::MessageDifferencer;
+
+// An OBJ cube, 2 cm on a side.
+const char kCubeObj[] =
+    "v 0 0 0\nv 0.02 0 0\nv 0.02 0.02 0\nv 0 0.02 0\n"
+    "v 0 0 0.02\nv 0.02 0 0.02\nv 0.02 0.02 0.02\nv 0 0.02 0.02\n"
+    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+    "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
+// Uploads `data` in chunks of `chunk_bytes`, announcing `sha256`.
+grpc::Status Upload(TestServer& server, const std::string& name, const std::string& format,
+                    const std::string& data, const std::string& sha256, size_t chunk_bytes,
+                    pb::UploadModelResponse* response) {
+  auto context = ContextWithin(30);
+  auto writer = server.scenes().UploadModel(context.get(), response);
+  for (size_t offset = 0; offset == 0 || offset < data.size(); offset += chunk_bytes) {
+    pb::UploadModelChunk chunk;
+    if (offset == 0) {
+      chunk.mutable_header()->set_name(name);
+      chunk.mutable_header()->set_format(format);
+      chunk.mutable_header()->set_size_bytes(static_cast<int64_t>(data.size()));
+      chunk.mutable_header()->set_sha256(sha256);
+    }
+    chunk.set_data(data.substr(offset, chunk_bytes));
+    if (!writer->Write(chunk)) break;
+  }
+  writer->WritesDone();
+  return writer->Finish();
+}
+
+pb::SceneObject UploadedObject(const std::string& name, const std::string& model_id) {
+  pb::SceneObject o;
+  o.set_name(name);
+  o.set_kind(pb::OBJECT_KIND_FIXED);
+  o.mutable_model()->set_uploaded_model_id(model_id);
+  *o.mutable_pose() = PoseAt(0.3, 0, 0);
+  return o;
+}
+
+// Scenes are created, listed, read, changed and deleted through the API;
+// a model bigger than one 4 MiB message uploads in chunks and becomes an
+// object; each accepted change raises the revision.
+TEST(SceneServiceTest, LifecycleAndLargeUpload) {
+  TestServer server;
+  server.Create(SmallScene("a"));
+  server.Create(SmallScene("b"));
+  pb::ListScenesResponse list;
+  ASSERT_TRUE(server.scenes().ListScenes(ContextWithin(10).get(), {}, &list).ok());
+  ASSERT_EQ(list.scenes_size(), 2);
+  EXPECT_EQ(list.scenes(0).spec().name(), "a");
+
+  // OBJ comments pad the file past 4 MiB: the transport is what is tested.
+  std::string obj = kCubeObj;
+  while (obj.size() < (5u << 20)) obj += "# padding padding padding padding padding padding\n";
+  pb::UploadModelResponse uploaded;
+  const grpc::Status upload = Upload(server, "cube", "obj", obj, Sha256Of(obj), 1 << 20, &uploaded);
+  ASSERT_TRUE(upload.ok()) << upload.error_message();
+  EXPECT_EQ(uploaded.model_id(), "cube.obj");
+  EXPECT_EQ(uploaded.triangles(), 12);
+
+  const int64_t triangles = server.Get("a").triangles();
+  pb::AddObjectRequest add;
+  add.set_scene("a");
+  *add.mutable_object() = UploadedObject("block", "cube.obj");
+  pb::SceneInfo info;
+  ASSERT_TRUE(server.scenes().AddObject(ContextWithin(10).get(), add, &info).ok());
+  EXPECT_EQ(info.triangles(), triangles + 12);
+  EXPECT_EQ(info.revision(), 1);
+
+  pb::UpdateObjectRequest update;
+  update.set_scene("a");
+  update.set_object("block");
+  *update.mutable_pose() = PoseAt(0.4, 0, 0);
+  update.set_set_materials(true);
+  update.add_materials()->mutable_material()->set_stiffness_n_per_m(500);
+  pb::VertexMove* move = update.add_vertex_moves();
+  move->set_vertex_id(0);
+  move->mutable_position_m()->set_z(-0.001);
+  ASSERT_TRUE(server.scenes().UpdateObject(ContextWithin(10).get(), update, &info).ok());
+  EXPECT_EQ(info.spec().objects(2).pose().position_m().x(), 0.4);
+  EXPECT_EQ(info.spec().objects(2).vertex_moves_size(), 1);
+  EXPECT_EQ(info.spec().objects(2).materials(0).material().stiffness_n_per_m(), 500);
+
+  pb::SetEffectsRequest effects;
+  effects.set_scene("a");
+  effects.add_effects(pb::EFFECT_COLLISION);
+  ASSERT_TRUE(server.scenes().SetEffects(ContextWithin(10).get(), effects, &info).ok());
+  EXPECT_EQ(info.spec().effects_size(), 1);
+
+  pb::RemoveObjectRequest remove;
+  remove.set_scene("a");
+  remove.set_object("block");
+  ASSERT_TRUE(server.scenes().RemoveObject(ContextWithin(10).get(), remove, &info).ok());
+  EXPECT_EQ(info.spec().objects_size(), 2);
+  EXPECT_EQ(info.revision(), 4);
+
+  pb::DeleteSceneRequest del;
+  del.set_scene("b");
+  pb::DeleteSceneResponse deleted;
+  ASSERT_TRUE(server.scenes().DeleteScene(ContextWithin(10).get(), del, &deleted).ok());
+  pb::GetSceneRequest get;
+  get.set_scene("b");
+  EXPECT_EQ(server.scenes().GetScene(ContextWithin(10).get(), get, &info).error_code(),
+            grpc::StatusCode::NOT_FOUND);
+}
+
+// Every SceneService RPC given bad input answers with its specific code,
+// and the scene reads back exactly as before (spec and revision).
+TEST(SceneServiceTest, BadInputGetsSpecificCodeAndChangesNothing) {
+  ServerLimits limits;
+  limits.max_scenes = 2;
+  limits.max_triangles_per_scene = 5000;
+  TestServer server(limits);
+  server.Create(SmallScene("s"));
+  const pb::SceneInfo before = server.Get("s");
+  const double nan = std::nan("");
+  pb::SceneInfo info;
+  using Call = std::function<grpc::Status()>;
+  auto add = [&](const pb::SceneObject& object, const std::string& scene = "s") -> Call {
+    return [&server, object, scene] {
+      pb::AddObjectRequest request;
+      request.set_scene(scene);
+      *request.mutable_object() = object;
+      pb::SceneInfo out;
+      return server.scenes().AddObject(ContextWithin(10).get(), request, &out);
+    };
+  };
+  auto update = [&](const pb::UpdateObjectRequest& request) -> Call {
+    return [&server, request] {
+      pb::SceneInfo out;
+      return server.scenes().UpdateObject(ContextWithin(10).get(), request, &out);
+    };
+  };
+  auto create = [&](const pb::SceneSpec& spec) -> Call {
+    return [&server, spec] {
+      pb::CreateSceneRequest request;
+      *request.mutable_spec() = spec;
+      pb::SceneInfo out;
+      return server.scenes().CreateScene(ContextWithin(10).get(), request, &out);
+    };
+  };
+  auto upload = [&](const std::string& name, const std::string& data, const std::string& sha) {
+    return [&server, name, data, sha] {
+      pb::UploadModelResponse out;
+      return Upload(server, name, "obj", data, sha, 64, &out);
+    };
+  };
+
+  pb::SceneObject nan_pose = UploadedObject("x", "none.obj");
+  nan_pose.mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m()->set_x(0.1);
+  *nan_pose.mutable_pose() = PoseAt(nan, 0, 0);
+  pb::SceneObject bad_box = nan_pose;
+  *bad_box.mutable_pose() = PoseAt(0, 0, 0);
+  bad_box.mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m()->set_y(-1);
+  pb::SceneObject huge_box = bad_box;
+  huge_box.mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m()->set_y(1e308);
+  huge_box.mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m()->set_z(1e308);
+  pb::SceneObject file_model = bad_box;
+  file_model.mutable_model()->set_path("/etc/passwd");
+  pb::SceneObject sphere = bad_box;
+  sphere.mutable_model()->mutable_procedural()->mutable_sphere()->set_radius_m(0.1);
+  sphere.mutable_model()->mutable_procedural()->mutable_sphere()->set_subdivisions(5);
+  pb::SceneObject taken = bad_box;
+  taken.set_name("table");
+  taken.mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m()->set_y(0.1);
+  taken.mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m()->set_z(0.1);
+
+  pb::UpdateObjectRequest unknown_object;
+  unknown_object.set_scene("s");
+  unknown_object.set_object("ghost");
+  pb::UpdateObjectRequest bad_quaternion;
+  bad_quaternion.set_scene("s");
+  bad_quaternion.set_object("table");
+  *bad_quaternion.mutable_pose() = PoseAt(0, 0, 0);
+  bad_quaternion.mutable_pose()->mutable_orientation()->set_w(0.9);
+  pb::UpdateObjectRequest bad_material = bad_quaternion;
+  bad_material.clear_pose();
+  bad_material.set_set_materials(true);
+  bad_material.add_materials()->mutable_material()->set_stiffness_n_per_m(nan);
+  pb::UpdateObjectRequest bad_vertex = bad_quaternion;
+  bad_vertex.clear_pose();
+  bad_vertex.add_vertex_moves()->set_vertex_id(100000);
+  pb::UpdateObjectRequest inf_vertex = bad_vertex;
+  inf_vertex.mutable_vertex_moves(0)->set_vertex_id(0);
+  inf_vertex.mutable_vertex_moves(0)->mutable_position_m()->set_x(INFINITY);
+
+  pb::SceneSpec nan_scene = SmallScene("t");
+  nan_scene.set_step_s(nan);
+  pb::SceneSpec too_fast = SmallScene("t");
+  too_fast.set_step_s(1e-7);
+  pb::SceneSpec too_big = SmallScene("t");
+  *too_big.add_objects() = sphere;
+
+  const std::string cube = kCubeObj;
+  const std::string garbage = "this is not a mesh\n";
+  const std::vector<std::pair<grpc::StatusCode, Call>> cases = {
+      {grpc::StatusCode::INVALID_ARGUMENT, create(nan_scene)},
+      {grpc::StatusCode::INVALID_ARGUMENT, create(too_fast)},
+      {grpc::StatusCode::ALREADY_EXISTS, create(SmallScene("s"))},
+      {grpc::StatusCode::PERMISSION_DENIED,
+       [&, s = SmallScene("t")]() mutable {
+         *s.add_objects() = file_model;
+         return create(s)();
+       }},
+      {grpc::StatusCode::RESOURCE_EXHAUSTED, create(too_big)},
+      {grpc::StatusCode::NOT_FOUND,
+       [&] {
+         pb::GetSceneRequest r;
+         r.set_scene("ghost");
+         return server.scenes().GetScene(ContextWithin(10).get(), r, &info);
+       }},
+      {grpc::StatusCode::NOT_FOUND,
+       [&] {
+         pb::DeleteSceneRequest r;
+         r.set_scene("ghost");
+         pb::DeleteSceneResponse out;
+         return server.scenes().DeleteScene(ContextWithin(10).get(), r, &out);
+       }},
+      {grpc::StatusCode::NOT_FOUND, add(bad_box, "ghost")},
+      {grpc::StatusCode::INVALID_ARGUMENT, add(nan_pose)},
+      {grpc::StatusCode::INVALID_ARGUMENT, add(bad_box)},
+      {grpc::StatusCode::INVALID_ARGUMENT, add(huge_box)},
+      {grpc::StatusCode::ALREADY_EXISTS, add(taken)},
+      {grpc::StatusCode::PERMISSION_DENIED, add(file_model)},
+      {grpc::StatusCode::NOT_FOUND, add(UploadedObject("y", "none.obj"))},
+      {grpc::StatusCode::RESOURCE_EXHAUSTED, add(sphere)},
+      {grpc::StatusCode::NOT_FOUND, update(unknown_object)},
+      {grpc::StatusCode::INVALID_ARGUMENT, update(bad_quaternion)},
+      {grpc::StatusCode::INVALID_ARGUMENT, update(bad_material)},
+      {grpc::StatusCode::INVALID_ARGUMENT, update(bad_vertex)},
+      {grpc::StatusCode::INVALID_ARGUMENT, update(inf_vertex)},
+      {grpc::StatusCode::NOT_FOUND,
+       [&] {
+         pb::RemoveObjectRequest r;
+         r.set_scene("s");
+         r.set_object("ghost");
+         return server.scenes().RemoveObject(ContextWithin(10).get(), r, &info);
+       }},
+      {grpc::StatusCode::INVALID_ARGUMENT,
+       [&] {
+         pb::SetEffectsRequest r;
+         r.set_scene("s");
+         r.add_effects(static_cast<pb::Effect>(99));
+         return server.scenes().SetEffects(ContextWithin(10).get(), r, &info);
+       }},
+      {grpc::StatusCode::INVALID_ARGUMENT, upload("wrongsum", cube, Sha256Of("other"))},
+      {grpc::StatusCode::INVALID_ARGUMENT, upload("garbage", garbage, Sha256Of(garbage))},
+      {grpc::StatusCode::INVALID_ARGUMENT, upload("../escape", cube, Sha256Of(cube))},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(cases[i].second().error_code(), cases[i].first) << "case " << i;
+  }
+  const pb::SceneInfo after = server.Get("s");
+  EXPECT_TRUE(MessageDifferencer::Equals(before.spec(), after.spec()));
+  EXPECT_EQ(before.revision(), after.revision());
+  EXPECT_EQ(before.triangles(), after.triangles());
+  pb::ListScenesResponse list;
+  ASSERT_TRUE(server.scenes().ListScenes(ContextWithin(10).get(), {}, &list).ok());
+  EXPECT_EQ(list.scenes_size(), 1);
+  // Rejections are counted by method and code.
+  EXPECT_NE(server.metrics().Text().find("hs_rejected_requests_total{code=\"NOT_FOUND\",method="
+                                         "\"GetScene\"} 1"),
+            std::string::npos);
+}
+
+// Past the server's limits on scenes and objects per scene, requests are
+// RESOURCE_EXHAUSTED.
+TEST(SceneServiceTest, SceneAndObjectLimits) {
+  ServerLimits limits;
+  limits.max_scenes = 1;
+  limits.max_objects_per_scene = 2;
+  TestServer server(limits);
+  server.Create(SmallScene("only"));
+  pb::CreateSceneRequest create;
+  *create.mutable_spec() = SmallScene("second");
+  pb::SceneInfo info;
+  EXPECT_EQ(server.scenes().CreateScene(ContextWithin(10).get(), create, &info).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+  pb::AddObjectRequest add;
+  add.set_scene("only");
+  *add.mutable_object() = SmallScene("x").objects(1);
+  add.mutable_object()->set_name("third");
+  EXPECT_EQ(server.scenes().AddObject(ContextWithin(10).get(), add, &info).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(server.Get("only").spec().objects_size(), 2);
+}
+
+// A tool held by a device cannot be removed (FAILED_PRECONDITION) and the
+// scene stays as it was.
+TEST(SceneServiceTest, HeldToolCannotBeRemoved) {
+  TestServer server;
+  server.Create(SmallScene("held"));
+  auto context = ContextWithin(30);
+  auto stream = server.sessions().Interact(context.get());
+  pb::InteractRequest open;
+  open.mutable_open()->set_scene("held");
+  open.mutable_open()->set_tool("probe");
+  stream->Write(open);
+  pb::Frame frame;
+  ASSERT_TRUE(stream->Read(&frame));
+  const pb::SceneInfo before = server.Get("held");
+  ASSERT_EQ(before.claimed_tools_size(), 1);
+
+  pb::RemoveObjectRequest remove;
+  remove.set_scene("held");
+  remove.set_object("probe");
+  pb::SceneInfo info;
+  EXPECT_EQ(server.scenes().RemoveObject(ContextWithin(10).get(), remove, &info).error_code(),
+            grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_TRUE(MessageDifferencer::Equals(before.spec(), server.Get("held").spec()));
+  stream->WritesDone();
+  while (stream->Read(&frame)) {
+  }
+  EXPECT_TRUE(stream->Finish().ok());
+}
+
+// A change whose build outlasts the call's deadline is not applied: the
+// caller gets DEADLINE_EXCEEDED and the scene never appears.
+TEST(SceneServiceTest, BuildPastDeadlineChangesNothing) {
+  TestServer server;
+  pb::SceneSpec slow = SmallScene("slow");
+  pb::Procedural::Torus* torus =
+      slow.mutable_objects(0)->mutable_model()->mutable_procedural()->mutable_torus();
+  torus->set_major_radius_m(0.2);
+  torus->set_minor_radius_m(0.05);
+  torus->set_major_segments(200);
+  torus->set_minor_segments(200);
+  pb::CreateSceneRequest request;
+  *request.mutable_spec() = slow;
+  pb::SceneInfo info;
+  EXPECT_EQ(server.scenes().CreateScene(ContextWithin(0.02).get(), request, &info).error_code(),
+            grpc::StatusCode::DEADLINE_EXCEEDED);
+  // Changes run one at a time: once this one is done, so is the slow one.
+  server.Create(SmallScene("after"));
+  pb::ListScenesResponse list;
+  ASSERT_TRUE(server.scenes().ListScenes(ContextWithin(10).get(), {}, &list).ok());
+  ASSERT_EQ(list.scenes_size(), 1);
+  EXPECT_EQ(list.scenes(0).spec().name(), "after");
+}
+
+// Changes while a device streams keep the stream, the step ids (no
+// restart) and the tool where the device put it.
+TEST(SceneServiceTest, ChangesKeepStreamsStepsAndToolPoses) {
+  TestServer server;
+  server.Create(SmallScene("live"));
+  auto context = ContextWithin(30);
+  auto stream = server.sessions().Interact(context.get());
+  pb::InteractRequest request;
+  request.mutable_open()->set_scene("live");
+  request.mutable_open()->set_tool("probe");
+  stream->Write(request);
+  request.mutable_pose()->set_sequence(1);
+  *request.mutable_pose()->mutable_pose() = PoseAt(0.01, 0, 0.04);
+  stream->Write(request);
+  pb::Frame frame;
+  while (stream->Read(&frame) && frame.last_pose_sequence() < 1) {
+  }
+  const int64_t step_before = frame.step();
+
+  pb::AddObjectRequest add;
+  add.set_scene("live");
+  pb::SceneObject* ball = add.mutable_object();
+  ball->set_name("ball");
+  ball->set_kind(pb::OBJECT_KIND_FIXED);
+  ball->mutable_model()->mutable_procedural()->mutable_sphere()->set_radius_m(0.01);
+  *ball->mutable_pose() = PoseAt(0.5, 0, 0);
+  pb::SceneInfo info;
+  ASSERT_TRUE(server.scenes().AddObject(ContextWithin(10).get(), add, &info).ok());
+  for (int n = 0; n < 20; ++n) ASSERT_TRUE(stream->Read(&frame));
+  EXPECT_GT(frame.step(), step_before + 19);
+  ASSERT_EQ(frame.tools_size(), 1);
+  EXPECT_DOUBLE_EQ(frame.tools(0).device_pose().position_m().x(), 0.01);
+  EXPECT_DOUBLE_EQ(frame.tools(0).device_pose().position_m().z(), 0.04);
+  stream->WritesDone();
+  while (stream->Read(&frame)) {
+  }
+  EXPECT_TRUE(stream->Finish().ok());
+}
+
+}  // namespace
+}  // namespace hs::testing

@@ -1,0 +1,108 @@
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include "haptics/v1/scene_service.grpc.pb.h"
+#include "haptics/v1/session_service.grpc.pb.h"
+
+namespace hs {
+namespace {
+
+namespace pb = haptics::v1;
+
+const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
+
+// The built haptic-server, started on a free port with the demo scene.
+class ServerProcess {
+ public:
+  ServerProcess() {
+    int fds[2];
+    EXPECT_EQ(pipe(fds), 0);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+    posix_spawn_file_actions_addclose(&actions, fds[0]);
+    const std::string scene = kScenes + "/probe_on_torus.textproto";
+    const char* argv[] = {HS_HAPTIC_SERVER, "--listen",    "127.0.0.1:0",
+                          "--scene",        scene.c_str(), nullptr};
+    EXPECT_EQ(posix_spawn(&pid_, HS_HAPTIC_SERVER, &actions, nullptr,
+                          const_cast<char* const*>(argv), environ),
+              0);
+    posix_spawn_file_actions_destroy(&actions);
+    close(fds[1]);
+    stderr_ = fdopen(fds[0], "r");
+    // "haptic-server: listening on port N"
+    char line[512];
+    while (port_ == 0 && fgets(line, sizeof line, stderr_) != nullptr) {
+      if (const char* at = strstr(line, "listening on port ")) port_ = atoi(at + 18);
+    }
+  }
+  ~ServerProcess() {
+    if (pid_ > 0 && !waited_) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    if (stderr_ != nullptr) fclose(stderr_);
+  }
+  int port() const { return port_; }
+  // Sends `signal` and returns the exit status (-1 unless it exited).
+  int StopWith(int signal) {
+    kill(pid_, signal);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    waited_ = true;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* stderr_ = nullptr;
+  int port_ = 0;
+  bool waited_ = false;
+};
+
+// The binary serves the scene given with --scene on the port it picked,
+// and on SIGTERM ends an open device stream with UNAVAILABLE after the
+// frames it had and exits 0.
+TEST(ServerMainTest, ServesSceneAndStopsGracefullyOnSigterm) {
+  ServerProcess server;
+  ASSERT_GT(server.port(), 0);
+  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(server.port()),
+                                     grpc::InsecureChannelCredentials());
+  grpc::ClientContext get_context;
+  get_context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  pb::GetSceneRequest get;
+  get.set_scene("probe on torus");
+  pb::SceneInfo info;
+  ASSERT_TRUE(pb::SceneService::NewStub(channel)->GetScene(&get_context, get, &info).ok());
+  EXPECT_EQ(info.spec().objects_size(), 3);
+
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
+  auto stream = pb::SessionService::NewStub(channel)->Interact(&context);
+  pb::InteractRequest open;
+  open.mutable_open()->set_scene("probe on torus");
+  open.mutable_open()->set_tool("probe");
+  ASSERT_TRUE(stream->Write(open));
+  pb::Frame frame;
+  ASSERT_TRUE(stream->Read(&frame));
+
+  std::thread reader([&] {
+    while (stream->Read(&frame)) {
+    }
+  });
+  EXPECT_EQ(server.StopWith(SIGTERM), 0);
+  reader.join();
+  EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
+}
+
+}  // namespace
+}  // namespace hs

@@ -1,0 +1,83 @@
+#include "tests/server/test_server.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+
+namespace hs::testing {
+
+pb::Pose PoseAt(double x, double y, double z) {
+  pb::Pose pose;
+  pose.mutable_position_m()->set_x(x);
+  pose.mutable_position_m()->set_y(y);
+  pose.mutable_position_m()->set_z(z);
+  return pose;
+}
+
+pb::SceneSpec SmallScene(const std::string& name, bool second_tool) {
+  pb::SceneSpec spec;
+  spec.set_name(name);
+  spec.set_step_s(0.001);
+  pb::SceneObject* table = spec.add_objects();
+  table->set_name("table");
+  table->set_kind(pb::OBJECT_KIND_FIXED);
+  pb::Vector3* size = table->mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m();
+  size->set_x(0.2);
+  size->set_y(0.2);
+  size->set_z(0.02);
+  auto add_tool = [&](const std::string& tool_name, double x) {
+    pb::SceneObject* tool = spec.add_objects();
+    tool->set_name(tool_name);
+    tool->set_kind(pb::OBJECT_KIND_TOOL);
+    pb::Vector3* s = tool->mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m();
+    s->set_x(0.02);
+    s->set_y(0.02);
+    s->set_z(0.02);
+    *tool->mutable_pose() = PoseAt(x, 0, 0.05);
+  };
+  add_tool("probe", 0);
+  if (second_tool) add_tool("stylus", 0.05);
+  return spec;
+}
+
+TestServer::TestServer(const ServerLimits& limits) {
+  ServerOptions options;
+  options.listen = "127.0.0.1:0";
+  options.limits = limits;
+  absl::StatusOr<std::unique_ptr<HapticServer>> server = HapticServer::Start(options, metrics_);
+  EXPECT_TRUE(server.ok()) << server.status();
+  server_ = std::move(server).value();
+  channel_ = grpc::CreateChannel(address(), grpc::InsecureChannelCredentials());
+  scenes_ = pb::SceneService::NewStub(channel_);
+  sessions_ = pb::SessionService::NewStub(channel_);
+}
+
+TestServer::~TestServer() { server_->Shutdown(0.5); }
+
+std::string TestServer::address() const { return "127.0.0.1:" + std::to_string(server_->port()); }
+
+void TestServer::Create(const pb::SceneSpec& spec) {
+  pb::CreateSceneRequest request;
+  *request.mutable_spec() = spec;
+  pb::SceneInfo info;
+  const grpc::Status status = scenes_->CreateScene(ContextWithin(10).get(), request, &info);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+}
+
+pb::SceneInfo TestServer::Get(const std::string& scene) {
+  pb::GetSceneRequest request;
+  request.set_scene(scene);
+  pb::SceneInfo info;
+  const grpc::Status status = scenes_->GetScene(ContextWithin(10).get(), request, &info);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return info;
+}
+
+std::unique_ptr<grpc::ClientContext> ContextWithin(double seconds) {
+  auto context = std::make_unique<grpc::ClientContext>();
+  context->set_deadline(std::chrono::system_clock::now() +
+                        std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
+  return context;
+}
+
+}  // namespace hs::testing
