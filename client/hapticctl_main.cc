@@ -7,6 +7,7 @@
 #include "client/exit_codes.h"
 #include "client/health_command.h"
 #include "client/inspect_command.h"
+#include "client/loadtest_command.h"
 #include "client/objects_command.h"
 #include "client/scenes_command.h"
 #include "client/simulate_command.h"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   hs::cli::AddHealthCommand(app, exit_code);
   hs::cli::AddWatchCommand(app, exit_code);
   hs::cli::AddDriveCommand(app, exit_code);
+  hs::cli::AddLoadtestCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
