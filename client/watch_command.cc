@@ -20,6 +20,13 @@ using Clock = std::chrono::steady_clock;
 class SecondSummary {
  public:
   void Add(const pb::Frame& frame) {
+    if (!started_) {
+      // The counters are cumulative since the stream (drops) and the scene
+      // (missed steps) began: the first second counts from its first frame.
+      started_ = true;
+      last_dropped_ = frame.dropped_frames();
+      last_missed_ = frame.missed_steps();
+    }
     if (frames_ == 0) {
       first_step_ = frame.step();
       start_dropped_ = last_dropped_;
@@ -69,6 +76,7 @@ class SecondSummary {
   bool empty() const { return frames_ == 0; }
 
  private:
+  bool started_ = false;
   int64_t frames_ = 0;
   int64_t first_step_ = 0;
   int64_t last_step_ = 0;
