@@ -1,6 +1,5 @@
 #include "client/drive_command.h"
 
-#include <google/protobuf/util/json_util.h>
 #include <grpcpp/grpcpp.h>
 
 #include <atomic>
@@ -8,9 +7,10 @@
 #include <iostream>
 #include <thread>
 
-#include "absl/strings/str_cat.h"
+#include "client/device_path.h"
 #include "client/exit_codes.h"
-#include "client/tool_path.h"
+#include "client/frame_format.h"
+#include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "server/proto_convert.h"
 
@@ -20,71 +20,73 @@ namespace {
 namespace pb = haptics::v1;
 using Clock = std::chrono::steady_clock;
 
-std::ostream& operator<<(std::ostream& out, const pb::Vector3& v) {
-  return out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
-}
-
-void PrintFrame(const pb::Frame& frame, bool json, std::ostream& out) {
-  if (json) {
-    std::string text;
-    google::protobuf::util::JsonPrintOptions options;
-    options.preserve_proto_field_names = true;
-    (void)google::protobuf::util::MessageToJsonString(frame, &text, options);
-    out << text << "\n";
-    return;
+// The tool's pose in the scene's spec, where a built-in motion starts.
+grpc::Status ToolStartPose(const DriveArgs& args, std::shared_ptr<grpc::Channel> channel,
+                           Isometry3d& X_WT) {
+  auto stub = pb::SceneService::NewStub(std::move(channel));
+  pb::GetSceneRequest request;
+  request.set_scene(args.scene);
+  pb::SceneInfo info;
+  grpc::Status status = stub->GetScene(ContextWithin(args.server.timeout_s).get(), request, &info);
+  if (!status.ok()) return status;
+  for (const pb::SceneObject& object : info.spec().objects()) {
+    if (object.name() != args.tool) continue;
+    absl::StatusOr<Isometry3d> pose = PoseFromProto(object.pose(), "pose");
+    if (!pose.ok()) return grpc::Status(grpc::StatusCode::INTERNAL, "the tool's pose is invalid");
+    X_WT = *pose;
+    return grpc::Status::OK;
   }
-  out << "step " << frame.step() << " pose " << frame.last_pose_sequence();
-  for (const pb::ToolState& tool : frame.tools()) {
-    out << "  " << tool.tool() << ": " << tool.contacts_size() << " contact(s)";
-    for (const pb::Contact& c : tool.contacts()) {
-      out << " [" << c.object() << (c.penetrating() ? " penetrating" : " touching") << ", depth "
-          << c.depth_m() << " m, normal " << c.normal_w() << "]";
-    }
-    out << ", force " << tool.force_w_n() << " N";
-  }
-  if (frame.dropped_frames() > 0) out << "  (" << frame.dropped_frames() << " frames dropped)";
-  out << "\n";
+  return grpc::Status(grpc::StatusCode::NOT_FOUND,
+                      "scene '" + args.scene + "' has no object '" + args.tool + "'");
 }
 
 }  // namespace
 
 int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
-  auto fail = [&](const std::string& message) {
-    err << "hapticctl drive: " << message << "\n";
-    return kExitFailure;
-  };
-  absl::StatusOr<std::vector<Isometry3d>> path = ReadToolPath(args.path);
-  if (!path.ok()) return fail(std::string(path.status().message()));
-  if (!(args.rate_hz > 0)) return fail("--rate must be > 0");
+  if (!(args.rate_hz > 0)) return ReportError("drive", "--rate must be > 0", err);
+  std::shared_ptr<grpc::Channel> channel = MakeChannel(args.server.address);
+  std::vector<TimedPose> path;
+  if (!args.motion.empty()) {
+    absl::StatusOr<Motion> motion = ParseMotion(args.motion);
+    if (!motion.ok()) return ReportError("drive", motion.status(), err);
+    Isometry3d start;
+    if (grpc::Status s = ToolStartPose(args, channel, start); !s.ok()) {
+      return ReportRpcError("drive", s, err);
+    }
+    path = MotionPath(*motion, start, args.rate_hz, args.duration_s,
+                      {.depth_m = args.depth_m, .amplitude_m = args.amplitude_m});
+  } else {
+    absl::StatusOr<std::vector<TimedPose>> read = ReadDevicePath(args.path, args.rate_hz);
+    if (!read.ok()) return ReportError("drive", read.status(), err);
+    path = *std::move(read);
+  }
 
-  auto stub = pb::SessionService::NewStub(
-      grpc::CreateChannel(args.server, grpc::InsecureChannelCredentials()));
+  auto stub = pb::SessionService::NewStub(channel);
   grpc::ClientContext context;
-  const auto period = std::chrono::duration<double>(1.0 / args.rate_hz);
-  context.set_deadline(
-      std::chrono::system_clock::now() + std::chrono::seconds(30) +
-      std::chrono::duration_cast<std::chrono::system_clock::duration>(period * path->size()));
+  const double last_t_s = path.empty() ? 0 : path.back().t_s;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30) +
+                       std::chrono::microseconds(static_cast<int64_t>(last_t_s * 1e6)));
   auto stream = stub->Interact(&context);
   pb::InteractRequest open;
   open.mutable_open()->set_scene(args.scene);
   open.mutable_open()->set_tool(args.tool);
   stream->Write(open);
 
-  const uint64_t last = path->size();
+  const uint64_t last = path.size();
   std::atomic<uint64_t> applied{0};
-  // Poses go out at the rate on their own thread; this one reads frames.
+  // Poses go out on their schedule on their own thread; this one reads frames.
   std::thread writer([&] {
     const Clock::time_point start = Clock::now();
     for (uint64_t i = 0; i < last; ++i) {
-      std::this_thread::sleep_until(start +
-                                    std::chrono::duration_cast<Clock::duration>(period * i));
+      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(path[i].t_s)));
       pb::InteractRequest request;
       pb::ToolPose* pose = request.mutable_pose();
       pose->set_sequence(i + 1);
       pose->set_device_time_ns(
           std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
               .count());
-      PoseToProto((*path)[i], pose->mutable_pose());
+      PoseToProto(path[i].X_WD, pose->mutable_pose());
       if (!stream->Write(request)) return;
     }
     // Done once the last pose shows up in a frame (or after a while).
@@ -105,28 +107,43 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   applied.store(last);
   writer.join();
   const grpc::Status status = stream->Finish();
-  if (!status.ok()) {
-    return fail(absl::StrCat(
-        "server: ", absl::StatusCodeToString(static_cast<absl::StatusCode>(status.error_code())),
-        ": ", status.error_message()));
-  }
-  return kExitOk;
+  return status.ok() ? kExitOk : ReportRpcError("drive", status, err);
 }
 
 void AddDriveCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<DriveArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "drive", "Act as an input device: play a tool path into a scene on a server");
-  cmd->add_option("--server", args->server, "haptic-server address, host:port")
-      ->capture_default_str();
+      "drive", "Act as an input device: play a tool path or a motion into a scene on a server");
+  AddServerOptions(*cmd, args->server);
   cmd->add_option("--scene", args->scene, "Scene name")->required();
   cmd->add_option("--tool", args->tool, "Tool object to drive")->required();
-  cmd->add_option("--path", args->path, "Device poses, one 'x,y,z,rx,ry,rz' line each")->required();
+  CLI::Option* path = cmd->add_option(
+      "--path", args->path,
+      "Device poses: CSV 'x,y,z,rx,ry,rz' lines, or *.jsonl {\"t_s\":T,\"pose\":[...]} lines");
+  CLI::Option* motion =
+      cmd->add_option("--motion", args->motion, "A built-in motion from the tool's pose")
+          ->check(CLI::IsMember({"press", "sweep"}));
+  path->excludes(motion);
+  motion->excludes(path);
+  cmd->add_option("--duration", args->duration_s, "Seconds of --motion")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
+  cmd->add_option("--depth", args->depth_m, "How far --motion goes down, metres")
+      ->capture_default_str();
+  cmd->add_option("--amplitude", args->amplitude_m, "How far a sweep goes each side, metres")
+      ->capture_default_str();
   cmd->add_option("--rate", args->rate_hz, "Poses per second")
       ->check(CLI::Range(1e-3, 1e5))
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "One JSON object (haptics.v1.Frame) per line");
-  cmd->callback([args, &exit_code] { exit_code = RunDrive(*args, std::cout, std::cerr); });
+  cmd->callback([args, path, motion, &exit_code] {
+    if (path->count() + motion->count() != 1) {
+      std::cerr << "hapticctl drive: give --path or --motion\n";
+      exit_code = kExitUsage;
+      return;
+    }
+    exit_code = RunDrive(*args, std::cout, std::cerr);
+  });
 }
 
 }  // namespace hs::cli

@@ -1,33 +1,43 @@
 #pragma once
-// `hapticctl drive --server ADDR --scene NAME --tool OBJECT --path FILE.csv
-// [--rate HZ] [--json]`: acts as a haptic input device. Plays a device path
-// into a scene's tool over SessionService.Interact at a fixed rate and
-// prints each frame that applies a new pose: its contacts and force.
+// `hapticctl drive --scene NAME --tool OBJECT (--path FILE | --motion
+// press|sweep [--duration S]) [--rate HZ] [--json]`: acts as a haptic input
+// device. Plays a device path into a scene's tool over
+// SessionService.Interact and prints each frame that applies a new pose:
+// its contacts and force.
 
 #include <ostream>
 #include <string>
 
 #include "CLI/CLI.hpp"
+#include "client/server_call.h"
 
 namespace hs::cli {
 
 struct DriveArgs {
-  /// host:port of haptic-server.
-  std::string server = "127.0.0.1:50051";
+  ServerOptions server;
   std::string scene;
   /// The tool object to drive.
   std::string tool;
-  /// Device path, one "x,y,z,rx,ry,rz" line per pose (see tool_path.h).
+  /// Device path: CSV, one "x,y,z,rx,ry,rz" line per pose sent at --rate,
+  /// or JSON lines with times (*.jsonl; see device_path.h).
   std::string path;
-  /// Poses sent per second.
+  /// Instead of a path: "press" or "sweep" from the tool's pose in the
+  /// scene, for `duration_s` seconds (device_path.h).
+  std::string motion;
+  double duration_s = 2;
+  /// The motion's depth and sweep amplitude, metres.
+  double depth_m = 0.02;
+  double amplitude_m = 0.05;
+  /// Poses sent per second (CSV paths and motions).
   double rate_hz = 1000;
   /// One JSON object (haptics.v1.Frame) per line instead of a table.
   bool json = false;
 };
 
-/// Drives the tool and prints to `out`. kExitOk; kExitFailure with the
-/// gRPC status on `err` when the server rejects the stream or ends it
-/// with an error.
+/// Drives the tool and prints to `out`. kExitOk; kExitFailure for a bad
+/// path file; else the exit status of the gRPC status (server_call.h),
+/// reported on `err`, when the server rejects the stream or ends it with
+/// an error.
 int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err);
 
 /// Adds the `drive` subcommand to `app`; `exit_code` receives its result.

@@ -5,8 +5,14 @@
 #include "client/contact_command.h"
 #include "client/drive_command.h"
 #include "client/exit_codes.h"
+#include "client/health_command.h"
 #include "client/inspect_command.h"
+#include "client/loadtest_command.h"
+#include "client/objects_command.h"
+#include "client/scenes_command.h"
 #include "client/simulate_command.h"
+#include "client/upload_command.h"
+#include "client/watch_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"hapticctl: client of the haptic simulation service"};
@@ -15,7 +21,13 @@ int main(int argc, char** argv) {
   hs::cli::AddInspectCommand(app, exit_code);
   hs::cli::AddContactCommand(app, exit_code);
   hs::cli::AddSimulateCommand(app, exit_code);
+  hs::cli::AddScenesCommand(app, exit_code);
+  hs::cli::AddUploadCommand(app, exit_code);
+  hs::cli::AddObjectsCommand(app, exit_code);
+  hs::cli::AddHealthCommand(app, exit_code);
+  hs::cli::AddWatchCommand(app, exit_code);
   hs::cli::AddDriveCommand(app, exit_code);
+  hs::cli::AddLoadtestCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

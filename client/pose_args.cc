@@ -9,7 +9,6 @@
 #include "absl/strings/str_split.h"
 
 namespace hs::cli {
-namespace {
 
 absl::StatusOr<std::vector<double>> ParseNumbers(std::string_view text, size_t count) {
   const std::vector<absl::string_view> parts =
@@ -30,8 +29,6 @@ absl::StatusOr<std::vector<double>> ParseNumbers(std::string_view text, size_t c
   return numbers;
 }
 
-}  // namespace
-
 absl::StatusOr<Vector3d> ParseVector3(std::string_view text) {
   absl::StatusOr<std::vector<double>> n = ParseNumbers(text, 3);
   if (!n.ok()) return n.status();
@@ -41,11 +38,14 @@ absl::StatusOr<Vector3d> ParseVector3(std::string_view text) {
 absl::StatusOr<Isometry3d> ParsePose(std::string_view text) {
   absl::StatusOr<std::vector<double>> n = ParseNumbers(text, 6);
   if (!n.ok()) return n.status();
-  const Vector3d rotation((*n)[3], (*n)[4], (*n)[5]);
+  return PoseFromNumbers(Vector3d((*n)[0], (*n)[1], (*n)[2]), Vector3d((*n)[3], (*n)[4], (*n)[5]));
+}
+
+Isometry3d PoseFromNumbers(const Vector3d& p_m, const Vector3d& rotation_vector) {
   Isometry3d X = Isometry3d::Identity();
-  X.translation() = Vector3d((*n)[0], (*n)[1], (*n)[2]);
-  const double angle = rotation.norm();
-  if (angle > 0) X.linear() = Eigen::AngleAxisd(angle, rotation / angle).toRotationMatrix();
+  X.translation() = p_m;
+  const double angle = rotation_vector.norm();
+  if (angle > 0) X.linear() = Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix();
   return X;
 }
 

@@ -31,5 +31,28 @@ TEST(HapticctlCliTest, ExitStatuses) {
   EXPECT_EQ(RunHapticctl("inspect --help"), kExitOk);
 }
 
+// Every server command has --help (exit 0), rejects a wrong command line
+// with 2, and exits 3 when no server listens.
+TEST(HapticctlCliTest, ServerCommands) {
+  for (const char* command : {"scenes", "scenes list", "scenes create", "scenes show",
+                              "scenes delete", "upload", "objects", "objects add", "objects update",
+                              "objects remove", "health", "watch", "drive", "loadtest"}) {
+    EXPECT_EQ(RunHapticctl(std::string(command) + " --help"), kExitOk) << command;
+  }
+  EXPECT_EQ(RunHapticctl("scenes"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("scenes show"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("objects add s o --kind wobbly --box 1,1,1"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("drive --scene s --tool t"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("drive --scene s --tool t --path p.csv --motion press"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("watch s --parts colours"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("loadtest --clients 65"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("loadtest --duration 61"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("loadtest --server 10.1.2.3:50051"), kExitUsage);
+  const std::string nowhere = " --server 127.0.0.1:1";
+  EXPECT_EQ(RunHapticctl("scenes list" + nowhere), kExitUnavailable);
+  EXPECT_EQ(RunHapticctl("health" + nowhere), kExitUnavailable);
+  EXPECT_EQ(RunHapticctl("watch s --frames 1" + nowhere), kExitUnavailable);
+}
+
 }  // namespace
 }  // namespace hs::cli

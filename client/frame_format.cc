@@ -1,0 +1,34 @@
+#include "client/frame_format.h"
+
+#include "client/server_call.h"
+
+namespace hs::cli {
+namespace {
+
+namespace pb = haptics::v1;
+
+std::ostream& operator<<(std::ostream& out, const pb::Vector3& v) {
+  return out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+}
+
+}  // namespace
+
+void PrintFrame(const pb::Frame& frame, bool json, std::ostream& out) {
+  if (json) {
+    out << ProtoToJsonLine(frame) << "\n";
+    return;
+  }
+  out << "step " << frame.step() << " pose " << frame.last_pose_sequence();
+  for (const pb::ToolState& tool : frame.tools()) {
+    out << "  " << tool.tool() << ": " << tool.contacts_size() << " contact(s)";
+    for (const pb::Contact& c : tool.contacts()) {
+      out << " [" << c.object() << (c.penetrating() ? " penetrating" : " touching") << ", depth "
+          << c.depth_m() << " m, normal " << c.normal_w() << "]";
+    }
+    out << ", force " << tool.force_w_n() << " N";
+  }
+  if (frame.dropped_frames() > 0) out << "  (" << frame.dropped_frames() << " frames dropped)";
+  out << "\n";
+}
+
+}  // namespace hs::cli

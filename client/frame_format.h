@@ -1,0 +1,15 @@
+#pragma once
+// haptics.v1.Frame as hapticctl prints it: one line of text or JSON. Used
+// by `drive` and `watch`.
+
+#include <ostream>
+
+#include "haptics/v1/session_service.pb.h"
+
+namespace hs::cli {
+
+/// One line: the step, the pose it applied, every tool's contacts and
+/// force, dropped frames; with `json`, the Frame as one line of JSON.
+void PrintFrame(const haptics::v1::Frame& frame, bool json, std::ostream& out);
+
+}  // namespace hs::cli

@@ -1,0 +1,590 @@
+#include "client/loadtest.h"
+
+#include <grpcpp/grpcpp.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "absl/cleanup/cleanup.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "client/device_path.h"
+#include "client/echo_server.h"
+#include "client/process_cpu.h"
+#include "haptics/v1/echo_service.grpc.pb.h"
+#include "haptics/v1/scene_service.grpc.pb.h"
+#include "haptics/v1/session_service.grpc.pb.h"
+#include "server/proto_convert.h"
+
+namespace hs::cli {
+namespace {
+
+namespace pb = haptics::v1;
+using Clock = std::chrono::steady_clock;
+
+int64_t NowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
+      .count();
+}
+
+Clock::duration Seconds(double s) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+}
+
+absl::Status FromGrpc(const grpc::Status& status, const std::string& what) {
+  return absl::Status(static_cast<absl::StatusCode>(status.error_code()),
+                      absl::StrCat("server: ", what, ": ", status.error_message()));
+}
+
+double ProcessCpuNow() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// Send times of one stream's messages (sequence 1..count) and the round
+// trips of those answered. One writer thread marks sends, one reader
+// thread marks answers.
+class RoundTrips {
+ public:
+  explicit RoundTrips(size_t count) : sent_ns_(count, 0) { rtt_ms_.reserve(count); }
+
+  void MarkSent(uint64_t sequence) {
+    sent_ns_[sequence - 1] = NowNs();
+    sent_.store(sequence, std::memory_order_release);
+  }
+  // Every sent message up to `sequence` not answered before is answered now.
+  void MarkAnswered(uint64_t sequence) {
+    const int64_t now = NowNs();
+    sequence = std::min<uint64_t>(sequence, sent_.load(std::memory_order_acquire));
+    uint64_t answered = answered_.load(std::memory_order_relaxed);
+    for (; answered < sequence; ++answered) {
+      rtt_ms_.push_back(1e-6 * static_cast<double>(now - sent_ns_[answered]));
+    }
+    answered_.store(answered, std::memory_order_release);
+  }
+  uint64_t sent() const { return sent_.load(std::memory_order_acquire); }
+  uint64_t answered() const { return answered_.load(std::memory_order_acquire); }
+  size_t count() const { return sent_ns_.size(); }
+  std::vector<double>& rtt_ms() { return rtt_ms_; }
+
+ private:
+  std::vector<int64_t> sent_ns_;
+  std::atomic<uint64_t> sent_{0};
+  std::atomic<uint64_t> answered_{0};
+  std::vector<double> rtt_ms_;
+};
+
+// Sends messages 1..count at start + i / rate_hz through `write(sequence)`
+// (false: the stream ended), then waits up to 2 s for their answers and
+// closes the sending side with `done()`.
+template <typename Write, typename Done>
+void SendPaced(RoundTrips& trips, double rate_hz, Clock::time_point start, Write write, Done done) {
+  for (uint64_t i = 0; i < trips.count(); ++i) {
+    std::this_thread::sleep_until(start + Seconds(static_cast<double>(i) / rate_hz));
+    trips.MarkSent(i + 1);
+    if (!write(i + 1)) return;
+  }
+  const Clock::time_point give_up = Clock::now() + std::chrono::seconds(2);
+  while (trips.answered() < trips.count() && Clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  done();
+}
+
+// What a stream's frames say, counted from the first frame of the window.
+class FrameCounts {
+ public:
+  void Add(const pb::Frame& frame) {
+    if (frames_ == 0) {
+      first_step_ = frame.step();
+      first_dropped_ = static_cast<int64_t>(frame.dropped_frames());
+      first_missed_ = frame.missed_steps();
+    }
+    ++frames_;
+    last_step_ = frame.step();
+    last_dropped_ = static_cast<int64_t>(frame.dropped_frames());
+    last_missed_ = frame.missed_steps();
+  }
+  void Fill(StreamReport& report, double window_s) const {
+    report.frames = frames_;
+    report.first_step = first_step_;
+    report.last_step = last_step_;
+    report.dropped_frames = last_dropped_ - first_dropped_;
+    report.missed_steps = last_missed_ - first_missed_;
+    report.frames_per_s = static_cast<double>(frames_) / window_s;
+  }
+  int64_t frames() const { return frames_; }
+
+ private:
+  int64_t frames_ = 0;
+  int64_t first_step_ = 0, last_step_ = 0;
+  int64_t first_dropped_ = 0, last_dropped_ = 0;
+  int64_t first_missed_ = 0, last_missed_ = 0;
+};
+
+// One device: an Interact stream driving one tool with a press motion.
+class DeviceStream {
+ public:
+  DeviceStream(pb::SessionService::Stub& stub, const std::string& scene, const std::string& tool,
+               std::vector<TimedPose> path, double rate_hz)
+      : path_(std::move(path)), rate_hz_(rate_hz), trips_(path_.size()) {
+    stream_ = stub.Interact(&context_);
+    pb::InteractRequest open;
+    open.mutable_open()->set_scene(scene);
+    open.mutable_open()->set_tool(tool);
+    stream_->Write(open);
+  }
+  // A stream left open by an early return is cancelled, not waited for.
+  ~DeviceStream() { context_.TryCancel(); }
+
+  // Waits for the first frame: the device is attached. False when the stream ended.
+  bool Attached() {
+    pb::Frame frame;
+    return stream_->Read(&frame);
+  }
+
+  // Sends the path from `start` and reads frames until the stream ends.
+  void Run(Clock::time_point start, bool keep_step_times) {
+    std::thread writer([&] {
+      SendPaced(
+          trips_, rate_hz_, start,
+          [&](uint64_t sequence) {
+            pb::InteractRequest request;
+            pb::ToolPose* pose = request.mutable_pose();
+            pose->set_sequence(sequence);
+            pose->set_device_time_ns(NowNs());
+            PoseToProto(path_[sequence - 1].X_WD, pose->mutable_pose());
+            request_bytes_.store(static_cast<int64_t>(request.ByteSizeLong()));
+            return stream_->Write(request);
+          },
+          [&] { stream_->WritesDone(); });
+    });
+    pb::Frame frame;
+    while (stream_->Read(&frame)) {
+      if (Clock::now() < start) continue;
+      counts_.Add(frame);
+      trips_.MarkAnswered(frame.last_pose_sequence());
+      if (keep_step_times)
+        step_ms_.push_back(1e-6 * static_cast<double>(frame.timings().step_ns()));
+      if (counts_.frames() % 64 == 1) {
+        frame_bytes_ += static_cast<int64_t>(frame.ByteSizeLong());
+        ++frame_samples_;
+      }
+    }
+    writer.join();
+    status_ = stream_->Finish();
+  }
+
+  StreamReport Report(double window_s) {
+    StreamReport report;
+    counts_.Fill(report, window_s);
+    report.sent = static_cast<int64_t>(trips_.sent());
+    report.answered = static_cast<int64_t>(trips_.answered());
+    report.rtt_ms = Summarize(trips_.rtt_ms());
+    return report;
+  }
+
+  // The status of a stream that ended before Run.
+  grpc::Status Finish() { return stream_->Finish(); }
+  const grpc::Status& status() const { return status_; }
+  RoundTrips& trips() { return trips_; }
+  std::vector<double>& step_ms() { return step_ms_; }
+  int64_t mean_frame_bytes() const { return frame_samples_ ? frame_bytes_ / frame_samples_ : 0; }
+  int64_t request_bytes() const { return request_bytes_.load(); }
+
+ private:
+  std::vector<TimedPose> path_;
+  double rate_hz_;
+  RoundTrips trips_;
+  grpc::ClientContext context_;
+  std::unique_ptr<grpc::ClientReaderWriter<pb::InteractRequest, pb::Frame>> stream_;
+  FrameCounts counts_;
+  std::vector<double> step_ms_;
+  int64_t frame_bytes_ = 0, frame_samples_ = 0;
+  std::atomic<int64_t> request_bytes_{0};
+  grpc::Status status_;
+};
+
+// One echo stream at the devices' rate with their message sizes.
+class EchoStream {
+ public:
+  EchoStream(pb::EchoService::Stub& stub, size_t count, double rate_hz, int64_t request_bytes,
+             int64_t reply_bytes)
+      : rate_hz_(rate_hz), trips_(count) {
+    stream_ = stub.Echo(&context_);
+    request_.set_reply_bytes(static_cast<uint32_t>(reply_bytes));
+    request_.set_sent_ns(1);
+    request_.set_sequence(1);
+    // Pad so the message is as large as a device's pose message.
+    const int64_t bare = static_cast<int64_t>(request_.ByteSizeLong()) + 2;
+    request_.set_payload(std::string(std::max<int64_t>(0, request_bytes - bare), 'p'));
+  }
+
+  void Run(Clock::time_point start) {
+    std::thread writer([&] {
+      SendPaced(
+          trips_, rate_hz_, start,
+          [&](uint64_t sequence) {
+            request_.set_sequence(sequence);
+            request_.set_sent_ns(NowNs());
+            return stream_->Write(request_);
+          },
+          [&] { stream_->WritesDone(); });
+    });
+    pb::EchoMessage answer;
+    while (stream_->Read(&answer)) {
+      trips_.MarkAnswered(answer.sequence());
+      ++frames_;
+    }
+    writer.join();
+    status_ = stream_->Finish();
+  }
+
+  StreamReport Report(double window_s) {
+    StreamReport report;
+    report.sent = static_cast<int64_t>(trips_.sent());
+    report.answered = static_cast<int64_t>(trips_.answered());
+    report.frames = frames_;
+    report.frames_per_s = static_cast<double>(frames_) / window_s;
+    report.rtt_ms = Summarize(trips_.rtt_ms());
+    return report;
+  }
+  const grpc::Status& status() const { return status_; }
+  RoundTrips& trips() { return trips_; }
+
+ private:
+  double rate_hz_;
+  RoundTrips trips_;
+  grpc::ClientContext context_;
+  std::unique_ptr<grpc::ClientReaderWriter<pb::EchoMessage, pb::EchoMessage>> stream_;
+  pb::EchoMessage request_;
+  int64_t frames_ = 0;
+  grpc::Status status_;
+};
+
+// One viewer: a Watch stream of every part until the scene is deleted or
+// `stop` is called.
+class ViewerStream {
+ public:
+  ViewerStream(pb::SessionService::Stub& stub, const std::string& scene) {
+    pb::WatchRequest request;
+    request.set_scene(scene);
+    reader_ = stub.Watch(&context_, request);
+  }
+  void Run(Clock::time_point start) {
+    pb::Frame frame;
+    while (reader_->Read(&frame)) {
+      if (Clock::now() >= start) counts_.Add(frame);
+    }
+    reader_->Finish();
+  }
+  void Stop() { context_.TryCancel(); }
+  StreamReport Report(double window_s) const {
+    StreamReport report;
+    counts_.Fill(report, window_s);
+    return report;
+  }
+
+ private:
+  grpc::ClientContext context_;
+  std::unique_ptr<grpc::ClientReader<pb::Frame>> reader_;
+  FrameCounts counts_;
+};
+
+// Sums counts; pools round trips.
+StreamReport Pool(const std::vector<StreamReport>& each, std::vector<double>& pooled_rtt_ms,
+                  double window_s) {
+  StreamReport total;
+  for (const StreamReport& r : each) {
+    total.sent += r.sent;
+    total.answered += r.answered;
+    total.frames += r.frames;
+    total.dropped_frames += r.dropped_frames;
+    total.missed_steps = std::max(total.missed_steps, r.missed_steps);
+  }
+  if (!each.empty()) {
+    total.first_step = each.front().first_step;
+    total.last_step = each.front().last_step;
+  }
+  total.frames_per_s = static_cast<double>(total.frames) / window_s;
+  total.rtt_ms = Summarize(pooled_rtt_ms);
+  return total;
+}
+
+// Runs `streams` (each on its own thread) until all are done, printing a
+// progress line once a second.
+template <typename Stream, typename RunOne>
+void RunAll(std::vector<std::unique_ptr<Stream>>& streams, RunOne run_one, const char* phase,
+            double duration_s, std::ostream* progress) {
+  std::vector<std::thread> threads;
+  std::atomic<size_t> done{0};
+  for (auto& stream : streams) {
+    threads.emplace_back([&, s = stream.get()] {
+      run_one(*s);
+      ++done;
+    });
+  }
+  const Clock::time_point begin = Clock::now();
+  Clock::time_point last_line = begin;
+  while (done.load() < streams.size()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (progress == nullptr || Clock::now() - last_line < std::chrono::seconds(1)) continue;
+    last_line = Clock::now();
+    uint64_t sent = 0, answered = 0;
+    for (auto& stream : streams) {
+      sent += stream->trips().sent();
+      answered += stream->trips().answered();
+    }
+    *progress << "loadtest: " << phase << " "
+              << static_cast<int>(std::chrono::duration<double>(Clock::now() - begin).count())
+              << "/" << duration_s << " s, " << streams.size() << " streams, " << sent << " sent, "
+              << answered << " answered" << std::endl;
+  }
+  for (std::thread& t : threads) t.join();
+}
+
+}  // namespace
+
+pb::SceneSpec BuiltInLoadScene() {
+  pb::SceneSpec spec;
+  spec.set_name("probe on torus");
+  spec.set_step_s(0.001);
+  spec.set_force_clamp_n(10);
+  pb::SceneObject* table = spec.add_objects();
+  table->set_name("table");
+  table->set_kind(pb::OBJECT_KIND_FIXED);
+  VectorToProto(Vector3d(1, 1, 0.05),
+                table->mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m());
+  VectorToProto(Vector3d(0, 0, -0.025), table->mutable_pose()->mutable_position_m());
+  pb::SceneObject* organ = spec.add_objects();
+  organ->set_name("organ");
+  organ->set_kind(pb::OBJECT_KIND_FIXED);
+  pb::Procedural::Torus* torus = organ->mutable_model()->mutable_procedural()->mutable_torus();
+  torus->set_major_radius_m(0.1);
+  torus->set_minor_radius_m(0.04);
+  torus->set_major_segments(96);
+  torus->set_minor_segments(48);
+  VectorToProto(Vector3d(0, 0, 0.04), organ->mutable_pose()->mutable_position_m());
+  pb::Material* material = organ->add_materials()->mutable_material();
+  material->set_stiffness_n_per_m(400);
+  material->set_damping_ns_per_m(0.5);
+  material->set_static_friction(0.4);
+  material->set_dynamic_friction(0.3);
+  pb::SceneObject* probe = spec.add_objects();
+  probe->set_name("probe");
+  probe->set_kind(pb::OBJECT_KIND_TOOL);
+  VectorToProto(Vector3d(0.02, 0.02, 0.02),
+                probe->mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m());
+  VectorToProto(Vector3d(0.1, 0, 0.1), probe->mutable_pose()->mutable_position_m());
+  return spec;
+}
+
+absl::StatusOr<pb::SceneSpec> LoadtestScene(const pb::SceneSpec& base, int clients,
+                                            const std::string& name) {
+  pb::SceneSpec spec = base;
+  spec.set_name(name);
+  spec.clear_objects();
+  const pb::SceneObject* tool = nullptr;
+  for (const pb::SceneObject& object : base.objects()) {
+    if (object.kind() == pb::OBJECT_KIND_TOOL) {
+      if (tool == nullptr) tool = &object;
+    } else {
+      *spec.add_objects() = object;
+    }
+  }
+  if (tool == nullptr) return absl::InvalidArgumentError("the scene has no tool to copy");
+  absl::StatusOr<Isometry3d> X_WT = PoseFromProto(tool->pose(), tool->name() + ".pose");
+  if (!X_WT.ok()) return X_WT.status();
+  for (int i = 0; i < clients; ++i) {
+    pb::SceneObject* copy = spec.add_objects();
+    *copy = *tool;
+    copy->set_name("tool-" + std::to_string(i));
+    const Isometry3d turn(Eigen::AngleAxisd(2 * M_PI * i / clients, Vector3d::UnitZ()));
+    PoseToProto(turn * *X_WT, copy->mutable_pose());
+  }
+  return spec;
+}
+
+absl::Status CheckLoadtestOptions(const LoadtestOptions& options) {
+  if (options.clients < 1 || options.clients > kMaxLoadClients) {
+    return absl::InvalidArgumentError(absl::StrCat("--clients must be 1..", kMaxLoadClients));
+  }
+  if (options.viewers < 0 || options.viewers > kMaxLoadViewers) {
+    return absl::InvalidArgumentError(absl::StrCat("--viewers must be 0..", kMaxLoadViewers));
+  }
+  if (!(options.duration_s > 0 && options.duration_s <= kMaxLoadSeconds)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--duration must be in (0, ", kMaxLoadSeconds, "] seconds"));
+  }
+  if (!(options.rate_hz >= 1 && options.rate_hz <= kMaxLoadRateHz)) {
+    return absl::InvalidArgumentError(absl::StrCat("--rate must be 1..", kMaxLoadRateHz, " Hz"));
+  }
+  if (!IsLoopbackAddress(options.server.address) && !options.allow_remote) {
+    return absl::InvalidArgumentError(options.server.address +
+                                      " is not on loopback: give --allow-remote to load it");
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
+  if (absl::Status s = CheckLoadtestOptions(options); !s.ok()) return s;
+  const bool loopback = IsLoopbackAddress(options.server.address);
+
+  LoadReport report;
+  report.clients = options.clients;
+  report.viewers = options.viewers;
+  report.rate_hz = options.rate_hz;
+  report.duration_s = options.duration_s;
+  report.load_average_1m = LoadAverage1m();
+  report.scene = "loadtest-" + std::to_string(getpid());
+  absl::StatusOr<pb::SceneSpec> spec = LoadtestScene(
+      options.scene ? *options.scene : BuiltInLoadScene(), options.clients, report.scene);
+  if (!spec.ok()) return spec.status();
+
+  std::shared_ptr<grpc::Channel> channel = MakeChannel(options.server.address);
+  auto scenes = pb::SceneService::NewStub(channel);
+  {
+    pb::CreateSceneRequest request;
+    *request.mutable_spec() = *spec;
+    pb::SceneInfo info;
+    const grpc::Status status =
+        scenes->CreateScene(ContextWithin(options.server.timeout_s).get(), request, &info);
+    if (!status.ok()) return FromGrpc(status, "CreateScene");
+    report.triangles = info.triangles();
+  }
+  // The scene goes when the devices are done, or on any early return.
+  absl::Cleanup delete_scene = [&] {
+    pb::DeleteSceneRequest request;
+    request.set_scene(report.scene);
+    pb::DeleteSceneResponse response;
+    scenes->DeleteScene(ContextWithin(options.server.timeout_s).get(), request, &response);
+  };
+
+  // Server CPU: the given pid, or the process listening on a loopback port.
+  int server_pid = options.server_pid;
+  if (server_pid == 0 && loopback) {
+    const size_t colon = options.server.address.rfind(':');
+    int port = 0;
+    if (colon != std::string::npos &&
+        absl::SimpleAtoi(options.server.address.substr(colon + 1), &port)) {
+      server_pid = FindListeningPid(port).value_or(0);
+    }
+  }
+
+  // Devices and viewers; a few streams per channel spread them over
+  // several connections as separate devices would be.
+  auto sessions = pb::SessionService::NewStub(channel);
+  std::vector<std::unique_ptr<DeviceStream>> devices;
+  for (int i = 0; i < options.clients; ++i) {
+    absl::StatusOr<Isometry3d> X_WT = PoseFromProto(
+        spec->objects(spec->objects_size() - options.clients + i).pose(), "tool pose");
+    if (!X_WT.ok()) return X_WT.status();
+    MotionParams params;
+    params.phase_s = static_cast<double>(i) / options.clients;
+    devices.push_back(std::make_unique<DeviceStream>(
+        *sessions, report.scene, "tool-" + std::to_string(i),
+        MotionPath(Motion::kPress, *X_WT, options.rate_hz, options.duration_s, params),
+        options.rate_hz));
+  }
+  for (auto& device : devices) {
+    if (!device->Attached()) return FromGrpc(device->Finish(), "Interact");
+  }
+  std::vector<std::unique_ptr<ViewerStream>> viewers;
+  std::vector<std::thread> viewer_threads;
+  const Clock::time_point start = Clock::now() + std::chrono::milliseconds(200);
+  for (int i = 0; i < options.viewers; ++i) {
+    viewers.push_back(std::make_unique<ViewerStream>(*sessions, report.scene));
+    viewer_threads.emplace_back([v = viewers.back().get(), start] { v->Run(start); });
+  }
+
+  const std::optional<double> server_cpu_before =
+      server_pid ? ProcessCpuSeconds(server_pid) : std::nullopt;
+  const double client_cpu_before = ProcessCpuNow();
+  RunAll(
+      devices, [&](DeviceStream& d) { d.Run(start, &d == devices.front().get()); }, "devices",
+      options.duration_s, options.progress);
+  const double window_s = std::chrono::duration<double>(Clock::now() - start).count();
+  const std::optional<double> server_cpu_after =
+      server_pid ? ProcessCpuSeconds(server_pid) : std::nullopt;
+  report.client_cpu_percent = 100 * (ProcessCpuNow() - client_cpu_before) / window_s;
+  if (server_cpu_before && server_cpu_after) {
+    report.server_cpu_percent = 100 * (*server_cpu_after - *server_cpu_before) / window_s;
+    report.server_cpu_source =
+        absl::StrCat("/proc/", server_pid, "/stat",
+                     server_pid == getpid() ? " (this process: server and load generator)" : "");
+  } else {
+    report.server_cpu_source = "unknown (give --server-pid for a server not on loopback)";
+  }
+  for (auto& viewer : viewers) viewer->Stop();
+  for (std::thread& t : viewer_threads) t.join();
+  std::move(delete_scene).Invoke();
+
+  for (auto& device : devices) {
+    if (!device->status().ok()) return FromGrpc(device->status(), "Interact");
+  }
+  std::vector<StreamReport> each;
+  std::vector<double> pooled;
+  int64_t request_bytes = 0, reply_bytes = 0;
+  for (auto& device : devices) {
+    pooled.insert(pooled.end(), device->trips().rtt_ms().begin(), device->trips().rtt_ms().end());
+    each.push_back(device->Report(window_s));
+    request_bytes += device->request_bytes();
+    reply_bytes += device->mean_frame_bytes();
+  }
+  report.per_device = each;
+  report.devices = Pool(each, pooled, window_s);
+  report.step_ms = Summarize(devices.front()->step_ms());
+  report.steps = each.front().last_step - each.front().first_step + 1;
+  report.missed_steps = each.front().missed_steps;
+  report.missed_fraction =
+      static_cast<double>(report.missed_steps) /
+      static_cast<double>(std::max<int64_t>(1, report.steps + report.missed_steps));
+  std::vector<StreamReport> viewer_reports;
+  for (auto& viewer : viewers) viewer_reports.push_back(viewer->Report(window_s));
+  std::vector<double> no_rtt;
+  report.viewers_total = Pool(viewer_reports, no_rtt, window_s);
+
+  if (options.echo) {
+    absl::StatusOr<std::unique_ptr<EchoServer>> echo_server = EchoServer::Start();
+    if (!echo_server.ok()) return echo_server.status();
+    report.echo_run = true;
+    report.echo_request_bytes = request_bytes / options.clients;
+    report.echo_reply_bytes = reply_bytes / options.clients;
+    auto echo_stub = pb::EchoService::NewStub(MakeChannel((*echo_server)->address()));
+    std::vector<std::unique_ptr<EchoStream>> echoes;
+    const auto count = static_cast<size_t>(std::llround(options.duration_s * options.rate_hz));
+    for (int i = 0; i < options.clients; ++i) {
+      echoes.push_back(std::make_unique<EchoStream>(
+          *echo_stub, count, options.rate_hz, report.echo_request_bytes, report.echo_reply_bytes));
+    }
+    const double echo_cpu_before = ProcessCpuNow();
+    const Clock::time_point echo_start = Clock::now() + std::chrono::milliseconds(200);
+    RunAll(
+        echoes, [&](EchoStream& e) { e.Run(echo_start); }, "echo", options.duration_s,
+        options.progress);
+    const double echo_window_s = std::chrono::duration<double>(Clock::now() - echo_start).count();
+    report.echo_phase_cpu_percent = 100 * (ProcessCpuNow() - echo_cpu_before) / echo_window_s;
+    std::vector<StreamReport> echo_each;
+    std::vector<double> echo_pooled;
+    for (auto& echo : echoes) {
+      if (!echo->status().ok()) return FromGrpc(echo->status(), "Echo");
+      echo_pooled.insert(echo_pooled.end(), echo->trips().rtt_ms().begin(),
+                         echo->trips().rtt_ms().end());
+      echo_each.push_back(echo->Report(echo_window_s));
+    }
+    report.echo = Pool(echo_each, echo_pooled, echo_window_s);
+    if (report.echo.rtt_ms.p99 > 0) {
+      report.p99_ratio = report.devices.rtt_ms.p99 / report.echo.rtt_ms.p99;
+    }
+    report.p99_budget_ms = 1.5 * report.echo.rtt_ms.p99 + report.step_ms.p99;
+  }
+  return report;
+}
+
+}  // namespace hs::cli

@@ -1,0 +1,35 @@
+#pragma once
+// `hapticctl loadtest --clients N --rate HZ --duration S [--scene FILE]
+// [--viewers M] [--json] [--allow-remote] [--server-pid PID] [--no-echo]`:
+// runs the load test of loadtest.h and prints its report.
+
+#include <ostream>
+#include <string>
+
+#include "CLI/CLI.hpp"
+#include "client/loadtest.h"
+
+namespace hs::cli {
+
+struct LoadtestArgs {
+  LoadtestOptions options;
+  /// A scene file (haptics.v1.SceneSpec); empty: the built-in demo scene.
+  std::string scene_file;
+  /// The report as one JSON object instead of text.
+  bool json = false;
+};
+
+/// The report as JSON: settings, round trips (ms) overall, per device and
+/// of the echo, frames, drops, missed steps, step time, CPU.
+std::string LoadReportJson(const LoadReport& report);
+
+/// Runs the test, progress lines on `err`, and prints the report to `out`.
+/// kExitOk; kExitUsage for options past the bounds or a remote server
+/// without --allow-remote; kExitFailure for an unreadable scene file; else
+/// the exit status of the server's status code (server_call.h).
+int RunLoadtestCommand(const LoadtestArgs& args, std::ostream& out, std::ostream& err);
+
+/// Adds the `loadtest` subcommand to `app`; `exit_code` receives its result.
+void AddLoadtestCommand(CLI::App& app, int& exit_code);
+
+}  // namespace hs::cli

@@ -1,0 +1,166 @@
+#include "client/watch_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+#include "client/exit_codes.h"
+#include "client/frame_format.h"
+#include "client/percentiles.h"
+#include "haptics/v1/session_service.grpc.pb.h"
+#include "nlohmann/json.hpp"
+
+namespace hs::cli {
+namespace {
+
+namespace pb = haptics::v1;
+using Clock = std::chrono::steady_clock;
+
+// What one second of frames held.
+class SecondSummary {
+ public:
+  void Add(const pb::Frame& frame) {
+    if (!started_) {
+      // The counters are cumulative since the stream (drops) and the scene
+      // (missed steps) began: the first second counts from its first frame.
+      started_ = true;
+      last_dropped_ = frame.dropped_frames();
+      last_missed_ = frame.missed_steps();
+    }
+    if (frames_ == 0) {
+      first_step_ = frame.step();
+      start_dropped_ = last_dropped_;
+      start_missed_ = last_missed_;
+    }
+    ++frames_;
+    last_step_ = frame.step();
+    last_dropped_ = frame.dropped_frames();
+    last_missed_ = frame.missed_steps();
+    step_ms_.push_back(1e-6 * static_cast<double>(frame.timings().step_ns()));
+    for (const pb::ToolState& tool : frame.tools()) {
+      contacts_ = std::max(contacts_, tool.contacts_size());
+      const pb::Vector3& f = tool.force_w_n();
+      max_force_n_ =
+          std::max(max_force_n_, std::sqrt(f.x() * f.x() + f.y() * f.y() + f.z() * f.z()));
+    }
+  }
+
+  // Prints the second's line and starts the next one.
+  void Flush(double elapsed_s, bool json, std::ostream& out) {
+    const Percentiles step = Summarize(step_ms_);
+    if (json) {
+      nlohmann::ordered_json line = {{"elapsed_s", elapsed_s},
+                                     {"frames", frames_},
+                                     {"first_step", first_step_},
+                                     {"last_step", last_step_},
+                                     {"dropped_frames", last_dropped_ - start_dropped_},
+                                     {"missed_steps", last_missed_ - start_missed_},
+                                     {"max_contacts", contacts_},
+                                     {"max_force_n", max_force_n_},
+                                     {"step_ms_p50", step.p50},
+                                     {"step_ms_max", step.max}};
+      out << line.dump() << "\n";
+    } else {
+      out << elapsed_s << " s: " << frames_ << " frames, steps " << first_step_ << ".."
+          << last_step_ << ", dropped " << last_dropped_ - start_dropped_ << ", missed "
+          << last_missed_ - start_missed_ << ", contacts <= " << contacts_
+          << ", |force| <= " << max_force_n_ << " N, step p50 " << step.p50 << " ms, max "
+          << step.max << " ms" << std::endl;
+    }
+    frames_ = 0;
+    contacts_ = 0;
+    max_force_n_ = 0;
+    step_ms_.clear();
+  }
+
+  bool empty() const { return frames_ == 0; }
+
+ private:
+  bool started_ = false;
+  int64_t frames_ = 0;
+  int64_t first_step_ = 0;
+  int64_t last_step_ = 0;
+  uint64_t start_dropped_ = 0;
+  uint64_t last_dropped_ = 0;
+  int64_t start_missed_ = 0;
+  int64_t last_missed_ = 0;
+  int contacts_ = 0;
+  double max_force_n_ = 0;
+  std::vector<double> step_ms_;
+};
+
+}  // namespace
+
+int RunWatch(const WatchArgs& args, std::ostream& out, std::ostream& err) {
+  pb::WatchRequest request;
+  request.set_scene(args.scene);
+  for (const std::string& part : args.parts) {
+    if (part == "poses") {
+      request.add_parts(pb::WATCH_PART_POSES);
+    } else if (part == "contacts") {
+      request.add_parts(pb::WATCH_PART_CONTACTS);
+    } else if (part == "forces") {
+      request.add_parts(pb::WATCH_PART_FORCES);
+    } else {
+      return ReportError("watch", "unknown part '" + part + "' (poses, contacts, forces)", err);
+    }
+  }
+  auto stub = pb::SessionService::NewStub(MakeChannel(args.server.address));
+  grpc::ClientContext context;
+  if (args.duration_s > 0) {
+    context.set_deadline(std::chrono::system_clock::now() +
+                         std::chrono::microseconds(static_cast<int64_t>(args.duration_s * 1e6)));
+  }
+  auto reader = stub->Watch(&context, request);
+  pb::Frame frame;
+  int64_t frames = 0;
+  SecondSummary second;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point next_summary = start + std::chrono::seconds(1);
+  bool stopped_here = false;
+  while (reader->Read(&frame)) {
+    ++frames;
+    if (args.summary) {
+      second.Add(frame);
+      if (Clock::now() >= next_summary) {
+        second.Flush(std::chrono::duration<double>(Clock::now() - start).count(), args.json, out);
+        next_summary += std::chrono::seconds(1);
+      }
+    } else {
+      PrintFrame(frame, args.json, out);
+    }
+    if (args.max_frames > 0 && frames >= args.max_frames) {
+      stopped_here = true;
+      context.TryCancel();
+      break;
+    }
+  }
+  if (args.summary && !second.empty()) {
+    second.Flush(std::chrono::duration<double>(Clock::now() - start).count(), args.json, out);
+  }
+  const grpc::Status status = reader->Finish();
+  const bool timed_out =
+      args.duration_s > 0 && status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED;
+  if (status.ok() || stopped_here || timed_out) return kExitOk;
+  return ReportRpcError("watch", status, err);
+}
+
+void AddWatchCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<WatchArgs>();
+  CLI::App* cmd =
+      app.add_subcommand("watch", "Watch a scene as a viewer: every frame or a per-second summary");
+  AddServerOptions(*cmd, args->server);
+  cmd->add_option("SCENE", args->scene, "Scene name")->required();
+  cmd->add_option("--parts", args->parts, "poses, contacts, forces (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"poses", "contacts", "forces"}));
+  cmd->add_flag("--summary", args->summary, "One line per second instead of one per frame");
+  cmd->add_flag("--json", args->json, "JSON lines");
+  cmd->add_option("--duration", args->duration_s, "Stop after this many seconds (0: never)")
+      ->check(CLI::Range(0.0, 1e6));
+  cmd->add_option("--frames", args->max_frames, "Stop after this many frames (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->callback([args, &exit_code] { exit_code = RunWatch(*args, std::cout, std::cerr); });
+}
+
+}  // namespace hs::cli

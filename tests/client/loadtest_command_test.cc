@@ -1,0 +1,107 @@
+#include "client/loadtest_command.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "client/exit_codes.h"
+#include "tests/server/test_server.h"
+
+namespace hs::cli {
+namespace {
+
+void ExpectOrdered(const Percentiles& p, const std::string& what) {
+  EXPECT_GT(p.count, 0) << what;
+  EXPECT_GT(p.p50, 0) << what;
+  EXPECT_LE(p.p50, p.p99) << what;
+  EXPECT_LE(p.p99, p.p999) << what;
+  EXPECT_LE(p.p999, p.max) << what;
+}
+
+// A small bounded run (2 devices x 200 Hz x 1 s, one viewer, the small
+// test scene) checks its own arithmetic: every pose sent is answered once,
+// per-device counts add up to the totals, each stream's frames plus drops
+// cover its step range, percentiles are ordered, and the echo baseline ran
+// with as many round trips.
+TEST(LoadtestCommandTest, SmallRunAddsUp) {
+  hs::testing::TestServer server;
+  LoadtestOptions options;
+  options.server.address = server.address();
+  options.clients = 2;
+  options.rate_hz = 200;
+  options.duration_s = 1;
+  options.viewers = 1;
+  options.scene = hs::testing::SmallScene("base");
+  absl::StatusOr<LoadReport> report = RunLoadtest(options);
+  ASSERT_TRUE(report.ok()) << report.status();
+  const LoadReport& r = *report;
+  ASSERT_EQ(r.per_device.size(), 2u);
+  int64_t sent = 0, answered = 0, frames = 0, dropped = 0;
+  for (const StreamReport& d : r.per_device) {
+    EXPECT_EQ(d.sent, 200);
+    EXPECT_EQ(d.answered, d.sent);
+    EXPECT_EQ(d.rtt_ms.count, d.answered);
+    EXPECT_EQ(d.frames + d.dropped_frames, d.last_step - d.first_step + 1);
+    ExpectOrdered(d.rtt_ms, "device");
+    sent += d.sent;
+    answered += d.answered;
+    frames += d.frames;
+    dropped += d.dropped_frames;
+  }
+  EXPECT_EQ(r.devices.sent, sent);
+  EXPECT_EQ(r.devices.answered, answered);
+  EXPECT_EQ(r.devices.frames, frames);
+  EXPECT_EQ(r.devices.dropped_frames, dropped);
+  EXPECT_EQ(r.devices.rtt_ms.count, answered);
+  ExpectOrdered(r.devices.rtt_ms, "devices");
+  EXPECT_EQ(r.viewers_total.frames + r.viewers_total.dropped_frames,
+            r.viewers_total.last_step - r.viewers_total.first_step + 1);
+  EXPECT_GT(r.viewers_total.frames, 0);
+  ASSERT_TRUE(r.echo_run);
+  EXPECT_EQ(r.echo.sent, 400);
+  EXPECT_EQ(r.echo.answered, 400);
+  EXPECT_EQ(r.echo.frames, 400);
+  ExpectOrdered(r.echo.rtt_ms, "echo");
+  EXPECT_GT(r.echo_request_bytes, 0);
+  EXPECT_GT(r.echo_reply_bytes, 0);
+  EXPECT_NEAR(r.p99_ratio, r.devices.rtt_ms.p99 / r.echo.rtt_ms.p99, 1e-12);
+  ExpectOrdered(r.step_ms, "step");
+  EXPECT_GE(r.missed_fraction, 0);
+  EXPECT_LE(r.missed_fraction, 1);
+  // The in-process server is found by its port: this process.
+  EXPECT_GE(r.server_cpu_percent, 0);
+  // The scene is gone afterwards.
+  EXPECT_EQ(server.server().registry().List().size(), 0u);
+  // The JSON report holds the same figures.
+  const nlohmann::json json = nlohmann::json::parse(LoadReportJson(r));
+  EXPECT_EQ(json["devices"]["sent"].get<int64_t>(), sent);
+  EXPECT_EQ(json["per_device"].size(), 2u);
+}
+
+// Options past the bounds and a remote server are usage errors; a scene
+// without a tool is refused before anything is sent.
+TEST(LoadtestCommandTest, Bounds) {
+  std::ostringstream out, err;
+  LoadtestArgs args;
+  args.options.clients = 65;
+  EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
+  args.options.clients = 1;
+  args.options.duration_s = 61;
+  EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
+  args.options.duration_s = 1;
+  args.options.server.address = "192.0.2.1:50051";
+  EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("--allow-remote"), std::string::npos) << err.str();
+  haptics::v1::SceneSpec no_tool = hs::testing::SmallScene("x");
+  no_tool.mutable_objects()->RemoveLast();
+  EXPECT_FALSE(LoadtestScene(no_tool, 2, "y").ok());
+  const absl::StatusOr<haptics::v1::SceneSpec> copies =
+      LoadtestScene(hs::testing::SmallScene("x"), 3, "y");
+  ASSERT_TRUE(copies.ok());
+  EXPECT_EQ(copies->objects_size(), 4);
+  EXPECT_EQ(copies->objects(3).name(), "tool-2");
+}
+
+}  // namespace
+}  // namespace hs::cli

@@ -1,0 +1,47 @@
+#include "client/upload_command.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "client/exit_codes.h"
+#include "client/objects_command.h"
+#include "tests/server/test_server.h"
+
+namespace hs::cli {
+namespace {
+
+const std::string kData = HS_TEST_DATA_DIR;
+
+// An uploaded model (in small chunks) gets an id that an added object can
+// use; a malformed model and a taken name are refused, a missing file fails.
+TEST(UploadCommandTest, UploadAndUse) {
+  hs::testing::TestServer server;
+  server.Create(hs::testing::SmallScene("s"));
+  std::ostringstream out, err;
+  UploadArgs args;
+  args.server.address = server.address();
+  args.file = kData + "/cube.obj";
+  args.chunk_bytes = 100;
+  ASSERT_EQ(RunUpload(args, out, err), kExitOk) << err.str();
+  EXPECT_EQ(out.str().substr(0, out.str().find(' ')), "cube.obj");
+
+  ObjectsArgs add;
+  add.server.address = server.address();
+  add.action = "add";
+  add.scene = "s";
+  add.object = "block";
+  add.model_id = "cube.obj";
+  add.pose = "0,0,0.2,0,0,0";
+  ASSERT_EQ(RunObjects(add, out, err), kExitOk) << err.str();
+  EXPECT_EQ(server.Get("s").spec().objects_size(), 3);
+
+  EXPECT_EQ(RunUpload(args, out, err), kExitRefused);  // the name is taken
+  args.file = kData + "/garbage.obj";
+  EXPECT_EQ(RunUpload(args, out, err), kExitRefused);
+  args.file = kData + "/no_such_file.obj";
+  EXPECT_EQ(RunUpload(args, out, err), kExitFailure);
+}
+
+}  // namespace
+}  // namespace hs::cli
