@@ -3,10 +3,13 @@
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "client/tool_path.h"
 #include "server/proto_convert.h"
@@ -210,11 +213,13 @@ TEST(SessionServiceTest, StalledViewerDropsFramesOthersKeepPace) {
   const int64_t start_step = frame.step();
   const auto start = std::chrono::steady_clock::now();
   int frames = 0;
+  std::vector<double> start_lag_ms;  // the device's steps: how late each started
   // Moving the tool makes each frame carry contacts: bigger frames fill the
   // stalled viewer's transport buffers sooner.
   for (int i = 1; std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1500); ++i) {
     device.Send(i, PoseAt(0, 0, 0.0195 - 1e-6 * (i % 100)));
     ASSERT_TRUE(device.Read(frame));
+    start_lag_ms.push_back(static_cast<double>(frame.timings().start_lag_ns()) / 1e6);
     ++frames;
   }
   const double seconds =
@@ -227,6 +232,17 @@ TEST(SessionServiceTest, StalledViewerDropsFramesOthersKeepPace) {
   // not wait for it.
   EXPECT_GT(steps / seconds, 50);
   EXPECT_GT(frames, 50);
+  // The device's step jitter while the viewer is stalled, recorded in the
+  // test report (measured: see docs/server.md). The bound only says the
+  // scene never waited on the viewer for long: a wait for its buffers to
+  // drain would last as long as the viewer stalls (seconds).
+  std::sort(start_lag_ms.begin(), start_lag_ms.end());
+  const double p50 = start_lag_ms[start_lag_ms.size() / 2];
+  const double p99 = start_lag_ms[start_lag_ms.size() * 99 / 100];
+  RecordProperty("device_start_lag_p50_ms", std::to_string(p50));
+  RecordProperty("device_start_lag_p99_ms", std::to_string(p99));
+  std::printf("device step start lag with a stalled viewer: p50 %.3f ms, p99 %.3f ms\n", p50, p99);
+  EXPECT_LT(p99, 500);
 
   uint64_t dropped = 0;
   int64_t last_step = first_step;
