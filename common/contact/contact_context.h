@@ -30,6 +30,9 @@ struct ContactContext {
   Triangle3d MovingTriangle(FaceId f) const;
   /// Face `f` of F, in F's frame.
   Triangle3d FixedTriangle(FaceId f) const;
+  /// The sum of the unit normals of the fixed faces in `pairs` (outward for
+  /// a consistently oriented mesh), F's frame.
+  Vector3d TouchedFixedNormals() const;
 };
 
 }  // namespace hs

@@ -19,12 +19,7 @@ namespace {
 // object is in: D points into F, opposite their mean outward normal; failing
 // that, from M's centre toward F's.
 Vector3d FallbackDirection(const ContactContext& c) {
-  Vector3d sum = Vector3d::Zero();
-  for (const TrianglePair& pair : c.pairs) {
-    const Triangle3d t = c.FixedTriangle(pair.b);
-    const Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
-    if (n.squaredNorm() > 0) sum -= n.normalized();
-  }
+  const Vector3d sum = -c.TouchedFixedNormals();
   if (sum.squaredNorm() > 1e-24) return sum.normalized();
   const Vector3d towards =
       c.fixed.bounding_box().center() - c.X_FM * c.moving.bounding_box().center();
@@ -68,6 +63,15 @@ Triangle3d ContactContext::MovingTriangle(FaceId f) const {
 Triangle3d ContactContext::FixedTriangle(FaceId f) const {
   const auto& v = fixed.face(f).vertices;
   return {fixed.position(v[0]), fixed.position(v[1]), fixed.position(v[2])};
+}
+
+Vector3d ContactContext::TouchedFixedNormals() const {
+  Vector3d sum = Vector3d::Zero();
+  for (const TrianglePair& pair : pairs) {
+    const Vector3d n = TriangleNormal(FixedTriangle(pair.b));
+    if (n.squaredNorm() > 0) sum += n.normalized();
+  }
+  return sum;
 }
 
 namespace {

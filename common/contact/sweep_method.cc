@@ -31,11 +31,7 @@ bool Penetrating(const ContactContext& c) {
                 .empty();
   });
   if (deep_pair) return true;
-  Vector3d off = Vector3d::Zero();  // out of the touched fixed faces
-  for (const TrianglePair& pair : c.pairs) {
-    const Vector3d n = TriangleNormal(c.FixedTriangle(pair.b));
-    if (n.squaredNorm() > 0) off += n.normalized();
-  }
+  const Vector3d off = c.TouchedFixedNormals();   // out of the touched fixed faces
   if (!(off.squaredNorm() > 1e-24)) return true;  // no way off: do not drop a contact
   Isometry3d X_FM = c.X_FM;
   X_FM.pretranslate(2 * c.tolerance_m * off.normalized());
