@@ -27,23 +27,16 @@
 
 #include "common/contact/contact_query.h"
 #include "common/model/procedural.h"
+#include "tests/common/contact/contact_test_bodies.h"
 
 namespace hs {
 namespace {
 
-struct Body {
-  HapticObject object;
-  CollisionModel model;
-  Isometry3d X_WO = Isometry3d::Identity();
-  PosedObject posed() const { return {&object, &model, X_WO}; }
-};
+using testing_bodies::Body;
 
+// Hierarchies grown by 1e-6 of the box diagonal, as scenes build them.
 std::unique_ptr<Body> MakeBody(MeshInput mesh, BvType bv) {
-  HapticObject object = *HapticObject::Create("body", std::move(mesh));
-  // Room for query tolerances up to 1e-6 relative, as scenes build them.
-  const double margin = 1e-6 * object.bounding_box().diagonal().norm();
-  CollisionModel model(object, bv, margin);
-  return std::make_unique<Body>(Body{std::move(object), std::move(model)});
+  return testing_bodies::MakeBody(std::move(mesh), Isometry3d::Identity(), bv);
 }
 
 std::unique_ptr<Body> Slab(BvType bv) {
