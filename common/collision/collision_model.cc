@@ -95,6 +95,13 @@ std::vector<int> LeafFaces(const AnyBvh& bvh) {
       bvh);
 }
 
+std::vector<PlacedFace> LeafOrderFaces(const CollisionModel::Impl& impl) {
+  std::vector<PlacedFace> faces;
+  faces.reserve(impl.leaf_faces.size());
+  for (const int f : impl.leaf_faces) faces.push_back(PlaceFace(impl.triangle(f)));
+  return faces;
+}
+
 }  // namespace
 
 std::shared_ptr<fcl::CollisionGeometryd> CollisionModel::Impl::geometry() const {
@@ -120,6 +127,7 @@ CollisionModel::CollisionModel(const HapticObject& object, BvType type, double m
   impl_->bvh = BuildAny(object, type, margin_m);
   impl_->degenerate = DegenerateFaces(object);
   impl_->leaf_faces = LeafFaces(impl_->bvh);
+  impl_->leaf_order_faces = LeafOrderFaces(*impl_);
 }
 
 CollisionModel::~CollisionModel() = default;
@@ -145,6 +153,7 @@ bool CollisionModel::Sync(const HapticObject& object) {
       },
       impl_->bvh);
   impl_->degenerate = DegenerateFaces(object);
+  impl_->leaf_order_faces = LeafOrderFaces(*impl_);
   impl_->geometry_version = object.geometry_version();
   return true;
 }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/collision/collision_model.h"
+#include "common/collision/placed_faces.h"
 #include "common/collision/triangle_sat.h"
 
 namespace hs {
@@ -40,6 +41,8 @@ struct CollisionModel::Impl {
   /// Faces in the order of the hierarchy's leaves: node n holds faces
   /// leaf_faces[n.first_primitive, n.first_primitive + n.num_primitives).
   std::vector<int> leaf_faces;
+  /// Face leaf_faces[i] in the object frame, placed for the leaf buckets.
+  std::vector<PlacedFace> leaf_order_faces;
 
   /// The hierarchy as FCL's generic geometry, for the broad phase.
   std::shared_ptr<fcl::CollisionGeometryd> geometry() const;

@@ -1,9 +1,11 @@
 #pragma once
-// Internal to common/collision: the faces of one object seen in the frame of
-// a pair query, for the leaf buckets of the pair traversal. Each face is
-// mapped (and its axis-aligned box in the query frame taken) on first use
-// within a query, so a query touching few faces of a large mesh pays for
-// those only, and one touching a face from many buckets maps it once.
+// Internal to common/collision: faces with their normals and boxes, as the
+// leaf buckets of the pair traversal test them. A pair query works in the
+// frame of its first object A, whose faces are placed once, when its model
+// is built (CollisionModel::Impl::leaf_order_faces); the second object's
+// faces are mapped into A's frame on first use within a query, so a query
+// touching few faces of a large mesh pays for those only, and one touching a
+// face from many buckets maps it once.
 
 #include <fcl/geometry/bvh/BVH_internal.h>
 #include <fcl/math/triangle.h>
@@ -22,7 +24,28 @@ struct PlacedFace {
   Triangle3d triangle;
   Vector3d normal;  // TriangleNormal(triangle)
   Vector3d lo, hi;  // box corners
+  double normal_norm = 0;  // normal.norm()
 };
+
+inline PlacedFace PlaceFace(const Triangle3d& triangle) {
+  PlacedFace placed{triangle, TriangleNormal(triangle), {}, {}};
+  placed.lo = triangle[0].cwiseMin(triangle[1]).cwiseMin(triangle[2]);
+  placed.hi = triangle[0].cwiseMax(triangle[1]).cwiseMax(triangle[2]);
+  placed.normal_norm = placed.normal.norm();
+  return placed;
+}
+
+/// True when every corner of `t` lies farther than `margin` on one side of
+/// the plane of `face`: the first test of TrianglesIntersect, made here
+/// before the call because most pairs whose boxes meet fail it.
+inline bool BeyondFacePlane(const PlacedFace& face, const Triangle3d& t, double margin) {
+  const Vector3d& origin = face.triangle[0];
+  const double d0 = face.normal.dot(t[0] - origin);
+  const double d1 = face.normal.dot(t[1] - origin);
+  const double d2 = face.normal.dot(t[2] - origin);
+  const double slack = margin * face.normal_norm;
+  return (d0 > slack && d1 > slack && d2 > slack) || (d0 < -slack && d1 < -slack && d2 < -slack);
+}
 
 /// True when the boxes of `a` and `b` are farther apart than `margin` along
 /// some axis of the query frame.
@@ -32,13 +55,13 @@ inline bool FaceBoxesApart(const PlacedFace& a, const PlacedFace& b, double marg
          a.lo[2] > b.hi[2] + margin || b.lo[2] > a.hi[2] + margin;
 }
 
+/// The faces of the second object of a pair query, in the first one's frame.
 class PlacedFaces {
  public:
   /// Starts a query over the faces `triangles` (indices into `vertices`,
-  /// object frame) mapped into the query frame by X. With a `sweep`
-  /// (query frame), each box also holds the face moved by -sweep.
+  /// object frame) mapped into the query frame by X.
   void Start(const fcl::Vector3d* vertices, const fcl::Triangle* triangles, int num_faces,
-             const Isometry3d& X, const Vector3d* sweep) {
+             const Isometry3d& X) {
     if (static_cast<int>(faces_.size()) < num_faces) {
       faces_.resize(num_faces);
       stamps_.resize(num_faces, 0);
@@ -47,7 +70,6 @@ class PlacedFaces {
     triangles_ = triangles;
     R_ = X.linear();
     T_ = X.translation();
-    sweep_ = sweep ? *sweep : Vector3d::Zero();
     if (++stamp_ == 0) {  // wrapped: forget every stamp
       std::fill(stamps_.begin(), stamps_.end(), 0);
       stamp_ = 1;
@@ -60,12 +82,8 @@ class PlacedFaces {
     if (stamps_[f] != stamp_) {
       stamps_[f] = stamp_;
       const fcl::Triangle& t = triangles_[f];
-      for (int k = 0; k < 3; ++k) placed.triangle[k] = R_ * vertices_[t[k]] + T_;
-      placed.normal = TriangleNormal(placed.triangle);
-      placed.lo = placed.triangle[0].cwiseMin(placed.triangle[1]).cwiseMin(placed.triangle[2]);
-      placed.hi = placed.triangle[0].cwiseMax(placed.triangle[1]).cwiseMax(placed.triangle[2]);
-      placed.lo = placed.lo.cwiseMin(placed.lo - sweep_);
-      placed.hi = placed.hi.cwiseMax(placed.hi - sweep_);
+      placed = PlaceFace(
+          {R_ * vertices_[t[0]] + T_, R_ * vertices_[t[1]] + T_, R_ * vertices_[t[2]] + T_});
     }
     return placed;
   }
@@ -78,7 +96,6 @@ class PlacedFaces {
   const fcl::Triangle* triangles_ = nullptr;
   Matrix3d R_ = Matrix3d::Identity();
   Vector3d T_ = Vector3d::Zero();
-  Vector3d sweep_ = Vector3d::Zero();
 };
 
 }  // namespace hs

@@ -109,12 +109,11 @@ class VolumeTest {
 class BucketTest {
  public:
   template <typename BV>
-  BucketTest(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
-             const fcl::BVHModel<BV>& mb, const CollisionModel::Impl& ib, const Isometry3d& X_AB,
-             const Vector3d* sweep_A, double margin)
+  BucketTest(const CollisionModel::Impl& ia, const fcl::BVHModel<BV>& mb,
+             const CollisionModel::Impl& ib, const Isometry3d& X_AB, const Vector3d* sweep_A,
+             double margin)
       : ia_(ia), ib_(ib), sweep_A_(sweep_A), margin_(margin) {
-    faces_a().Start(ma.vertices, ma.tri_indices, ma.num_tris, Isometry3d::Identity(), sweep_A);
-    faces_b().Start(mb.vertices, mb.tri_indices, mb.num_tris, X_AB, nullptr);
+    faces_b().Start(mb.vertices, mb.tri_indices, mb.num_tris, X_AB);
   }
 
   /// Tests every face of A's node `na` against every face of B's node `nb`:
@@ -123,9 +122,28 @@ class BucketTest {
   template <typename Node>
   void Run(const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
     thread_local std::vector<Entry> list_a, list_b;
+    thread_local std::vector<PlacedFace> swept_a;
     Vector3d lo_a, hi_a, lo_b, hi_b;
-    Gather(ia_, faces_a(), na, list_a, lo_a, hi_a);
-    Gather(ib_, faces_b(), nb, list_b, lo_b, hi_b);
+    StartList(list_a, lo_a, hi_a);
+    StartList(list_b, lo_b, hi_b);
+    swept_a.clear();
+    swept_a.reserve(na.num_primitives);  // no reallocation: entries point into it
+    for (int i = na.first_primitive; i < na.first_primitive + na.num_primitives; ++i) {
+      const int f = ia_.leaf_faces[i];
+      if (ia_.degenerate[f]) continue;
+      const PlacedFace* face = &ia_.leaf_order_faces[i];
+      if (sweep_A_) {  // the box of the face's whole sweep
+        PlacedFace& swept = swept_a.emplace_back(*face);
+        swept.lo = swept.lo.cwiseMin(swept.lo - *sweep_A_);
+        swept.hi = swept.hi.cwiseMax(swept.hi - *sweep_A_);
+        face = &swept;
+      }
+      AddEntry(f, face, list_a, lo_a, hi_a);
+    }
+    for (int i = nb.first_primitive; i < nb.first_primitive + nb.num_primitives; ++i) {
+      const int f = ib_.leaf_faces[i];
+      if (!ib_.degenerate[f]) AddEntry(f, &faces_b().Get(f), list_b, lo_b, hi_b);
+    }
     const Vector3d lo = lo_a.cwiseMax(lo_b).array() - margin_;
     const Vector3d hi = hi_a.cwiseMin(hi_b).array() + margin_;
     if ((lo.array() > hi.array()).any()) return;
@@ -135,6 +153,10 @@ class BucketTest {
     for (const Entry& a : list_a) {
       for (const Entry& b : list_b) {
         if (FaceBoxesApart(*a.face, *b.face, margin_)) continue;
+        if (!sweep_A_ && (BeyondFacePlane(*a.face, b.face->triangle, margin_) ||
+                          BeyondFacePlane(*b.face, a.face->triangle, margin_))) {
+          continue;
+        }
         const bool hit =
             sweep_A_ ? !SweptIntersection(a.face->triangle, a.face->normal, b.face->triangle,
                                           b.face->normal, *sweep_A_, margin_, {0, 1})
@@ -152,21 +174,18 @@ class BucketTest {
     const PlacedFace* face;
   };
 
-  // The non-degenerate faces of `node` and the box around them.
-  template <typename Node>
-  static void Gather(const CollisionModel::Impl& impl, PlacedFaces& placed, const Node& node,
-                     std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {
+  static void StartList(std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {
     list.clear();
     lo.setConstant(std::numeric_limits<double>::infinity());
     hi = -lo;
-    for (int i = 0; i < node.num_primitives; ++i) {
-      const int f = impl.leaf_faces[node.first_primitive + i];
-      if (impl.degenerate[f]) continue;
-      const PlacedFace& face = placed.Get(f);
-      list.push_back({f, &face});
-      lo = lo.cwiseMin(face.lo);
-      hi = hi.cwiseMax(face.hi);
-    }
+  }
+
+  // Adds a face to a bucket's list and its box to the bucket's box.
+  static void AddEntry(int id, const PlacedFace* face, std::vector<Entry>& list, Vector3d& lo,
+                       Vector3d& hi) {
+    list.push_back({id, face});
+    lo = lo.cwiseMin(face->lo);
+    hi = hi.cwiseMax(face->hi);
   }
 
   // Keeps the entries whose boxes meet `region`.
@@ -174,10 +193,6 @@ class BucketTest {
     std::erase_if(list, [&](const Entry& e) { return FaceBoxesApart(*e.face, region, 0); });
   }
 
-  static PlacedFaces& faces_a() {
-    thread_local PlacedFaces faces;
-    return faces;
-  }
   static PlacedFaces& faces_b() {
     thread_local PlacedFaces faces;
     return faces;
@@ -214,7 +229,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
   const Matrix3d R = X_AB.linear();
   const Vector3d T = X_AB.translation();
   const VolumeTest<BV> volumes(mb, R, T, sweep_A);
-  const BucketTest buckets(ma, ia, mb, ib, X_AB, sweep_A, margin);
+  const BucketTest buckets(ia, mb, ib, X_AB, sweep_A, margin);
   int64_t tests = 0;
   // Reused across calls so that a steady stream of queries does not allocate.
   thread_local std::vector<std::pair<int, int>> stack;

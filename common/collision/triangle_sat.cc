@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace hs {
 namespace {
@@ -89,15 +90,72 @@ bool SeparatedAlong(double a_lo, double a_hi, double b_lo, double b_hi, double n
   return gap > 0 && gap * gap > margin * margin * norm_sq;
 }
 
-// Whether all of `t` lies beyond `margin` on one side of the plane through
-// `origin` with normal `n`: the cheap first test of the leaf, which rejects
-// most candidate pairs before the full axis set is built.
-bool BeyondPlane(const Triangle3d& t, const Vector3d& origin, const Vector3d& n, double margin) {
+// Signed distances (times |n|) of the corners of `t` from the plane through
+// `origin` with normal `n`.
+std::array<double, 3> PlaneDistances(const Triangle3d& t, const Vector3d& origin,
+                                     const Vector3d& n) {
+  return {n.dot(t[0] - origin), n.dot(t[1] - origin), n.dot(t[2] - origin)};
+}
+
+// Whether all corners lie beyond `margin` on one side of a plane with normal
+// `n`, given their distances `d` from it: the cheap first test of the leaf,
+// which rejects most candidate pairs before the full axis set is built.
+bool BeyondPlane(const std::array<double, 3>& d, const Vector3d& n, double margin) {
   const double norm_sq = n.squaredNorm();
   if (norm_sq == 0) return false;
-  const double d0 = n.dot(t[0] - origin), d1 = n.dot(t[1] - origin), d2 = n.dot(t[2] - origin);
-  const double lo = std::min(std::min(d0, d1), d2), hi = std::max(std::max(d0, d1), d2);
+  const double lo = std::min(std::min(d[0], d[1]), d[2]), hi = std::max(std::max(d[0], d[1]), d[2]);
   return SeparatedAlong(lo, hi, 0.0, 0.0, norm_sq, margin);
+}
+
+// Where `t` crosses the other triangle's plane, as an interval of the
+// parameter p.dot(line) along the planes' common line, given its corners'
+// distances `d` from that plane; none when no corner stands clear of the
+// plane on each side (by more than `clear`).
+std::optional<Extent> CrossingOnLine(const Triangle3d& t, const std::array<double, 3>& d,
+                                     double clear, const Vector3d& line, const Vector3d& origin) {
+  // The corner alone on its side, and the other two.
+  int lone = -1;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) <= clear) return std::nullopt;
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    if ((d[i] > 0) != (d[j] > 0) && (d[i] > 0) != (d[k] > 0)) lone = i;
+  }
+  if (lone < 0) return std::nullopt;
+  const double at_lone = line.dot(t[lone] - origin);
+  double ends[2];
+  for (int n = 1; n <= 2; ++n) {
+    const int i = (lone + n) % 3;
+    const double at_i = line.dot(t[i] - origin);
+    ends[n - 1] = at_i + (at_lone - at_i) * d[i] / (d[i] - d[lone]);
+  }
+  return Extent{std::min(ends[0], ends[1]), std::max(ends[0], ends[1])};
+}
+
+// Relative to the triangles' size, what rounding cannot reach: the fast
+// crossing test below answers only when every quantity it compares stands
+// clear of zero by this much, and leaves every other pair to the SAT.
+constexpr double kClearlyRelative = 1e-9;
+
+// A fast yes for triangles that cross each other (Moller's interval test):
+// each straddles the other's plane, and the two segments where they cut the
+// planes' common line overlap. Both segments lie on that line inside both
+// triangles, so an overlap is a common point. Only a clear yes counts.
+bool ClearlyCrossing(const Triangle3d& a, const Vector3d& na, const std::array<double, 3>& da,
+                     const Triangle3d& b, const Vector3d& nb, const std::array<double, 3>& db) {
+  const double size = (a[0] - b[0]).cwiseAbs().maxCoeff() + (a[1] - a[0]).cwiseAbs().maxCoeff() +
+                      (a[2] - a[0]).cwiseAbs().maxCoeff() + (b[1] - b[0]).cwiseAbs().maxCoeff() +
+                      (b[2] - b[0]).cwiseAbs().maxCoeff();
+  const double clear = kClearlyRelative * size;
+  const Vector3d line = na.cross(nb);
+  const double line_norm = line.norm();
+  if (!(line_norm > 0)) return false;
+  const std::optional<Extent> on_a =
+      CrossingOnLine(a, da, clear * nb.norm(), line, b[0]);
+  if (!on_a) return false;
+  const std::optional<Extent> on_b =
+      CrossingOnLine(b, db, clear * na.norm(), line, b[0]);
+  if (!on_b) return false;
+  return std::min(on_a->hi, on_b->hi) - std::max(on_a->lo, on_b->lo) > clear * line_norm;
 }
 
 }  // namespace
@@ -110,8 +168,11 @@ bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin)
 
 bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                         const Vector3d& normal_b, double margin) {
-  if (BeyondPlane(b, a[0], normal_a, margin)) return false;
-  if (BeyondPlane(a, b[0], normal_b, margin)) return false;
+  const std::array<double, 3> db = PlaneDistances(b, a[0], normal_a);
+  if (BeyondPlane(db, normal_a, margin)) return false;
+  const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
+  if (BeyondPlane(da, normal_b, margin)) return false;
+  if (ClearlyCrossing(a, normal_a, da, b, normal_b, db)) return true;
   return ForEachAxis(a, normal_a, b, normal_b,
                      [&](const Vector3d&, double norm_sq, const Extent& ea, const Extent& eb) {
                        return !SeparatedAlong(ea.lo, ea.hi, eb.lo, eb.hi, norm_sq, margin);
