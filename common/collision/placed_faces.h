@@ -36,15 +36,20 @@ inline PlacedFace PlaceFace(const Triangle3d& triangle) {
 }
 
 /// True when every corner of `t` lies farther than `margin` on one side of
-/// the plane of `face`: the first test of TrianglesIntersect, made here
-/// before the call because most pairs whose boxes meet fail it.
-inline bool BeyondFacePlane(const PlacedFace& face, const Triangle3d& t, double margin) {
+/// the plane of `face` while `t` moves by `shift` times the face normal's
+/// length, for every fraction of the move in [0, 1] (0: no move). The first
+/// test of TrianglesIntersect and SweptIntersection, made here before the
+/// call because most pairs whose boxes meet fail it.
+inline bool BeyondFacePlane(const PlacedFace& face, const Triangle3d& t, double margin,
+                            double shift) {
   const Vector3d& origin = face.triangle[0];
   const double d0 = face.normal.dot(t[0] - origin);
   const double d1 = face.normal.dot(t[1] - origin);
   const double d2 = face.normal.dot(t[2] - origin);
   const double slack = margin * face.normal_norm;
-  return (d0 > slack && d1 > slack && d2 > slack) || (d0 < -slack && d1 < -slack && d2 < -slack);
+  const double lo = std::min(std::min(d0, d1), d2) + std::min(0.0, shift);
+  const double hi = std::max(std::max(d0, d1), d2) + std::max(0.0, shift);
+  return lo > slack || hi < -slack;
 }
 
 /// True when the boxes of `a` and `b` are farther apart than `margin` along

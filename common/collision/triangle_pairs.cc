@@ -153,8 +153,12 @@ class BucketTest {
     for (const Entry& a : list_a) {
       for (const Entry& b : list_b) {
         if (FaceBoxesApart(*a.face, *b.face, margin_)) continue;
-        if (!sweep_A_ && (BeyondFacePlane(*a.face, b.face->triangle, margin_) ||
-                          BeyondFacePlane(*b.face, a.face->triangle, margin_))) {
+        // With a sweep, A moves by -t sweep: B moves off A's plane by
+        // +t (n_a . sweep), A off B's plane by -t (n_b . sweep).
+        const double shift_b = sweep_A_ ? a.face->normal.dot(*sweep_A_) : 0.0;
+        const double shift_a = sweep_A_ ? -b.face->normal.dot(*sweep_A_) : 0.0;
+        if (BeyondFacePlane(*a.face, b.face->triangle, margin_, shift_b) ||
+            BeyondFacePlane(*b.face, a.face->triangle, margin_, shift_a)) {
           continue;
         }
         const bool hit =
@@ -224,13 +228,14 @@ constexpr int kBucketFaces = 32;
 template <typename BV>
 int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
                  const fcl::BVHModel<BV>& mb, const CollisionModel::Impl& ib,
-                 const Isometry3d& X_AB, const Vector3d* sweep_A, double margin,
+                 const Isometry3d& X_AB, const Vector3d* sweep_A, double margin, bool first_only,
                  std::vector<TrianglePair>& pairs) {
   const Matrix3d R = X_AB.linear();
   const Vector3d T = X_AB.translation();
   const VolumeTest<BV> volumes(mb, R, T, sweep_A);
   const BucketTest buckets(ia, mb, ib, X_AB, sweep_A, margin);
   int64_t tests = 0;
+  const size_t pairs_before = pairs.size();
   // Reused across calls so that a steady stream of queries does not allocate.
   thread_local std::vector<std::pair<int, int>> stack;
   stack.clear();
@@ -246,6 +251,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     const bool small_b = nb.num_primitives <= kBucketFaces;
     if (small_a && small_b) {
       buckets.Run(na, nb, pairs);
+      if (first_only && pairs.size() > pairs_before) break;
     } else if (small_b || (!small_a && na.bv.size() >= nb.bv.size())) {
       stack.emplace_back(na.leftChild(), j);
       stack.emplace_back(na.rightChild(), j);
@@ -258,10 +264,22 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
 }
 
 int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sweep_W,
-             const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
+             const CollisionModel& b, const Isometry3d& X_WB, double margin_m, bool first_only,
              std::vector<TrianglePair>& pairs) {
   HS_CHECK(a.bv_type() == b.bv_type());
   HS_CHECK(margin_m <= a.margin_m() + b.margin_m());
+  // The traversal works in its first object's frame, whose faces come ready
+  // placed (leaf_order_faces), and maps the other's into it: let the larger
+  // mesh go first. A moved by -t sweep meets B where B moved by +t sweep
+  // meets A, so the sweep turns round, and so do the pairs found.
+  if (b.impl().leaf_faces.size() > a.impl().leaf_faces.size()) {
+    const Vector3d sweep_back = sweep_W ? Vector3d(-*sweep_W) : Vector3d();
+    const size_t first = pairs.size();
+    const int64_t tests =
+        Find(b, X_WB, sweep_W ? &sweep_back : nullptr, a, X_WA, margin_m, first_only, pairs);
+    for (size_t i = first; i < pairs.size(); ++i) std::swap(pairs[i].a, pairs[i].b);
+    return tests;
+  }
   const Isometry3d X_AB = X_WA.inverse() * X_WB;
   const Vector3d sweep_A = sweep_W ? Vector3d(X_WA.linear().transpose() * *sweep_W) : Vector3d();
   const CollisionModel::Impl& ia = a.impl();
@@ -270,7 +288,8 @@ int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sw
       [&](const auto& ma) -> int64_t {
         using Model = typename std::decay_t<decltype(ma)>::element_type;
         const auto& mb = std::get<std::shared_ptr<Model>>(ib.bvh);
-        return Traverse(*ma, ia, *mb, ib, X_AB, sweep_W ? &sweep_A : nullptr, margin_m, pairs);
+        return Traverse(*ma, ia, *mb, ib, X_AB, sweep_W ? &sweep_A : nullptr, margin_m, first_only,
+                        pairs);
       },
       ia.bvh);
 }
@@ -280,14 +299,23 @@ int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sw
 int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
                                   std::vector<TrianglePair>& pairs) {
-  return Find(a, X_WA, nullptr, b, X_WB, margin_m, pairs);
+  return Find(a, X_WA, nullptr, b, X_WB, margin_m, /*first_only=*/false, pairs);
 }
 
 int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,
                                const Isometry3d& X_WB, double margin_m,
                                std::vector<TrianglePair>& pairs) {
-  return Find(a, X_WA, &sweep_W, b, X_WB, margin_m, pairs);
+  return Find(a, X_WA, &sweep_W, b, X_WB, margin_m, /*first_only=*/false, pairs);
+}
+
+bool AnyTrianglesMeet(const CollisionModel& a, const Isometry3d& X_WA,
+                      const std::optional<Vector3d>& sweep_W, const CollisionModel& b,
+                      const Isometry3d& X_WB, double margin_m) {
+  thread_local std::vector<TrianglePair> pairs;
+  pairs.clear();
+  Find(a, X_WA, sweep_W ? &*sweep_W : nullptr, b, X_WB, margin_m, /*first_only=*/true, pairs);
+  return !pairs.empty();
 }
 
 }  // namespace hs

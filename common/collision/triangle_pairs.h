@@ -1,6 +1,7 @@
 #pragma once
 // Narrow phase: every pair of faces of two objects that intersect.
 
+#include <optional>
 #include <vector>
 
 #include "common/collision/collision_model.h"
@@ -35,5 +36,11 @@ int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,
                                const Isometry3d& X_WB, double margin_m,
                                std::vector<TrianglePair>& pairs);
+
+/// Whether FindIntersectingTriangles (no `sweep_W`) or FindSweptTrianglePairs
+/// would find any pair: the same test, stopped at the first pair found.
+bool AnyTrianglesMeet(const CollisionModel& a, const Isometry3d& X_WA,
+                      const std::optional<Vector3d>& sweep_W, const CollisionModel& b,
+                      const Isometry3d& X_WB, double margin_m);
 
 }  // namespace hs

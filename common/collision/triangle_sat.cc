@@ -190,7 +190,7 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
   Interval result = within;
   ForEachAxis(a, normal_a, b, normal_b,
               [&](const Vector3d& axis, double norm_sq, const Extent& ea, const Extent& eb) {
-                const double slack = margin * std::sqrt(norm_sq);
+                const double slack = margin != 0 ? margin * std::sqrt(norm_sq) : 0.0;
                 // Along the axis, a(t) spans [ea.lo - t*s, ea.hi - t*s] with
                 // s = axis.D. They overlap while ea.lo - t*s <= eb.hi + slack
                 // and eb.lo <= ea.hi - t*s + slack.
@@ -199,12 +199,11 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
                 const double high_gap = ea.hi - eb.lo + slack;  // need t*s <= high_gap
                 if (s == 0) {
                   if (low_gap > 0 || high_gap < 0) result = Interval{};
-                } else if (s > 0) {
-                  result.lo = std::max(result.lo, low_gap / s);
-                  result.hi = std::min(result.hi, high_gap / s);
                 } else {
-                  result.lo = std::max(result.lo, high_gap / s);
-                  result.hi = std::min(result.hi, low_gap / s);
+                  const double inverse = 1 / s;
+                  const double from_low = low_gap * inverse, from_high = high_gap * inverse;
+                  result.lo = std::max(result.lo, s > 0 ? from_low : from_high);
+                  result.hi = std::min(result.hi, s > 0 ? from_high : from_low);
                 }
                 return !result.empty();
               });

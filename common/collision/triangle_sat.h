@@ -45,7 +45,8 @@ bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Tri
                         const Vector3d& normal_b, double margin);
 
 /// The set of t for which `a` translated by -t * `direction` intersects `b`
-/// (within `margin`). Always one closed interval (a line through the convex
+/// (within `margin`; a negative margin asks for an overlap deeper than
+/// -margin along every axis). Always one closed interval (a line through the convex
 /// Minkowski difference); unbounded ends are +-inf. `direction` need not be
 /// unit: t is in units of its length. With a `within`, the result is cut to
 /// it, and the test stops as soon as the cut is empty: callers that care

@@ -114,15 +114,9 @@ absl::StatusOr<bool> AreColliding(const PosedObject& moving, const PosedObject& 
   HS_ASSIGN_OR_RETURN(
       const double tolerance,
       PairTolerance(moving, fixed, step_W.value_or(Vector3d::Zero()), relative_tolerance));
-  std::vector<TrianglePair> pairs;
-  if (step_W && step_W->squaredNorm() > 0) {
-    FindSweptTrianglePairs(*moving.model, moving.X_WO, *step_W, *fixed.model, fixed.X_WO, tolerance,
-                           pairs);
-  } else {
-    FindIntersectingTriangles(*moving.model, moving.X_WO, *fixed.model, fixed.X_WO, tolerance,
-                              pairs);
-  }
-  return !pairs.empty();
+  const bool swept = step_W && step_W->squaredNorm() > 0;
+  return AnyTrianglesMeet(*moving.model, moving.X_WO, swept ? step_W : std::nullopt, *fixed.model,
+                          fixed.X_WO, tolerance);
 }
 
 absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& moving,
@@ -139,7 +133,7 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
   // The step is swept in pieces from its start, and the first piece that
   // touches holds the first touch. A proxy resting on a surface touches it
   // early in its step, and a short piece's swept volume meets few faces.
-  constexpr double kPieceEnds[] = {1.0 / 16, 1.0};
+  constexpr double kPieceEnds[] = {1.0 / 1024, 1.0 / 16, 1.0};
   const Isometry3d X_FM_end = context.X_FM;
   double piece_start = 0;
   std::optional<double> touch_time;

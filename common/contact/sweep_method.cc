@@ -9,8 +9,9 @@
 namespace hs {
 namespace {
 
-// Each round at least doubles the stretch of the motion searched; real
-// scenes settle in two or three.
+// Each round at least doubles the stretch of the motion searched, from at
+// least twice the tolerance, so 64 rounds reach 2^65 tolerances (over 1e19
+// object sizes); real scenes settle in two or three.
 constexpr int kMaxRounds = 64;
 
 Isometry3d MovedBack(const ContactContext& c, double t) {
@@ -35,11 +36,8 @@ bool Penetrating(const ContactContext& c) {
   if (!(off.squaredNorm() > 1e-24)) return true;  // no way off: do not drop a contact
   Isometry3d X_FM = c.X_FM;
   X_FM.pretranslate(2 * c.tolerance_m * off.normalized());
-  thread_local std::vector<TrianglePair> pairs;
-  pairs.clear();
-  FindIntersectingTriangles(c.moving_model, X_FM, c.fixed_model, Isometry3d::Identity(),
-                            c.tolerance_m, pairs);
-  return !pairs.empty();
+  return AnyTrianglesMeet(c.moving_model, X_FM, std::nullopt, c.fixed_model, Isometry3d::Identity(),
+                          c.tolerance_m);
 }
 
 }  // namespace
@@ -95,12 +93,16 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
     settled = t_star == t1;
     // Faces wholly inside the other object are in no pair until M backs out
     // to them, so a deep contact of a fine mesh would take a query per ring
-    // of faces. Swept queries over the next stretch instead, each reaching
-    // at least twice as far: every pair that meets in [t1, covered] is then
+    // of faces. Swept queries over the next stretch instead, each twice as
+    // long as the last: every pair that meets in [t1, covered] is then
     // known, and none outside it can reach a run ending before `covered`.
+    // The first stretch is as long as the run grew at t1: a short sweep
+    // meets few faces, and a run that goes on far is reached in a few
+    // doublings.
     double covered = t1;
-    for (int round = 0; round < kMaxRounds && !settled; ++round) {
-      const double reach = std::max(t_star + 2 * c.tolerance_m, 2 * covered);
+    double stretch = std::max(2 * c.tolerance_m, t_star - t1);
+    for (int round = 0; round < kMaxRounds && !settled; ++round, stretch *= 2) {
+      const double reach = std::max(t_star + 2 * c.tolerance_m, covered + stretch);
       std::vector<TrianglePair> swept;
       FindSweptTrianglePairs(c.moving_model, MovedBack(c, covered), (reach - covered) * D,
                              c.fixed_model, Isometry3d::Identity(), c.tolerance_m, swept);
