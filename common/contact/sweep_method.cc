@@ -20,18 +20,81 @@ Isometry3d MovedBack(const ContactContext& c, double t) {
   return X;
 }
 
-// Whether M and F overlap by more than the tolerance rather than touch.
-// Mostly some pair overlaps by more than it along every separating axis.
-// When none does, the objects touch, or they are boxes penetrating with
-// aligned sides (every pair then meets at an edge of one of the two): M
-// moved 2 eps off the touched fixed faces is apart in the first case only.
-bool Penetrating(const ContactContext& c) {
-  const bool deep_pair = std::any_of(c.pairs.begin(), c.pairs.end(), [&](const TrianglePair& p) {
-    return !SweptIntersection(c.MovingTriangle(p.a), c.FixedTriangle(p.b), c.direction_F,
-                              -c.tolerance_m, {0, 0})
-                .empty();
-  });
-  if (deep_pair) return true;
+// A face pair with its sweep intervals along D over t >= 0 (units of D,
+// so metres), taken with M at t = 0: sweep intervals are
+// translation-invariant, whatever pose found the pair.
+struct KnownPair {
+  TrianglePair pair;
+  SweptIntervals intervals;
+  bool operator<(const KnownPair& other) const { return pair < other.pair; }
+};
+
+// The pairs met so far, sorted, each with its intervals computed once.
+class KnownPairs {
+ public:
+  explicit KnownPairs(const ContactContext& c) : c_(c) {}
+
+  // Adds the pairs not known yet.
+  void Add(std::vector<TrianglePair> pairs) {
+    std::sort(pairs.begin(), pairs.end());
+    const size_t old_size = known_.size();
+    for (const TrianglePair& pair : pairs) {
+      if (std::binary_search(known_.begin(), known_.begin() + old_size, KnownPair{pair, {}})) {
+        continue;
+      }
+      const Triangle3d a = c_.MovingTriangle(pair.a), b = c_.FixedTriangle(pair.b);
+      known_.push_back({pair, SweptIntersections(a, TriangleNormal(a), b, TriangleNormal(b),
+                                                 c_.direction_F, c_.tolerance_m,
+                                                 {0, std::numeric_limits<double>::infinity()})});
+    }
+    std::inplace_merge(known_.begin(), known_.begin() + old_size, known_.end());
+  }
+
+  // Extends the run of exact intervals that covers t = 0 from `t_star`:
+  // runs chain across gaps below the tolerance, which count as touching.
+  double ExtendRun(double t_star) {
+    std::vector<Interval>& exact = scratch_;
+    exact.clear();
+    for (const KnownPair& k : known_) {
+      if (!k.intervals.exact.empty()) exact.push_back(k.intervals.exact);
+    }
+    std::sort(exact.begin(), exact.end(),
+              [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
+    for (const Interval& interval : exact) {
+      if (interval.lo <= t_star + c_.tolerance_m && interval.hi > t_star) t_star = interval.hi;
+    }
+    return t_star;
+  }
+
+  // The pairs within the tolerance of each other at `t`.
+  std::vector<TrianglePair> TouchingAt(double t) const {
+    std::vector<TrianglePair> pairs;
+    for (const KnownPair& k : known_) {
+      if (k.intervals.touching.Contains(t)) pairs.push_back(k.pair);
+    }
+    return pairs;
+  }
+
+  // Whether some pair overlaps by more than the tolerance at t = 0.
+  bool AnyDeepAtStart() const {
+    return std::any_of(known_.begin(), known_.end(),
+                       [](const KnownPair& k) { return k.intervals.deep.Contains(0); });
+  }
+
+ private:
+  const ContactContext& c_;
+  std::vector<KnownPair> known_;
+  std::vector<Interval> scratch_;
+};
+
+// Whether M and F overlap by more than the tolerance rather than touch,
+// given the pairs at t = 0 in `known`. Mostly some pair overlaps by more
+// than it along every separating axis. When none does, the objects touch,
+// or they are boxes penetrating with aligned sides (every pair then meets
+// at an edge of one of the two): M moved 2 eps off the touched fixed faces
+// is apart in the first case only.
+bool Penetrating(const ContactContext& c, const KnownPairs& known) {
+  if (known.AnyDeepAtStart()) return true;
   const Vector3d off = c.TouchedFixedNormals();   // out of the touched fixed faces
   if (!(off.squaredNorm() > 1e-24)) return true;  // no way off: do not drop a contact
   Isometry3d X_FM = c.X_FM;
@@ -48,48 +111,25 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
   // pair (a, b) intersects over the interval of t in which a - t D meets b.
   // Intervals are exact (zero margin); runs may chain across gaps below the
   // tolerance, which count as touching.
-  std::vector<TrianglePair> known;  // sorted
-  std::vector<Interval> intervals;
-  auto add_pairs = [&](std::vector<TrianglePair> pairs) {
-    std::sort(pairs.begin(), pairs.end());
-    const size_t old_size = known.size();
-    for (const TrianglePair& pair : pairs) {
-      if (std::binary_search(known.begin(), known.begin() + old_size, pair)) continue;
-      known.push_back(pair);
-      // Sweep intervals are translation-invariant, so take a at t = 0. Only
-      // t >= 0 can extend the run from t = 0.
-      const Interval interval =
-          SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), D, 0.0,
-                            {0, std::numeric_limits<double>::infinity()});
-      if (!interval.empty()) intervals.push_back(interval);
-    }
-    std::inplace_merge(known.begin(), known.begin() + old_size, known.end());
-  };
-  add_pairs(c.pairs);
+  KnownPairs known(c);
+  known.Add(c.pairs);
 
   // Objects that only touch need no reversing, whatever D is: a D along
   // the touching faces would otherwise chain across their whole overlap.
-  const bool penetrating = Penetrating(c);
+  const bool penetrating = Penetrating(c, known);
   double t_star = 0;
-  auto extend_run = [&] {
-    std::sort(intervals.begin(), intervals.end(),
-              [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
-    for (const Interval& interval : intervals) {
-      if (interval.lo <= t_star + c.tolerance_m && interval.hi > t_star) t_star = interval.hi;
-    }
-  };
   std::vector<TrianglePair> at_t_star = c.pairs;
   bool settled = !penetrating;
   if (!settled) {
-    extend_run();
+    t_star = known.ExtendRun(t_star);
     // A pair that could extend the run past t* meets at t*, so one query
     // there usually settles it, and its pairs are those to locate.
     const double t1 = t_star;
     at_t_star.clear();
     FindIntersectingTriangles(c.moving_model, MovedBack(c, t1), c.fixed_model,
                               Isometry3d::Identity(), c.tolerance_m, at_t_star);
-    add_pairs(at_t_star);
-    extend_run();
+    known.Add(at_t_star);
+    t_star = known.ExtendRun(t_star);
     settled = t_star == t1;
     // Faces wholly inside the other object are in no pair until M backs out
     // to them, so a deep contact of a fine mesh would take a query per ring
@@ -106,22 +146,13 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
       std::vector<TrianglePair> swept;
       FindSweptTrianglePairs(c.moving_model, MovedBack(c, covered), (reach - covered) * D,
                              c.fixed_model, Isometry3d::Identity(), c.tolerance_m, swept);
-      add_pairs(std::move(swept));
+      known.Add(std::move(swept));
       covered = reach;
-      extend_run();
+      t_star = known.ExtendRun(t_star);
       settled = t_star + c.tolerance_m <= covered;
     }
-    if (t_star != t1) {
-      // The pairs touching at t*: all known, since [t1, covered] holds t*.
-      at_t_star.clear();
-      for (const TrianglePair& pair : known) {
-        if (!SweptIntersection(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), D, c.tolerance_m,
-                               {t_star, t_star})
-                 .empty()) {
-          at_t_star.push_back(pair);
-        }
-      }
-    }
+    // The pairs touching at t*: all known, since [t1, covered] holds t*.
+    if (t_star != t1) at_t_star = known.TouchingAt(t_star);
   }
 
   ContactSet set;
