@@ -54,7 +54,9 @@ void WriteResults(const std::string& dir) {
           << Cell(p.p99_us) << " | " << Cell(p.depth_error_m) << " | " << Cell(p.normal_error_rad)
           << " | " << Cell(p.brute_error_m) << " | " << Cell(p.brute_ms) << " |\n";
     // gnuplot: one block per knob, two blank lines between blocks; errors
-    // of 0 floored so that a log scale shows them.
+    // of 0 floored so that a log scale shows them; a reference shape's own
+    // point has no error to plot.
+    if (p.depth_error_m < 0) continue;
     if (p.family != family) {
       if (!family.empty()) data << "\n\n";
       families << '"' << p.family << "\" ";

@@ -70,9 +70,12 @@ Shape Torus(int major_segments) {
 }
 
 Shape Kidney(int level) {
-  return {"kidney", KidneyObject(level), Matrix3d::Identity(),
+  return {"kidney",
+          KidneyObject(level),
+          Matrix3d::Identity(),
           [](const Matrix3d& R) { return LowestVertexZ(KidneyObject(kKidneyLevels - 1), R); },
-          true};
+          true,
+          level == kKidneyLevels - 1};
 }
 
 std::vector<Config> Configs(const Shape& shape) {

@@ -31,6 +31,9 @@ struct Shape {
   /// The reference is measured in any orientation (a sphere, the imported
   /// model): each pose turns the mesh at random.
   bool any_orientation = false;
+  /// The mesh is its own reference shape (the finest imported level): it
+  /// has no depth error against it to report.
+  bool is_reference = false;
 };
 
 /// An icosphere of 2 cm radius, 20 * 4^subdivisions faces; the reference is
