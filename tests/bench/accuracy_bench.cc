@@ -16,11 +16,15 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <iostream>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "common/contact/contact_query.h"
 #include "tests/bench/accuracy_results.h"

@@ -1,6 +1,7 @@
 #include "tests/bench/accuracy_results.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 
 namespace hs::accuracy {

@@ -2,9 +2,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "common/contact/contact_query.h"
 #include "common/model/procedural.h"
