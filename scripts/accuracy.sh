@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds and runs the accuracy-vs-time sweep (tests/bench/accuracy_bench.cc),
+# Builds and runs the accuracy-vs-time sweep (tests/bench/accuracy_bench.cc
+# and the files beside it),
 # writes its table and data to docs/accuracy/ and draws the plots there
 # with gnuplot. Extra arguments go to Google Benchmark, e.g.
 #   scripts/accuracy.sh --benchmark_filter=Tunnelling

@@ -16,15 +16,21 @@ struct Body {
   PosedObject posed() const { return {&object, &model, X_WO}; }
 };
 
-/// A body of `mesh` at X_WO, hierarchy grown by 1e-6 of its box diagonal
-/// (room for query tolerances up to 1e-6 relative).
-inline std::unique_ptr<Body> MakeBody(MeshInput mesh,
+/// A body of `object` (e.g. an imported model) at X_WO, hierarchy grown by
+/// 1e-6 of its box diagonal (room for query tolerances up to 1e-6 relative).
+inline std::unique_ptr<Body> MakeBody(HapticObject object,
                                       const Isometry3d& X_WO = Isometry3d::Identity(),
                                       BvType bv = BvType::kObbRss) {
-  HapticObject object = *HapticObject::Create("body", std::move(mesh));
   const double margin = 1e-6 * object.bounding_box().diagonal().norm();
   CollisionModel model(object, bv, margin);
   return std::make_unique<Body>(Body{std::move(object), std::move(model), X_WO});
+}
+
+/// A body of `mesh`, as above.
+inline std::unique_ptr<Body> MakeBody(MeshInput mesh,
+                                      const Isometry3d& X_WO = Isometry3d::Identity(),
+                                      BvType bv = BvType::kObbRss) {
+  return MakeBody(*HapticObject::Create("body", std::move(mesh)), X_WO, bv);
 }
 
 /// A square pyramid with its apex (vertex 0) at the origin and its base at
