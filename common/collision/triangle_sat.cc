@@ -227,21 +227,4 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
   return result;
 }
 
-SweptIntervals SweptIntersections(const Triangle3d& a, const Vector3d& normal_a,
-                                  const Triangle3d& b, const Vector3d& normal_b,
-                                  const Vector3d& direction, double margin, Interval within) {
-  SweptIntervals result{within, within, within};
-  // The touching interval holds the exact one, which holds the deep one.
-  ForEachAxis(a, normal_a, b, normal_b,
-              [&](const Vector3d& axis, double norm_sq, const Extent& ea, const Extent& eb) {
-                const SweepAlongAxis along(axis, direction, ea, eb);
-                const double slack = margin * std::sqrt(norm_sq);
-                along.Cut(0.0, result.exact);
-                along.Cut(slack, result.touching);
-                along.Cut(-slack, result.deep);
-                return !result.touching.empty();
-              });
-  return result;
-}
-
 }  // namespace hs

@@ -54,20 +54,6 @@ bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Tri
 Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
                            double margin, Interval within = kWholeLine);
 
-/// The sweep intervals of one pair at three margins, found in one pass.
-struct SweptIntervals {
-  Interval exact;     // margin 0
-  Interval touching;  // within the margin
-  Interval deep;      // overlapping by more than the margin along every axis
-};
-
-/// SweptIntersection at margins 0, `margin` (>= 0) and -`margin` at once,
-/// each triangle's TriangleNormal given; stops when the touching interval
-/// is empty.
-SweptIntervals SweptIntersections(const Triangle3d& a, const Vector3d& normal_a,
-                                  const Triangle3d& b, const Vector3d& normal_b,
-                                  const Vector3d& direction, double margin, Interval within);
-
 /// SweptIntersection with each triangle's TriangleNormal given.
 Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                            const Vector3d& normal_b, const Vector3d& direction, double margin,

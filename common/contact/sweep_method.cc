@@ -20,16 +20,16 @@ Isometry3d MovedBack(const ContactContext& c, double t) {
   return X;
 }
 
-// A face pair with its sweep intervals along D over t >= 0 (units of D,
-// so metres), taken with M at t = 0: sweep intervals are
+// A face pair with its exact sweep interval along D over t >= 0 (units of
+// D, so metres), taken with M at t = 0: sweep intervals are
 // translation-invariant, whatever pose found the pair.
 struct KnownPair {
   TrianglePair pair;
-  SweptIntervals intervals;
+  Interval exact;
   bool operator<(const KnownPair& other) const { return pair < other.pair; }
 };
 
-// The pairs met so far, sorted, each with its intervals computed once.
+// The pairs met so far, sorted, each with its interval computed once.
 class KnownPairs {
  public:
   explicit KnownPairs(const ContactContext& c) : c_(c) {}
@@ -42,10 +42,10 @@ class KnownPairs {
       if (std::binary_search(known_.begin(), known_.begin() + old_size, KnownPair{pair, {}})) {
         continue;
       }
-      const Triangle3d a = c_.MovingTriangle(pair.a), b = c_.FixedTriangle(pair.b);
-      known_.push_back({pair, SweptIntersections(a, TriangleNormal(a), b, TriangleNormal(b),
-                                                 c_.direction_F, c_.tolerance_m,
-                                                 {0, std::numeric_limits<double>::infinity()})});
+      // Only t >= 0 can extend the run from t = 0.
+      known_.push_back({pair, SweptIntersection(c_.MovingTriangle(pair.a), c_.FixedTriangle(pair.b),
+                                                c_.direction_F, 0.0,
+                                                {0, std::numeric_limits<double>::infinity()})});
     }
     std::inplace_merge(known_.begin(), known_.begin() + old_size, known_.end());
   }
@@ -56,7 +56,7 @@ class KnownPairs {
     std::vector<Interval>& exact = scratch_;
     exact.clear();
     for (const KnownPair& k : known_) {
-      if (!k.intervals.exact.empty()) exact.push_back(k.intervals.exact);
+      if (!k.exact.empty()) exact.push_back(k.exact);
     }
     std::sort(exact.begin(), exact.end(),
               [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
@@ -70,15 +70,13 @@ class KnownPairs {
   std::vector<TrianglePair> TouchingAt(double t) const {
     std::vector<TrianglePair> pairs;
     for (const KnownPair& k : known_) {
-      if (k.intervals.touching.Contains(t)) pairs.push_back(k.pair);
+      if (!SweptIntersection(c_.MovingTriangle(k.pair.a), c_.FixedTriangle(k.pair.b),
+                             c_.direction_F, c_.tolerance_m, {t, t})
+               .empty()) {
+        pairs.push_back(k.pair);
+      }
     }
     return pairs;
-  }
-
-  // Whether some pair overlaps by more than the tolerance at t = 0.
-  bool AnyDeepAtStart() const {
-    return std::any_of(known_.begin(), known_.end(),
-                       [](const KnownPair& k) { return k.intervals.deep.Contains(0); });
   }
 
  private:
@@ -87,14 +85,18 @@ class KnownPairs {
   std::vector<Interval> scratch_;
 };
 
-// Whether M and F overlap by more than the tolerance rather than touch,
-// given the pairs at t = 0 in `known`. Mostly some pair overlaps by more
-// than it along every separating axis. When none does, the objects touch,
-// or they are boxes penetrating with aligned sides (every pair then meets
-// at an edge of one of the two): M moved 2 eps off the touched fixed faces
-// is apart in the first case only.
-bool Penetrating(const ContactContext& c, const KnownPairs& known) {
-  if (known.AnyDeepAtStart()) return true;
+// Whether M and F overlap by more than the tolerance rather than touch.
+// Mostly some pair overlaps by more than it along every separating axis.
+// When none does, the objects touch, or they are boxes penetrating with
+// aligned sides (every pair then meets at an edge of one of the two): M
+// moved 2 eps off the touched fixed faces is apart in the first case only.
+bool Penetrating(const ContactContext& c) {
+  const bool deep_pair = std::any_of(c.pairs.begin(), c.pairs.end(), [&](const TrianglePair& p) {
+    return !SweptIntersection(c.MovingTriangle(p.a), c.FixedTriangle(p.b), c.direction_F,
+                              -c.tolerance_m, {0, 0})
+                .empty();
+  });
+  if (deep_pair) return true;
   const Vector3d off = c.TouchedFixedNormals();   // out of the touched fixed faces
   if (!(off.squaredNorm() > 1e-24)) return true;  // no way off: do not drop a contact
   Isometry3d X_FM = c.X_FM;
@@ -116,7 +118,7 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
 
   // Objects that only touch need no reversing, whatever D is: a D along
   // the touching faces would otherwise chain across their whole overlap.
-  const bool penetrating = Penetrating(c, known);
+  const bool penetrating = Penetrating(c);
   double t_star = 0;
   std::vector<TrianglePair> at_t_star = c.pairs;
   bool settled = !penetrating;
