@@ -11,6 +11,11 @@ namespace {
 // is a rounding artefact of parallel edges or a flat face, and is skipped.
 constexpr double kAxisRelativeFloor = 1e-12;
 
+// Above this sine of the angle between two faces' planes, the in-plane
+// edge normals are not needed (ForEachAxis); far above rounding, far below
+// any angle between faces of a real mesh that matters.
+constexpr double kPlanesCrossSin = 1e-6;
+
 // A triangle's extent along an axis.
 struct Extent {
   double lo, hi;
@@ -63,6 +68,14 @@ bool ForEachAxis(const Triangle3d& a, const Vector3d& na, const Triangle3d& b, c
         return false;
       }
     }
+  }
+  // The in-plane edge normals separate triangles of (nearly) parallel
+  // planes only: where the planes cross, the two face normals and the nine
+  // edge crosses are the face normals of the Minkowski difference, so they
+  // decide alone, and the other six are implied by them.
+  const double cross_sq = na.cross(nb).squaredNorm();
+  if (cross_sq > kPlanesCrossSin * kPlanesCrossSin * na.squaredNorm() * nb.squaredNorm()) {
+    return true;
   }
   for (int i = 0; i < 3; ++i) {
     const Vector3d axis_a = na.cross(ea[i]);
