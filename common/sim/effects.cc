@@ -23,7 +23,7 @@ constexpr std::array<std::pair<Effect, std::string_view>, kNumEffects> kNames = 
 constexpr std::array<std::pair<Effect, Effect>, 5> kNeeds = {{
     {Effect::kFriction, Effect::kForce},
     {Effect::kForce, Effect::kReversingVector},
-    {Effect::kReversingVector, Effect::kContactSet},
+    {Effect::kReversingVector, Effect::kCollision},
     {Effect::kContactSet, Effect::kCollision},
     {Effect::kContinuousCollision, Effect::kCollision},
 }};

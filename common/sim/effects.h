@@ -13,8 +13,8 @@ namespace hs {
 
 enum class Effect : uint8_t {
   kCollision,            ///< Which tool-object pairs touch or penetrate (yes/no).
-  kContactSet,           ///< Contact features, points and normal per pair.
-  kReversingVector,      ///< Depth and reversing vector per pair; the proxy pose.
+  kContactSet,           ///< Features, points, normal, depth and reversing vector per pair.
+  kReversingVector,      ///< The tool's reversing vector: its proxy pose, kept out of objects.
   kForce,                ///< Spring-damper force and torque on each tool.
   kFriction,             ///< Coulomb friction in the proxy's sliding.
   kContinuousCollision,  ///< Contact anywhere along the step, not only at its end.

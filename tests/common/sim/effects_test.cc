@@ -5,12 +5,15 @@
 namespace hs {
 namespace {
 
-// Force pulls in the reversing vector, the contact set and collision;
-// friction pulls in force; continuous collision pulls in collision.
+// Force pulls in the reversing vector (the proxy) and collision, not the
+// contact set; friction pulls in force; continuous collision pulls in
+// collision.
 TEST(EffectsTest, PrerequisitesClose) {
   EXPECT_EQ(WithPrerequisites({Effect::kFriction}),
             (EffectSet{Effect::kFriction, Effect::kForce, Effect::kReversingVector,
-                       Effect::kContactSet, Effect::kCollision}));
+                       Effect::kCollision}));
+  EXPECT_EQ(WithPrerequisites({Effect::kContactSet}),
+            (EffectSet{Effect::kContactSet, Effect::kCollision}));
   EXPECT_EQ(WithPrerequisites({Effect::kContinuousCollision}),
             (EffectSet{Effect::kContinuousCollision, Effect::kCollision}));
   EXPECT_EQ(WithPrerequisites({Effect::kCollision}), (EffectSet{Effect::kCollision}));
@@ -23,8 +26,8 @@ TEST(EffectsTest, StagesToRun) {
   EXPECT_EQ(StagesToRun({Effect::kCollision}, {Effect::kCollision}),
             (EffectSet{Effect::kCollision}));
   EXPECT_EQ(StagesToRun({Effect::kCollision}, {Effect::kForce}), (EffectSet{Effect::kCollision}));
-  const EffectSet no_contact_set = EffectSet::All().Without(Effect::kContactSet);
-  EXPECT_EQ(StagesToRun(no_contact_set, {Effect::kForce}),
+  const EffectSet no_proxy = EffectSet::All().Without(Effect::kReversingVector);
+  EXPECT_EQ(StagesToRun(no_proxy, {Effect::kForce}),
             (EffectSet{Effect::kCollision, Effect::kContinuousCollision}));
   EXPECT_EQ(StagesToRun(EffectSet::All(), EffectSet()), EffectSet());
 }

@@ -79,13 +79,35 @@ TEST(SceneTest, CollisionOnlyConsumerRunsOnlyCollision) {
 // depend on it do not run either.
 TEST(SceneTest, DisabledStageNeverRuns) {
   SceneOptions options;
-  options.enabled = EffectSet::All().Without(Effect::kContactSet);
+  options.enabled = EffectSet::All().Without(Effect::kReversingVector);
   Rig rig = MakeRig(options);
   Drive(rig, PressAndSlide());
-  for (Effect e : {Effect::kContactSet, Effect::kReversingVector, Effect::kForce}) {
+  for (Effect e : {Effect::kReversingVector, Effect::kForce, Effect::kFriction}) {
     EXPECT_EQ(rig.scene->stats()[static_cast<int>(e)].runs, 0) << EffectName(e);
   }
   EXPECT_GT(rig.scene->stats()[static_cast<int>(Effect::kCollision)].runs, 0);
+  EXPECT_GT(rig.scene->stats()[static_cast<int>(Effect::kContactSet)].runs, 0);
+}
+
+// A haptic device that needs only its force gets the proxy and the force
+// without the contact sets being reconstructed, and both equal those of a
+// run with everything enabled.
+TEST(SceneTest, ForceOnlyConsumerSkipsContactSet) {
+  Rig lean = MakeRig(), full = MakeRig();
+  lean.scene->SetNeeded({Effect::kForce, Effect::kFriction});
+  const auto a = Drive(lean, PressAndSlide());
+  const auto b = Drive(full, PressAndSlide());
+  EXPECT_EQ(lean.scene->stats()[static_cast<int>(Effect::kContactSet)].runs, 0);
+  EXPECT_EQ(lean.scene->stats()[static_cast<int>(Effect::kForce)].runs,
+            full.scene->stats()[static_cast<int>(Effect::kForce)].runs);
+  int pushing = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].tools[0].X_WP.matrix(), b[i].tools[0].X_WP.matrix()) << "step " << i;
+    EXPECT_EQ(a[i].tools[0].force_W, b[i].tools[0].force_W) << "step " << i;
+    EXPECT_EQ(a[i].tools[0].torque_W, b[i].tools[0].torque_W) << "step " << i;
+    pushing += a[i].tools[0].force_W.norm() > 0;
+  }
+  EXPECT_GT(pushing, 10);
 }
 
 // A scene where nothing moves runs no stage at all.
