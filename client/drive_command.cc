@@ -10,6 +10,7 @@
 #include "client/device_path.h"
 #include "client/exit_codes.h"
 #include "client/frame_format.h"
+#include "client/needs_args.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "server/proto_convert.h"
@@ -44,6 +45,8 @@ grpc::Status ToolStartPose(const DriveArgs& args, std::shared_ptr<grpc::Channel>
 
 int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   if (!(args.rate_hz > 0)) return ReportError("drive", "--rate must be > 0", err);
+  absl::StatusOr<EffectSet> needs = ParseNeeds(args.needs);
+  if (!needs.ok()) return ReportError("drive", needs.status(), err);
   std::shared_ptr<grpc::Channel> channel = MakeChannel(args.server.address);
   std::vector<TimedPose> path;
   if (!args.motion.empty()) {
@@ -70,6 +73,7 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   pb::InteractRequest open;
   open.mutable_open()->set_scene(args.scene);
   open.mutable_open()->set_tool(args.tool);
+  SetNeeds(*needs, *open.mutable_open());
   stream->Write(open);
 
   const uint64_t last = path.size();
@@ -136,6 +140,7 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1e-3, 1e5))
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "One JSON object (haptics.v1.Frame) per line");
+  AddNeedsOption(*cmd, args->needs);
   cmd->callback([args, path, motion, &exit_code] {
     if (path->count() + motion->count() != 1) {
       std::cerr << "hapticctl drive: give --path or --motion\n";

@@ -32,6 +32,8 @@ struct DriveArgs {
   double rate_hz = 1000;
   /// One JSON object (haptics.v1.Frame) per line instead of a table.
   bool json = false;
+  /// What the device needs (effect names); empty means everything.
+  std::vector<std::string> needs;
 };
 
 /// Drives the tool and prints to `out`. kExitOk; kExitFailure for a bad

@@ -14,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "client/device_path.h"
 #include "client/echo_server.h"
+#include "client/needs_args.h"
 #include "client/process_cpu.h"
 #include "haptics/v1/echo_service.grpc.pb.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
@@ -132,12 +133,13 @@ class FrameCounts {
 class DeviceStream {
  public:
   DeviceStream(pb::SessionService::Stub& stub, const std::string& scene, const std::string& tool,
-               std::vector<TimedPose> path, double rate_hz)
+               const EffectSet& needs, std::vector<TimedPose> path, double rate_hz)
       : path_(std::move(path)), rate_hz_(rate_hz), trips_(path_.size()) {
     stream_ = stub.Interact(&context_);
     pb::InteractRequest open;
     open.mutable_open()->set_scene(scene);
     open.mutable_open()->set_tool(tool);
+    SetNeeds(needs, *open.mutable_open());
     stream_->Write(open);
   }
   // A stream left open by an early return is cancelled, not waited for.
@@ -440,6 +442,7 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   report.clients = options.clients;
   report.viewers = options.viewers;
   report.rate_hz = options.rate_hz;
+  report.needs = options.needs;
   report.duration_s = options.duration_s;
   report.load_average_1m = LoadAverage1m();
   report.scene = "loadtest-" + std::to_string(getpid());
@@ -488,7 +491,7 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
     MotionParams params;
     params.phase_s = static_cast<double>(i) / options.clients;
     devices.push_back(std::make_unique<DeviceStream>(
-        *sessions, report.scene, "tool-" + std::to_string(i),
+        *sessions, report.scene, "tool-" + std::to_string(i), options.needs,
         MotionPath(Motion::kPress, *X_WT, options.rate_hz, options.duration_s, params),
         options.rate_hz));
   }

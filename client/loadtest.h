@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "common/sim/effects.h"
+
 #include "absl/status/statusor.h"
 #include "client/percentiles.h"
 #include "client/server_call.h"
@@ -46,6 +48,8 @@ struct LoadtestOptions {
   int server_pid = 0;
   /// Run the echo baseline.
   bool echo = true;
+  /// What each device needs; a haptic device needs its force (with friction).
+  EffectSet needs = EffectSet::All();
   /// Where a progress line goes once a second (none when null).
   std::ostream* progress = nullptr;
 };
@@ -76,6 +80,8 @@ struct LoadReport {
   int viewers = 0;
   double rate_hz = 0;
   double duration_s = 0;
+  /// What each device asked the scene for.
+  EffectSet needs;
   double load_average_1m = -1;
   /// Device streams: overall (round trips pooled, counts summed) and each.
   StreamReport devices;

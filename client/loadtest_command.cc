@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "client/exit_codes.h"
+#include "client/needs_args.h"
 #include "nlohmann/json.hpp"
 #include "server/scene_file.h"
 
@@ -38,7 +39,8 @@ void PrintReport(const LoadReport& r, std::ostream& out) {
   out << std::fixed << std::setprecision(3);
   out << "loadtest: " << r.clients << " device(s) x " << r.rate_hz << " Hz for " << r.duration_s
       << " s, " << r.viewers << " viewer(s), scene '" << r.scene << "' (" << r.triangles
-      << " triangles); load average " << r.load_average_1m << " at start\n";
+      << " triangles); devices need: " << NeedsNames(r.needs) << "; load average "
+      << r.load_average_1m << " at start\n";
   out << "round trip, ms      count      p50      p99    p99.9      max  frames/s  dropped\n";
   PrintRow("devices", r.devices, out);
   for (size_t i = 0; i < r.per_device.size(); ++i) {
@@ -73,6 +75,7 @@ std::string LoadReportJson(const LoadReport& r) {
                                  {"viewers", r.viewers},
                                  {"rate_hz", r.rate_hz},
                                  {"duration_s", r.duration_s},
+                                 {"needs", NeedsNames(r.needs)},
                                  {"load_average_1m", r.load_average_1m},
                                  {"devices", StreamJson(r.devices)},
                                  {"per_device", per_device},
@@ -96,6 +99,12 @@ std::string LoadReportJson(const LoadReport& r) {
 
 int RunLoadtestCommand(const LoadtestArgs& args, std::ostream& out, std::ostream& err) {
   LoadtestOptions options = args.options;
+  absl::StatusOr<EffectSet> needs = ParseNeeds(args.needs);
+  if (!needs.ok()) {
+    ReportError("loadtest", needs.status(), err);
+    return kExitUsage;
+  }
+  options.needs = *needs;
   if (!args.scene_file.empty()) {
     absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(args.scene_file);
     if (!spec.ok()) return ReportError("loadtest", spec.status(), err);
@@ -144,6 +153,7 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
                   "The server's pid for its CPU figure (default: found from its loopback port)");
   cmd->add_flag(
       "--no-echo", [&o](int64_t) { o.echo = false; }, "Skip the echo baseline");
+  AddNeedsOption(*cmd, args->needs);
   cmd->callback(
       [args, &exit_code] { exit_code = RunLoadtestCommand(*args, std::cout, std::cerr); });
 }

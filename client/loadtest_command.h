@@ -17,6 +17,8 @@ struct LoadtestArgs {
   std::string scene_file;
   /// The report as one JSON object instead of text.
   bool json = false;
+  /// What each device needs (effect names); empty means everything.
+  std::vector<std::string> needs;
 };
 
 /// The report as JSON: settings, round trips (ms) overall, per device and

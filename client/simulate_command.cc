@@ -4,6 +4,7 @@
 
 #include "client/contact_json.h"
 #include "client/exit_codes.h"
+#include "client/needs_args.h"
 #include "client/tool_path.h"
 #include "server/scene_file.h"
 
@@ -61,17 +62,6 @@ nlohmann::ordered_json StatsJson(const StageStatsTable& stats) {
         {"mean_us", stats[i].runs ? 1e-3 * stats[i].total_ns / stats[i].runs : 0.0}};
   }
   return out;
-}
-
-absl::StatusOr<EffectSet> ParseNeeds(const std::vector<std::string>& names) {
-  if (names.empty()) return EffectSet::All();
-  EffectSet needs;
-  for (const std::string& name : names) {
-    absl::StatusOr<Effect> effect = ParseEffect(name);
-    if (!effect.ok()) return effect.status();
-    needs = needs.With(*effect);
-  }
-  return needs;
 }
 
 }  // namespace
@@ -133,9 +123,7 @@ void AddSimulateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--steps", args->steps, "Number of steps")->check(CLI::Range(0, 10000000));
   cmd->add_option("--tool-path", args->tool_path,
                   "Device poses of the first tool, one 'x,y,z,rx,ry,rz' line per step");
-  cmd->add_option("--needs", args->needs,
-                  "Effects the consumer needs (collision, contact_set, reversing_vector, force, "
-                  "friction, continuous_collision, free_body_motion); default all");
+  AddNeedsOption(*cmd, args->needs);
   cmd->add_flag("--json", args->json, "One JSON object per step, then the stage statistics");
   cmd->callback([args, &exit_code] { exit_code = RunSimulate(*args, std::cout, std::cerr); });
 }

@@ -33,6 +33,7 @@ TEST(LoadtestCommandTest, SmallRunAddsUp) {
   options.duration_s = 1;
   options.viewers = 1;
   options.scene = hs::testing::SmallScene("base");
+  options.needs = {Effect::kForce, Effect::kFriction};  // what a haptic device reads
   absl::StatusOr<LoadReport> report = RunLoadtest(options);
   ASSERT_TRUE(report.ok()) << report.status();
   const LoadReport& r = *report;
@@ -77,6 +78,7 @@ TEST(LoadtestCommandTest, SmallRunAddsUp) {
   const nlohmann::json json = nlohmann::json::parse(LoadReportJson(r));
   EXPECT_EQ(json["devices"]["sent"].get<int64_t>(), sent);
   EXPECT_EQ(json["per_device"].size(), 2u);
+  EXPECT_EQ(json["needs"], "force friction");
 }
 
 // Options past the bounds and a remote server are usage errors; a scene
@@ -90,6 +92,10 @@ TEST(LoadtestCommandTest, Bounds) {
   args.options.duration_s = 61;
   EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
   args.options.duration_s = 1;
+  args.needs = {"gravity"};
+  EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("gravity"), std::string::npos) << err.str();
+  args.needs.clear();
   args.options.server.address = "192.0.2.1:50051";
   EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
   EXPECT_NE(err.str().find("--allow-remote"), std::string::npos) << err.str();

@@ -1,0 +1,45 @@
+#include "client/needs_args.h"
+
+#include "server/proto_convert.h"
+
+namespace hs::cli {
+
+absl::StatusOr<EffectSet> ParseNeeds(const std::vector<std::string>& names) {
+  if (names.empty()) return EffectSet::All();
+  EffectSet needs;
+  for (const std::string& name : names) {
+    absl::StatusOr<Effect> effect = ParseEffect(name);
+    if (!effect.ok()) return effect.status();
+    needs = needs.With(*effect);
+  }
+  return needs;
+}
+
+std::string NeedsNames(const EffectSet& needs) {
+  std::string names;
+  for (int i = 0; i < kNumEffects; ++i) {
+    const auto effect = static_cast<Effect>(i);
+    if (!needs.Has(effect)) continue;
+    if (!names.empty()) names += ' ';
+    names += EffectName(effect);
+  }
+  return names;
+}
+
+void AddNeedsOption(CLI::App& cmd, std::vector<std::string>& names) {
+  cmd.add_option("--needs", names,
+                 "Effects the consumer needs (collision, contact_set, reversing_vector, force, "
+                 "friction, continuous_collision, free_body_motion); default all. A haptic "
+                 "device needs 'force friction'");
+}
+
+void SetNeeds(const EffectSet& needs, haptics::v1::InteractRequest::Open& open) {
+  open.clear_needs();
+  if (needs == EffectSet::All()) return;
+  for (int i = 0; i < kNumEffects; ++i) {
+    const auto effect = static_cast<Effect>(i);
+    if (needs.Has(effect)) open.add_needs(EffectToProto(effect));
+  }
+}
+
+}  // namespace hs::cli
