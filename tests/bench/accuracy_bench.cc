@@ -141,6 +141,7 @@ void Register() {
     add("method", std::string("sphere ") + name, [] { return Sphere(4); }, {.method = method});
     add("method", std::string("torus ") + name, [] { return Torus(64); }, {.method = method});
     add("method", std::string("kidney ") + name, [] { return Kidney(2); }, {.method = method});
+    add("method", std::string("box ") + name, [] { return Box(); }, {.method = method});
   }
   for (BvType bv : {BvType::kObbRss, BvType::kObb, BvType::kRss, BvType::kKios, BvType::kAabb}) {
     add("bv", std::string(BvTypeName(bv)), [] { return Torus(64); }, {.bv = bv});

@@ -72,6 +72,12 @@ Shape Torus(int major_segments) {
           [](const Matrix3d&) { return -(R * std::sin(tilt) + r); }, false};
 }
 
+Shape Box() {
+  static const HapticObject box = *HapticObject::Create("box", MakeBox(Vector3d::Constant(0.02)));
+  return {"box", box, Matrix3d::Identity(), [](const Matrix3d& R) { return LowestVertexZ(box, R); },
+          true};
+}
+
 Shape Kidney(int level) {
   return {"kidney",
           KidneyObject(level),

@@ -1,6 +1,6 @@
 #pragma once
-// The accuracy sweep's shapes and poses: a sphere, a tilted torus and an
-// imported non-convex model (kidney.obj refined by Catmull-Clark), each
+// The accuracy sweep's shapes and poses: a sphere, a tilted torus, a box
+// and an imported non-convex model (kidney.obj refined by Catmull-Clark), each
 // pressed 1 to 5 mm into the flat top (z = 0) of a large slab along
 // directions D drawn with a fixed seed.
 
@@ -44,6 +44,10 @@ Shape Sphere(int subdivisions);
 /// about x; the reference is the smooth torus, whose lowest point lies on no
 /// vertex ring (analytic).
 Shape Torus(int major_segments);
+
+/// A 2 cm cube, turned at random each pose; its mesh is its exact shape,
+/// so the reference is analytic: its lowest corner.
+Shape Box();
 
 /// Levels of the imported model: 0 is kidney.obj itself (128 faces), level
 /// k > 0 its Catmull-Clark refinement, 128 * 6 * 4^(k-1) faces after the
