@@ -22,8 +22,8 @@ namespace hs {
 /// A face in the query frame with its axis-aligned box.
 struct PlacedFace {
   Triangle3d triangle;
-  Vector3d normal;  // TriangleNormal(triangle)
-  Vector3d lo, hi;  // box corners
+  Vector3d normal;         // TriangleNormal(triangle)
+  Vector3d lo, hi;         // box corners
   double normal_norm = 0;  // normal.norm()
 };
 

@@ -162,11 +162,9 @@ bool ClearlyCrossing(const Triangle3d& a, const Vector3d& na, const std::array<d
   const Vector3d line = na.cross(nb);
   const double line_norm = line.norm();
   if (!(line_norm > 0)) return false;
-  const std::optional<Extent> on_a =
-      CrossingOnLine(a, da, clear * nb.norm(), line, b[0]);
+  const std::optional<Extent> on_a = CrossingOnLine(a, da, clear * nb.norm(), line, b[0]);
   if (!on_a) return false;
-  const std::optional<Extent> on_b =
-      CrossingOnLine(b, db, clear * na.norm(), line, b[0]);
+  const std::optional<Extent> on_b = CrossingOnLine(b, db, clear * na.norm(), line, b[0]);
   if (!on_b) return false;
   return std::min(on_a->hi, on_b->hi) - std::max(on_a->lo, on_b->lo) > clear * line_norm;
 }

@@ -15,9 +15,9 @@ namespace {
 // Writes a closed tetrahedron as OBJ into the temp folder, named after the
 // running test: ctest runs the tests of this file in parallel processes.
 std::string WriteTetrahedron() {
-  const auto path = std::filesystem::path(testing::TempDir()) /
-                    (std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                     "_tetra.obj");
+  const auto path =
+      std::filesystem::path(testing::TempDir()) /
+      (std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_tetra.obj");
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
                          "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
   return path.string();

@@ -9,9 +9,9 @@ namespace {
 // contact set; friction pulls in force; continuous collision pulls in
 // collision.
 TEST(EffectsTest, PrerequisitesClose) {
-  EXPECT_EQ(WithPrerequisites({Effect::kFriction}),
-            (EffectSet{Effect::kFriction, Effect::kForce, Effect::kReversingVector,
-                       Effect::kCollision}));
+  EXPECT_EQ(
+      WithPrerequisites({Effect::kFriction}),
+      (EffectSet{Effect::kFriction, Effect::kForce, Effect::kReversingVector, Effect::kCollision}));
   EXPECT_EQ(WithPrerequisites({Effect::kContactSet}),
             (EffectSet{Effect::kContactSet, Effect::kCollision}));
   EXPECT_EQ(WithPrerequisites({Effect::kContinuousCollision}),
