@@ -37,9 +37,8 @@ inline PlacedFace PlaceFace(const Triangle3d& triangle) {
 
 /// True when every corner of `t` lies farther than `margin` on one side of
 /// the plane of `face` while `t` moves by `shift` times the face normal's
-/// length, for every fraction of the move in [0, 1] (0: no move). The first
-/// test of TrianglesIntersect and SweptIntersection, made here before the
-/// call because most pairs whose boxes meet fail it.
+/// length, for every fraction of the move in [0, 1] (0: no move): the swept
+/// leaf test's first, cheap rejection.
 inline bool BeyondFacePlane(const PlacedFace& face, const Triangle3d& t, double margin,
                             double shift) {
   const Vector3d& origin = face.triangle[0];

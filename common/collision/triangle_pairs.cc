@@ -153,20 +153,9 @@ class BucketTest {
     for (const Entry& a : list_a) {
       for (const Entry& b : list_b) {
         if (FaceBoxesApart(*a.face, *b.face, margin_)) continue;
-        // With a sweep, A moves by -t sweep: B moves off A's plane by
-        // +t (n_a . sweep), A off B's plane by -t (n_b . sweep).
-        const double shift_b = sweep_A_ ? a.face->normal.dot(*sweep_A_) : 0.0;
-        const double shift_a = sweep_A_ ? -b.face->normal.dot(*sweep_A_) : 0.0;
-        if (BeyondFacePlane(*a.face, b.face->triangle, margin_, shift_b) ||
-            BeyondFacePlane(*b.face, a.face->triangle, margin_, shift_a)) {
-          continue;
-        }
-        const bool hit =
-            sweep_A_ ? !SweptIntersection(a.face->triangle, a.face->normal, b.face->triangle,
-                                          b.face->normal, *sweep_A_, margin_, {0, 1})
-                            .empty()
-                     : TrianglesIntersect(a.face->triangle, a.face->normal, b.face->triangle,
-                                          b.face->normal, margin_);
+        const bool hit = sweep_A_ ? SweptFacesMeet(*a.face, *b.face)
+                                  : TrianglesIntersect(a.face->triangle, a.face->normal,
+                                                       b.face->triangle, b.face->normal, margin_);
         if (hit) pairs.push_back({a.id, b.id});
       }
     }
@@ -177,6 +166,21 @@ class BucketTest {
     int id;
     const PlacedFace* face;
   };
+
+  // Whether face a, moved by -t sweep for some t in [0, 1], meets face b.
+  // The plane tests first: SweptIntersection builds every axis before its
+  // first, and most pairs whose boxes meet stay on one side of a plane all
+  // along the sweep. A moves by -t sweep, so B moves off A's plane by
+  // +t (n_a . sweep), and A off B's plane by -t (n_b . sweep).
+  bool SweptFacesMeet(const PlacedFace& a, const PlacedFace& b) const {
+    if (BeyondFacePlane(a, b.triangle, margin_, a.normal.dot(*sweep_A_)) ||
+        BeyondFacePlane(b, a.triangle, margin_, -b.normal.dot(*sweep_A_))) {
+      return false;
+    }
+    return !SweptIntersection(a.triangle, a.normal, b.triangle, b.normal, *sweep_A_, margin_,
+                              {0, 1})
+                .empty();
+  }
 
   static void StartList(std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {
     list.clear();

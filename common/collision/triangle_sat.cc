@@ -169,36 +169,6 @@ bool ClearlyCrossing(const Triangle3d& a, const Vector3d& na, const std::array<d
   return std::min(on_a->hi, on_b->hi) - std::max(on_a->lo, on_b->lo) > clear * line_norm;
 }
 
-// One axis of a swept test: along it, a(t) = a - t D spans
-// [ea.lo - t s, ea.hi - t s] with s = axis.D.
-class SweepAlongAxis {
- public:
-  SweepAlongAxis(const Vector3d& axis, const Vector3d& direction, const Extent& ea,
-                 const Extent& eb)
-      : s_(axis.dot(direction)), inverse_(s_ != 0 ? 1 / s_ : 0.0), ea_(ea), eb_(eb) {}
-
-  // Cuts `result` to the t at which the extents overlap within `slack` (in
-  // axis units; negative: overlap by more than -slack): while
-  // ea.lo - t s <= eb.hi + slack and eb.lo <= ea.hi - t s + slack.
-  void Cut(double slack, Interval& result) const {
-    const double low_gap = ea_.lo - eb_.hi - slack;   // need t s >= low_gap
-    const double high_gap = ea_.hi - eb_.lo + slack;  // need t s <= high_gap
-    if (s_ == 0) {
-      if (low_gap > 0 || high_gap < 0) result = Interval{};
-      return;
-    }
-    const double from_low = low_gap * inverse_, from_high = high_gap * inverse_;
-    result.lo = std::max(result.lo, s_ > 0 ? from_low : from_high);
-    result.hi = std::min(result.hi, s_ > 0 ? from_high : from_low);
-  }
-
- private:
-  const double s_;
-  const double inverse_;
-  const Extent& ea_;
-  const Extent& eb_;
-};
-
 }  // namespace
 
 Vector3d TriangleNormal(const Triangle3d& t) { return (t[1] - t[0]).cross(t[2] - t[1]); }
@@ -231,8 +201,21 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
   Interval result = within;
   ForEachAxis(a, normal_a, b, normal_b,
               [&](const Vector3d& axis, double norm_sq, const Extent& ea, const Extent& eb) {
-                const SweepAlongAxis along(axis, direction, ea, eb);
-                along.Cut(margin != 0 ? margin * std::sqrt(norm_sq) : 0.0, result);
+                const double slack = margin != 0 ? margin * std::sqrt(norm_sq) : 0.0;
+                // Along the axis, a(t) spans [ea.lo - t*s, ea.hi - t*s] with
+                // s = axis.D. They overlap while ea.lo - t*s <= eb.hi + slack
+                // and eb.lo <= ea.hi - t*s + slack.
+                const double s = axis.dot(direction);
+                const double low_gap = ea.lo - eb.hi - slack;   // need t*s >= low_gap
+                const double high_gap = ea.hi - eb.lo + slack;  // need t*s <= high_gap
+                if (s == 0) {
+                  if (low_gap > 0 || high_gap < 0) result = Interval{};
+                } else {
+                  const double inverse = 1 / s;
+                  const double from_low = low_gap * inverse, from_high = high_gap * inverse;
+                  result.lo = std::max(result.lo, s > 0 ? from_low : from_high);
+                  result.hi = std::min(result.hi, s > 0 ? from_high : from_low);
+                }
                 return !result.empty();
               });
   return result;
