@@ -17,11 +17,9 @@ absl::StatusOr<EffectSet> ParseNeeds(const std::vector<std::string>& names) {
 
 std::string NeedsNames(const EffectSet& needs) {
   std::string names;
-  for (int i = 0; i < kNumEffects; ++i) {
-    const auto effect = static_cast<Effect>(i);
-    if (!needs.Has(effect)) continue;
+  for (std::string_view name : EffectNames(needs)) {
     if (!names.empty()) names += ' ';
-    names += EffectName(effect);
+    names += name;
   }
   return names;
 }
@@ -35,11 +33,7 @@ void AddNeedsOption(CLI::App& cmd, std::vector<std::string>& names) {
 
 void SetNeeds(const EffectSet& needs, haptics::v1::InteractRequest::Open& open) {
   open.clear_needs();
-  if (needs == EffectSet::All()) return;
-  for (int i = 0; i < kNumEffects; ++i) {
-    const auto effect = static_cast<Effect>(i);
-    if (needs.Has(effect)) open.add_needs(EffectToProto(effect));
-  }
+  if (needs != EffectSet::All()) EffectsToProto(needs, open.mutable_needs());
 }
 
 }  // namespace hs::cli

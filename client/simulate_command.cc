@@ -31,11 +31,7 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
                      {"contacts", contacts}});
   }
   nlohmann::ordered_json stages = nlohmann::ordered_json::array();
-  for (int i = 0; i < kNumEffects; ++i) {
-    if (frame.stages_run.Has(static_cast<Effect>(i))) {
-      stages.push_back(EffectName(static_cast<Effect>(i)));
-    }
-  }
+  for (std::string_view name : EffectNames(frame.stages_run)) stages.push_back(name);
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
   for (const BodyFrame& b : frame.bodies) {
     const Eigen::Quaterniond q(b.X_WO.linear());

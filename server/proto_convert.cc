@@ -110,14 +110,18 @@ pb::Effect EffectToProto(Effect effect) {
   return static_cast<pb::Effect>(static_cast<int>(effect) + 1);
 }
 
+void EffectsToProto(EffectSet effects, google::protobuf::RepeatedField<int>* out) {
+  for (int i = 0; i < kNumEffects; ++i) {
+    const auto effect = static_cast<Effect>(i);
+    if (effects.Has(effect)) out->Add(EffectToProto(effect));
+  }
+}
+
 void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& names,
                       const FrameParts& parts, pb::Frame* out) {
   out->clear_tools();
   out->clear_stages_run();
-  for (int i = 0; i < kNumEffects; ++i) {
-    const auto effect = static_cast<Effect>(i);
-    if (frame.stages_run.Has(effect)) out->add_stages_run(EffectToProto(effect));
-  }
+  EffectsToProto(frame.stages_run, out->mutable_stages_run());
   for (const ToolFrame& t : frame.tools) {
     pb::ToolState* tool = out->add_tools();
     tool->set_tool(names[t.tool]);

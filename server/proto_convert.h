@@ -37,6 +37,10 @@ void PoseToProto(const Isometry3d& X, haptics::v1::Pose* out);
 absl::StatusOr<EffectSet> EffectsFromProto(const google::protobuf::RepeatedField<int>& effects,
                                            EffectSet empty_means, const std::string& where);
 
+/// Appends the haptics.v1.Effect value of each effect in `effects`, in
+/// Effect order.
+void EffectsToProto(EffectSet effects, google::protobuf::RepeatedField<int>* out);
+
 /// The haptics.v1.Effect value of `effect`.
 haptics::v1::Effect EffectToProto(Effect effect);
 

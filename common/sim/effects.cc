@@ -53,6 +53,15 @@ EffectSet StagesToRun(EffectSet enabled, EffectSet needed) {
 
 std::string_view EffectName(Effect effect) { return kNames[static_cast<int>(effect)].second; }
 
+std::vector<std::string_view> EffectNames(EffectSet effects) {
+  std::vector<std::string_view> names;
+  for (int i = 0; i < kNumEffects; ++i) {
+    const auto effect = static_cast<Effect>(i);
+    if (effects.Has(effect)) names.push_back(EffectName(effect));
+  }
+  return names;
+}
+
 absl::StatusOr<Effect> ParseEffect(std::string_view name) {
   for (const auto& [effect, n] : kNames) {
     if (n == name) return effect;

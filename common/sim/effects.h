@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "absl/status/statusor.h"
 
@@ -59,6 +60,8 @@ EffectSet StagesToRun(EffectSet enabled, EffectSet needed);
 /// "collision", "contact_set", "reversing_vector", "force", "friction",
 /// "continuous_collision", "free_body_motion".
 std::string_view EffectName(Effect effect);
+/// The names of the effects in `effects`, in Effect order.
+std::vector<std::string_view> EffectNames(EffectSet effects);
 /// The inverse of EffectName; INVALID_ARGUMENT for any other text.
 absl::StatusOr<Effect> ParseEffect(std::string_view name);
 

@@ -39,6 +39,9 @@ TEST(EffectsTest, Names) {
     EXPECT_EQ(*ParseEffect(EffectName(e)), e);
   }
   EXPECT_FALSE(ParseEffect("gravity").ok());
+  EXPECT_EQ(EffectNames({Effect::kForce, Effect::kCollision}),
+            (std::vector<std::string_view>{"collision", "force"}));
+  EXPECT_TRUE(EffectNames(EffectSet()).empty());
 }
 
 }  // namespace
