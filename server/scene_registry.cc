@@ -21,6 +21,7 @@ absl::StatusOr<LoadedScene> SceneRegistry::BuildChecked(const pb::SceneSpec& spe
         absl::StrCat("at most ", limits_.max_objects_per_scene, " objects per scene"));
   }
   HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildScene(spec, BuildPaths{base_dir, models_.dir()}));
+  HS_RETURN_IF_ERROR(loaded.scene->SetThreads(limits_.threads_per_scene));
   const double step_s = loaded.scene->options().step_s;
   if (!(step_s >= limits_.min_step_s && step_s <= limits_.max_step_s)) {
     return absl::InvalidArgumentError(absl::StrCat("step_s: ", step_s, " is outside [",

@@ -32,6 +32,9 @@ struct ServerLimits {
   /// outside): one thread per scene must keep up with its rate.
   double min_step_s = 1e-4;
   double max_step_s = 1.0;
+  /// Threads that step one scene's tools at once (Scene::SetThreads), in
+  /// [1, 64]: its runner thread and up to this many - 1 workers.
+  int threads_per_scene = 1;
 };
 
 class SceneRegistry {

@@ -3,8 +3,10 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 
 #include "CLI/CLI.hpp"
 #include "server/haptic_server.h"
@@ -26,6 +28,13 @@ int main(int argc, char** argv) {
   app.add_option("--max-clients", options.limits.max_clients)->capture_default_str();
   app.add_option("--max-objects", options.limits.max_objects_per_scene)->capture_default_str();
   app.add_option("--max-triangles", options.limits.max_triangles_per_scene)->capture_default_str();
+  // One per core, up to 4: a step rarely has more tools than that busy.
+  options.limits.threads_per_scene =
+      static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
+  app.add_option("--threads-per-scene", options.limits.threads_per_scene,
+                 "Threads that step one scene's tools at once")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   // SIGTERM and SIGINT are taken by sigwait below, not by any thread.

@@ -1,9 +1,12 @@
 #include "common/contact/contact_query.h"
 
 #include <cmath>
+#include <span>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "common/collision/triangle_pairs.h"
+#include "common/collision/triangle_sat.h"
 #include "common/contact/contact_context.h"
 #include "common/contact/contact_features.h"
 #include "common/contact/paper_method.h"
@@ -30,9 +33,10 @@ Vector3d FallbackDirection(const ContactContext& c) {
 // at which a pair intersects, found by the swept query, so M touched F first
 // at the fraction 1 - t of the step. Exact intervals (zero margin), so that
 // M moved back by t touches F within any tolerance; none when the query
-// found only near misses, or nothing.
-std::optional<double> LatestTouchBack(const ContactContext& c, const Vector3d& step_F) {
-  std::vector<TrianglePair> swept;
+// found only near misses, or nothing. `swept` gets the pairs that meet
+// within the tolerance somewhere along the step.
+std::optional<double> LatestTouchBack(const ContactContext& c, const Vector3d& step_F,
+                                      std::vector<TrianglePair>& swept) {
   FindSweptTrianglePairs(c.moving_model, c.X_FM, step_F, c.fixed_model, Isometry3d::Identity(),
                          c.tolerance_m, swept);
   std::optional<double> latest;
@@ -42,6 +46,18 @@ std::optional<double> LatestTouchBack(const ContactContext& c, const Vector3d& s
     if (!i.empty()) latest = std::max(latest.value_or(0.0), i.hi);
   }
   return latest;
+}
+
+// The pairs within the tolerance at c.X_FM, taken from `swept`, the pairs
+// met along a step through c.X_FM: every pair the pair query would find
+// there is among them, so their leaf test alone gives its answer.
+void MeetingAt(ContactContext& c, std::span<const TrianglePair> swept) {
+  c.pairs.clear();
+  for (const TrianglePair& pair : swept) {
+    if (TrianglesIntersect(c.MovingTriangle(pair.a), c.FixedTriangle(pair.b), c.tolerance_m)) {
+      c.pairs.push_back(pair);
+    }
+  }
 }
 
 ContactSet ToWorld(ContactSet set, const Isometry3d& X_WF) {
@@ -137,11 +153,12 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
   const Isometry3d X_FM_end = context.X_FM;
   double piece_start = 0;
   std::optional<double> touch_time;
+  std::vector<TrianglePair> swept;
   for (const double piece_end : kPieceEnds) {
     const Vector3d piece_F = (piece_end - piece_start) * step_F;
     context.X_FM = X_FM_end;
     context.X_FM.pretranslate(-(1 - piece_end) * step_F);
-    if (const std::optional<double> back = LatestTouchBack(context, piece_F)) {
+    if (const std::optional<double> back = LatestTouchBack(context, piece_F, swept)) {
       context.X_FM.pretranslate(-*back * piece_F);
       touch_time = piece_end - *back * (piece_end - piece_start);
       break;
@@ -149,9 +166,10 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
     piece_start = piece_end;
   }
   if (!touch_time) return std::nullopt;
-  FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
-                            tolerance, context.pairs);
-  const LocatedContacts located = LocateContacts(context, context.X_FM, context.pairs);
+  // The swept pairs hold every pair within the tolerance at the touch, and
+  // LocateContacts keeps only features within the tolerance: the contacts
+  // are those of a pair query there, without its traversal or leaf tests.
+  const LocatedContacts located = LocateContacts(context, context.X_FM, swept);
   FirstTouch touch;
   touch.time = *touch_time;
   touch.normal_W = fixed.X_WO.linear() * located.normal_F;
@@ -180,8 +198,9 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   // Continuous: look along the whole step for a first touch.
   double back = 0;  // fraction of the step to move back to the first touch
   std::optional<double> time_of_impact;
+  std::vector<TrianglePair> swept;
   if (query.continuous && !no_direction) {
-    if (const std::optional<double> latest = LatestTouchBack(context, direction_F)) {
+    if (const std::optional<double> latest = LatestTouchBack(context, direction_F, swept)) {
       back = *latest;
       time_of_impact = 1 - back;
     }
@@ -189,8 +208,7 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   if (context.pairs.empty() && time_of_impact) {
     // Passed through: reconstruct where it first touched.
     context.X_FM.pretranslate(-back * direction_F);
-    FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
-                              tolerance, context.pairs);
+    MeetingAt(context, swept);
   } else {
     back = 0;
   }

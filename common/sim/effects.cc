@@ -20,10 +20,11 @@ constexpr std::array<std::pair<Effect, std::string_view>, kNumEffects> kNames = 
 }};
 
 // Each effect and the one it directly needs.
-constexpr std::array<std::pair<Effect, Effect>, 5> kNeeds = {{
+// The reversing vector (the proxy) reads no other stage: it sweeps the tool
+// from the proxy toward the device itself.
+constexpr std::array<std::pair<Effect, Effect>, 4> kNeeds = {{
     {Effect::kFriction, Effect::kForce},
     {Effect::kForce, Effect::kReversingVector},
-    {Effect::kReversingVector, Effect::kCollision},
     {Effect::kContactSet, Effect::kCollision},
     {Effect::kContinuousCollision, Effect::kCollision},
 }};

@@ -98,6 +98,14 @@ absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
   return id;
 }
 
+absl::Status Scene::SetThreads(int threads) {
+  if (threads < 1 || threads > 64) {
+    return absl::InvalidArgumentError(absl::StrCat("threads: ", threads, " is outside [1, 64]"));
+  }
+  if (threads != workers_->threads()) workers_ = std::make_unique<WorkerPool>(threads);
+  return absl::OkStatus();
+}
+
 absl::Status Scene::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
   if (id < 0 || id >= static_cast<ObjectId>(objects_.size())) {
     return absl::NotFoundError(absl::StrCat("no object ", id));
@@ -127,16 +135,26 @@ const StepFrame& Scene::Step() {
     return frame_;
   }
   frame_.stages_run = stages;
-  broad_pairs_fresh_ = false;
   for (const Tool& tool : tools_) {
     if (tool.moved) broad_phase_.SetPose(tool.id, tool.X_WD);
   }
+  if (stages.Has(Effect::kCollision) && options_.broad_phase && !tools_.empty()) {
+    broad_pairs_ = broad_phase_.CandidatePairs();
+  }
   frame_.tools.resize(tools_.size());
-  for (size_t i = 0; i < tools_.size(); ++i) {
+  scratch_.resize(tools_.size());
+  workers_->ForEach(static_cast<int>(tools_.size()), [&](int i) {
     tools_[i].X_WP_previous = tools_[i].X_WP;
-    StepTool(tools_[i], frame_.stages_run, frame_.tools[i]);
+    StepTool(tools_[i], stages, frame_.tools[i], scratch_[i]);
     tools_[i].X_WD_previous = tools_[i].X_WD;
     tools_[i].moved = false;
+  });
+  for (ToolScratch& scratch : scratch_) {
+    for (int e = 0; e < kNumEffects; ++e) {
+      stats_[e].runs += scratch.stats[e].runs;
+      stats_[e].total_ns += scratch.stats[e].total_ns;
+    }
+    scratch.stats = {};
   }
   frame_.bodies.resize(bodies_.size());
   if (stages.Has(Effect::kFreeBodyMotion)) {
@@ -160,32 +178,29 @@ const StepFrame& Scene::Step() {
   return frame_;
 }
 
-void Scene::FindCandidates(const Tool& tool, Candidates which) {
+void Scene::FindCandidates(const Tool& tool, Candidates which, ToolScratch& scratch) const {
   const HapticObject& t = objects_[tool.id]->object;
-  candidates_.clear();
+  std::vector<int>& candidates = scratch.candidates;
+  candidates.clear();
   if (which != Candidates::kAtDevicePose) {
     const AlignedBox3d box =
         GrowBox(SweptBox(t, tool.X_WD_previous, tool.X_WD), objects_[tool.id]->model.margin_m());
     for (int k = 0; k < static_cast<int>(targets_.size()); ++k) {
-      if (which == Candidates::kEvery || box.intersects(target_boxes_[k])) candidates_.push_back(k);
+      if (which == Candidates::kEvery || box.intersects(target_boxes_[k])) candidates.push_back(k);
     }
     return;
-  }
-  if (!broad_pairs_fresh_) {
-    broad_pairs_ = broad_phase_.CandidatePairs();
-    broad_pairs_fresh_ = true;
   }
   for (const auto& [a, b] : broad_pairs_) {
     if (a != tool.id && b != tool.id) continue;
     const int k = target_index_[a == tool.id ? b : a];
-    if (k >= 0) candidates_.push_back(k);
+    if (k >= 0) candidates.push_back(k);
   }
-  std::sort(candidates_.begin(), candidates_.end());
+  std::sort(candidates.begin(), candidates.end());
 }
 
-void Scene::FindProxyObstacles(const Tool& tool) {
-  proxy_obstacles_.clear();
-  proxy_obstacle_ids_.clear();
+void Scene::FindProxyObstacles(const Tool& tool, ToolScratch& scratch) const {
+  scratch.proxy_obstacles.clear();
+  scratch.proxy_obstacle_ids.clear();
   const Object& t = *objects_[tool.id];
   // The proxy only moves toward the device: every pose it takes lies within
   // the device's distance of the device pose (plus a stand-off per slide,
@@ -196,12 +211,13 @@ void Scene::FindProxyObstacles(const Tool& tool) {
   for (size_t k = 0; k < obstacles_.size(); ++k) {
     const ObjectId id = obstacle_ids_[k];
     if (options_.broad_phase && !box.intersects(target_boxes_[target_index_[id]])) continue;
-    proxy_obstacles_.push_back(obstacles_[k]);
-    proxy_obstacle_ids_.push_back(id);
+    scratch.proxy_obstacles.push_back(obstacles_[k]);
+    scratch.proxy_obstacle_ids.push_back(id);
   }
 }
 
-void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame) {
+void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame,
+                             ToolScratch& scratch) const {
   const Object& t = *objects_[tool.id];
   const Isometry3d& from = tool.X_WD_previous;
   const Isometry3d& to = tool.X_WD;
@@ -209,19 +225,20 @@ void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame
   // of the objects it may meet is split so that none is passed through
   // (paper s.4, fig. 3 c). Which objects it may meet: the swept boxes.
   if (!continuous) {
-    FindCandidates(tool, Candidates::kSwept);
+    FindCandidates(tool, Candidates::kSwept, scratch);
     double edge = t.object.smallest_box_edge();
-    for (const int k : candidates_) edge = std::min(edge, targets_[k].object->smallest_box_edge());
+    for (const int k : scratch.candidates)
+      edge = std::min(edge, targets_[k].object->smallest_box_edge());
     frame.substeps = SubstepCount(Travel(t.object, from, to), edge, kMaxSubsteps);
   }
   const bool swept = continuous || frame.substeps > 1;
   const Candidates which = !options_.broad_phase ? Candidates::kEvery
                            : swept               ? Candidates::kSwept
                                                  : Candidates::kAtDevicePose;
-  if (continuous || which != Candidates::kSwept) FindCandidates(tool, which);
+  if (continuous || which != Candidates::kSwept) FindCandidates(tool, which, scratch);
   const Vector3d motion = to.translation() - from.translation();
   const PosedObject device = Posed(t, to);
-  for (const int k : candidates_) {
+  for (const int k : scratch.candidates) {
     int substep = frame.substeps;
     auto colliding_at = [&](const PosedObject& moving) {
       const absl::StatusOr<bool> colliding =
@@ -245,7 +262,7 @@ void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame
   }
 }
 
-void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
+void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame, ToolScratch& scratch) const {
   const Object& t = *objects_[tool.id];
   const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
   const bool continuous = stages.Has(Effect::kContinuousCollision);
@@ -261,16 +278,16 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   // Continuous collision and friction run inside the collision and proxy
   // stages: their runs are counted here, their time is their hosts'.
   if (continuous && stages.Has(Effect::kCollision)) {
-    ++stats_[static_cast<int>(Effect::kContinuousCollision)].runs;
+    ++scratch.stats[static_cast<int>(Effect::kContinuousCollision)].runs;
   }
-  if (stages.Has(Effect::kFriction)) ++stats_[static_cast<int>(Effect::kFriction)].runs;
+  if (stages.Has(Effect::kFriction)) ++scratch.stats[static_cast<int>(Effect::kFriction)].runs;
 
   if (stages.Has(Effect::kCollision)) {
-    StageTimer timer(stats_[static_cast<int>(Effect::kCollision)]);
-    FindToolContacts(tool, continuous, frame);
+    StageTimer timer(scratch.stats[static_cast<int>(Effect::kCollision)]);
+    FindToolContacts(tool, continuous, frame, scratch);
   }
   if (stages.Has(Effect::kContactSet)) {
-    StageTimer timer(stats_[static_cast<int>(Effect::kContactSet)]);
+    StageTimer timer(scratch.stats[static_cast<int>(Effect::kContactSet)]);
     // D is the device's way in from its proxy, which the last step left
     // outside every object: reversing it ends at the surface the device
     // went through. The device's own motion is tangent to the surface while
@@ -310,19 +327,19 @@ void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame) {
   }
   ProxyState proxy;
   {
-    StageTimer timer(stats_[static_cast<int>(Effect::kReversingVector)]);
+    StageTimer timer(scratch.stats[static_cast<int>(Effect::kReversingVector)]);
     const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
                                .friction = stages.Has(Effect::kFriction)};
-    FindProxyObstacles(tool);
+    FindProxyObstacles(tool, scratch);
     absl::StatusOr<ProxyState> moved =
-        MoveProxy(device, tool.X_WP, tool.X_WD, proxy_obstacles_, options);
+        MoveProxy(device, tool.X_WP, tool.X_WD, scratch.proxy_obstacles, options);
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
-    if (proxy.touching) proxy.obstacle = proxy_obstacle_ids_[proxy.obstacle];
+    if (proxy.touching) proxy.obstacle = scratch.proxy_obstacle_ids[proxy.obstacle];
     tool.X_WP = proxy.X_WP;
     frame.X_WP = proxy.X_WP;
   }
   if (stages.Has(Effect::kForce) && proxy.touching) {
-    StageTimer timer(stats_[static_cast<int>(Effect::kForce)]);
+    StageTimer timer(scratch.stats[static_cast<int>(Effect::kForce)]);
     const Material& m = objects_[proxy.obstacle]->object.face_material(proxy.face);
     const Vector3d stretch = proxy.X_WP.translation() - tool.X_WD.translation();
     const Vector3d velocity = motion / options_.step_s;

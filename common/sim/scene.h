@@ -15,6 +15,7 @@
 #include "common/sim/free_body.h"
 #include "common/sim/proxy.h"
 #include "common/sim/step_frame.h"
+#include "common/sim/worker_pool.h"
 
 namespace hs {
 
@@ -79,6 +80,12 @@ class Scene {
   /// changes on error.
   absl::Status SetDevicePose(ObjectId id, const Isometry3d& X_WD);
 
+  /// Steps the tools on up to `threads` threads (the stepping one
+  /// included): tools never meet each other, so each is stepped alone and
+  /// the results are bit-identical whatever the number. Stage times are
+  /// then summed over the threads. INVALID_ARGUMENT outside [1, 64].
+  absl::Status SetThreads(int threads);
+
   /// What the scene's consumers need from now on (their union).
   void SetNeeded(EffectSet needed) { needed_ = needed; }
 
@@ -107,6 +114,17 @@ class Scene {
     // Impulse the tool gave free bodies this step, world frame, N*s.
     Vector3d push_impulse_W = Vector3d::Zero();
   };
+  // What one tool's step writes besides its own state and frame, so that
+  // tools can be stepped at once.
+  struct ToolScratch {
+    // FindCandidates: indices into targets_, ascending.
+    std::vector<int> candidates;
+    // FindProxyObstacles: a subset of obstacles_, in order, and their ids.
+    std::vector<PosedObject> proxy_obstacles;
+    std::vector<ObjectId> proxy_obstacle_ids;
+    // The stages' runs and times of this step, added to stats_ after it.
+    StageStatsTable stats{};
+  };
   struct Body {
     ObjectId id;
     MassProperties mass;
@@ -123,7 +141,7 @@ class Scene {
 
   explicit Scene(const SceneOptions& options) : options_(options) {}
   PosedObject Posed(const Object& o, const Isometry3d& X) const { return {&o.object, &o.model, X}; }
-  void StepTool(Tool& tool, EffectSet stages, ToolFrame& frame);
+  void StepTool(Tool& tool, EffectSet stages, ToolFrame& frame, ToolScratch& scratch) const;
   void MoveFreeBody(Body& body, BodyFrame& frame);
   // Adds the reaction of the free bodies the tool pushed to its force.
   void AddPushReaction(const Tool& tool, ToolFrame& frame) const;
@@ -133,12 +151,13 @@ class Scene {
     kSwept,         // boxes overlapping the tool's box swept along the step
     kEvery,         // every target (options_.broad_phase off)
   };
-  // Fills candidates_ with the targets the tool may touch this step.
-  void FindCandidates(const Tool& tool, Candidates which);
-  // Fills proxy_obstacles_ with the fixed objects the proxy may touch.
-  void FindProxyObstacles(const Tool& tool);
+  // Fills scratch.candidates with the targets the tool may touch this step.
+  void FindCandidates(const Tool& tool, Candidates which, ToolScratch& scratch) const;
+  // Fills scratch.proxy_obstacles with the fixed objects the proxy may touch.
+  void FindProxyObstacles(const Tool& tool, ToolScratch& scratch) const;
   // The collision stage of one tool, sub-stepped when its step is long.
-  void FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame);
+  void FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame,
+                        ToolScratch& scratch) const;
   // How far to move `self` (at X_WO) along the unit normal n to stop
   // penetrating `that`, from `contact` found along `motion_W`.
   double SeparationAlongNormal(const Object& self, const Isometry3d& X_WO, const Object& that,
@@ -171,15 +190,13 @@ class Scene {
   // moves farther in one sub-step.
   double smallest_edge_m_ = std::numeric_limits<double>::infinity();
   // Every object at its current pose (tools at the device pose), keyed by
-  // id; its pairs are computed at most once per step.
+  // id; its pairs are computed once per step that runs the collision stage,
+  // before the tools are stepped.
   BroadPhase broad_phase_;
   std::vector<std::pair<BroadPhase::Key, BroadPhase::Key>> broad_pairs_;
-  bool broad_pairs_fresh_ = false;
-  // Scratch of FindCandidates: indices into targets_, ascending.
-  std::vector<int> candidates_;
-  // Scratch of FindProxyObstacles: a subset of obstacles_, in order.
-  std::vector<PosedObject> proxy_obstacles_;
-  std::vector<ObjectId> proxy_obstacle_ids_;
+  // Per tool, in tools_' order.
+  std::vector<ToolScratch> scratch_;
+  std::unique_ptr<WorkerPool> workers_ = std::make_unique<WorkerPool>(1);
   StageStatsTable stats_{};
   StepFrame frame_;
 };

@@ -1,6 +1,6 @@
 // Step time of the bundled demo scenes: every effect on, beside what a
-// haptic device needs (its force, with friction: collision and the proxy,
-// no contact sets) and what a viewer that shows collisions needs
+// haptic device needs (its force, with friction: the proxy alone, no
+// collision list or contact sets) and what a viewer that shows collisions needs
 // (collision), in the same run. Prints
 // the median and p99 step time of each; the target is 1 kHz with margin,
 // p99 under 500 us on scenes of 50,000 triangles (fine_organ). Also the

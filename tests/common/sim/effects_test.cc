@@ -5,13 +5,12 @@
 namespace hs {
 namespace {
 
-// Force pulls in the reversing vector (the proxy) and collision, not the
-// contact set; friction pulls in force; continuous collision pulls in
-// collision.
+// Force pulls in the reversing vector (the proxy), neither collision nor
+// the contact set; friction pulls in force; the contact set and continuous
+// collision pull in collision.
 TEST(EffectsTest, PrerequisitesClose) {
-  EXPECT_EQ(
-      WithPrerequisites({Effect::kFriction}),
-      (EffectSet{Effect::kFriction, Effect::kForce, Effect::kReversingVector, Effect::kCollision}));
+  EXPECT_EQ(WithPrerequisites({Effect::kFriction}),
+            (EffectSet{Effect::kFriction, Effect::kForce, Effect::kReversingVector}));
   EXPECT_EQ(WithPrerequisites({Effect::kContactSet}),
             (EffectSet{Effect::kContactSet, Effect::kCollision}));
   EXPECT_EQ(WithPrerequisites({Effect::kContinuousCollision}),
@@ -25,9 +24,11 @@ TEST(EffectsTest, StagesToRun) {
             (EffectSet{Effect::kCollision, Effect::kContinuousCollision}));
   EXPECT_EQ(StagesToRun({Effect::kCollision}, {Effect::kCollision}),
             (EffectSet{Effect::kCollision}));
-  EXPECT_EQ(StagesToRun({Effect::kCollision}, {Effect::kForce}), (EffectSet{Effect::kCollision}));
+  EXPECT_EQ(StagesToRun({Effect::kCollision}, {Effect::kForce}), EffectSet());
+  EXPECT_EQ(StagesToRun(EffectSet::All(), {Effect::kForce}),
+            (EffectSet{Effect::kForce, Effect::kReversingVector}));
   const EffectSet no_proxy = EffectSet::All().Without(Effect::kReversingVector);
-  EXPECT_EQ(StagesToRun(no_proxy, {Effect::kForce}),
+  EXPECT_EQ(StagesToRun(no_proxy, {Effect::kForce, Effect::kCollision}),
             (EffectSet{Effect::kCollision, Effect::kContinuousCollision}));
   EXPECT_EQ(StagesToRun(EffectSet::All(), EffectSet()), EffectSet());
 }

@@ -90,14 +90,15 @@ TEST(SceneTest, DisabledStageNeverRuns) {
 }
 
 // A haptic device that needs only its force gets the proxy and the force
-// without the contact sets being reconstructed, and both equal those of a
-// run with everything enabled.
+// without the collision stage running or the contact sets being
+// reconstructed, and both equal those of a run with everything enabled.
 TEST(SceneTest, ForceOnlyConsumerSkipsContactSet) {
   Rig lean = MakeRig(), full = MakeRig();
   lean.scene->SetNeeded({Effect::kForce, Effect::kFriction});
   const auto a = Drive(lean, PressAndSlide());
   const auto b = Drive(full, PressAndSlide());
   EXPECT_EQ(lean.scene->stats()[static_cast<int>(Effect::kContactSet)].runs, 0);
+  EXPECT_EQ(lean.scene->stats()[static_cast<int>(Effect::kCollision)].runs, 0);
   EXPECT_EQ(lean.scene->stats()[static_cast<int>(Effect::kForce)].runs,
             full.scene->stats()[static_cast<int>(Effect::kForce)].runs);
   int pushing = 0;

@@ -1,0 +1,65 @@
+#include "common/sim/worker_pool.h"
+
+namespace hs {
+
+WorkerPool::WorkerPool(int threads) {
+  for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { Work(); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    std::lock_guard lock(mu_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+}
+
+void WorkerPool::Drain(absl::FunctionRef<void(int)> task, int n) {
+  for (int i = next_.fetch_add(1, std::memory_order_relaxed); i < n;
+       i = next_.fetch_add(1, std::memory_order_relaxed)) {
+    task(i);
+  }
+}
+
+void WorkerPool::ForEach(int n, absl::FunctionRef<void(int)> task) {
+  if (workers_.empty() || n <= 1) {
+    for (int i = 0; i < n; ++i) task(i);
+    return;
+  }
+  {
+    std::lock_guard lock(mu_);
+    task_ = &task;
+    n_ = n;
+    next_.store(0, std::memory_order_relaxed);
+    ++generation_;
+  }
+  wake_.notify_all();
+  Drain(task, n);
+  // Every index is taken; wait for the workers still running theirs. A
+  // worker that wakes after this returns finds no index left (or a later
+  // job, which it reads afresh under the lock).
+  std::unique_lock lock(mu_);
+  idle_.wait(lock, [this] { return busy_ == 0; });
+  task_ = nullptr;
+}
+
+void WorkerPool::Work() {
+  long seen = 0;
+  std::unique_lock lock(mu_);
+  while (true) {
+    wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+    if (stop_) return;
+    seen = generation_;
+    if (task_ == nullptr) continue;  // the job ended before this worker woke
+    const absl::FunctionRef<void(int)> task = *task_;
+    const int n = n_;
+    ++busy_;
+    lock.unlock();
+    Drain(task, n);
+    lock.lock();
+    if (--busy_ == 0) idle_.notify_one();
+  }
+}
+
+}  // namespace hs

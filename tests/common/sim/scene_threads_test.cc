@@ -1,0 +1,89 @@
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "common/model/procedural.h"
+#include "common/sim/scene.h"
+#include "tests/common/sim/at_pose.h"
+
+namespace hs {
+namespace {
+
+constexpr int kTools = 5;
+
+// A floor with a torus "organ" lying on it and kTools 2 cm cube probes
+// spread around the organ's crest, with every effect on.
+std::unique_ptr<Scene> MakeScene(int threads) {
+  std::unique_ptr<Scene> scene = *Scene::Create({});
+  EXPECT_TRUE(scene->SetThreads(threads).ok());
+  (void)*scene->AddObject(*HapticObject::Create("floor", MakeBox(Vector3d(1, 1, 0.05))),
+                          ObjectKind::kFixed, At(0, 0, -0.025));
+  (void)*scene->AddObject(*HapticObject::Create("organ", MakeTorus(0.1, 0.04, 48, 24)),
+                          ObjectKind::kFixed, At(0, 0, 0.04));
+  for (int i = 0; i < kTools; ++i) {
+    (void)*scene->AddObject(*HapticObject::Create("probe", MakeBox(Vector3d::Constant(0.02))),
+                            ObjectKind::kTool, At(0.1, 0.02 * i, 0.1));
+  }
+  return scene;
+}
+
+// Tool i presses 1 mm a step onto the crest (top at z = 0.08, the probe's
+// bottom 1 cm under its centre) until 6 mm in, then slides along x, each
+// tool at its own speed so that they do different work in one step.
+Isometry3d DevicePose(int tool, int step) {
+  const double z = std::max(0.1 - 0.001 * step, 0.084);
+  const double x = 0.1 - (step > 16 ? 0.0004 * (tool + 1) * (step - 16) : 0.0);
+  return At(x, 0.02 * tool, z);
+}
+
+// Stepping the tools on several threads gives bit-identical frames and the
+// same stage counts as stepping them one after the other.
+TEST(SceneThreadsTest, ThreadsGiveIdenticalFrames) {
+  for (const int threads : {2, 3}) {
+    std::unique_ptr<Scene> serial = MakeScene(1);
+    std::unique_ptr<Scene> parallel = MakeScene(threads);
+    int touching_steps = 0;
+    for (int step = 1; step <= 40; ++step) {
+      for (int tool = 0; tool < kTools; ++tool) {
+        const ObjectId id = 2 + tool;
+        ASSERT_TRUE(serial->SetDevicePose(id, DevicePose(tool, step)).ok());
+        ASSERT_TRUE(parallel->SetDevicePose(id, DevicePose(tool, step)).ok());
+      }
+      const StepFrame a = serial->Step();
+      const StepFrame& b = parallel->Step();
+      ASSERT_EQ(a.tools.size(), b.tools.size());
+      for (size_t t = 0; t < a.tools.size(); ++t) {
+        const ToolFrame& x = a.tools[t];
+        const ToolFrame& y = b.tools[t];
+        EXPECT_EQ(std::memcmp(x.force_W.data(), y.force_W.data(), sizeof(double) * 3), 0);
+        EXPECT_TRUE(x.X_WP.matrix() == y.X_WP.matrix());
+        ASSERT_EQ(x.contacts.size(), y.contacts.size());
+        for (size_t k = 0; k < x.contacts.size(); ++k) {
+          EXPECT_EQ(x.contacts[k].object, y.contacts[k].object);
+          EXPECT_EQ(x.contacts[k].contact.depth_m, y.contacts[k].contact.depth_m);
+          EXPECT_EQ(x.contacts[k].contact.fixed.faces, y.contacts[k].contact.fixed.faces);
+          EXPECT_EQ(x.contacts[k].contact.moving.vertices, y.contacts[k].contact.moving.vertices);
+        }
+        if (x.force_W.norm() > 0) ++touching_steps;
+      }
+    }
+    // The test means something only if the tools did touch the organ.
+    EXPECT_GT(touching_steps, kTools * 10);
+    for (int e = 0; e < kNumEffects; ++e) {
+      EXPECT_EQ(serial->stats()[e].runs, parallel->stats()[e].runs) << e;
+    }
+  }
+}
+
+// The thread count is checked: 0 and 65 are refused, and the scene keeps
+// stepping on what it had.
+TEST(SceneThreadsTest, RejectsThreadCountOutOfRange) {
+  std::unique_ptr<Scene> scene = MakeScene(2);
+  EXPECT_EQ(scene->SetThreads(0).code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(scene->SetThreads(65).code(), absl::StatusCode::kInvalidArgument);
+  ASSERT_TRUE(scene->SetDevicePose(2, DevicePose(0, 20)).ok());
+  EXPECT_EQ(scene->Step().tools.size(), static_cast<size_t>(kTools));
+}
+
+}  // namespace
+}  // namespace hs

@@ -1,0 +1,53 @@
+#include "common/sim/worker_pool.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+#include <vector>
+
+namespace hs {
+namespace {
+
+// Every index of every job runs exactly once, whatever the number of
+// threads and jobs, and ForEach returns only once all of them have run.
+TEST(WorkerPoolTest, EachIndexRunsOnceBeforeReturn) {
+  for (const int threads : {1, 2, 3, 8}) {
+    WorkerPool pool(threads);
+    EXPECT_EQ(pool.threads(), std::max(threads, 1));
+    for (int job = 0; job < 2000; ++job) {
+      const int n = job % 9;  // 0 and 1 included
+      std::vector<std::atomic<int>> runs(n);
+      pool.ForEach(n, [&](int i) { runs[i].fetch_add(1); });
+      for (int i = 0; i < n; ++i) ASSERT_EQ(runs[i].load(), 1) << threads << " " << job << " " << i;
+    }
+  }
+}
+
+// With more than one thread, the tasks of one job do run at once: two tasks
+// that each wait for the other both finish.
+TEST(WorkerPoolTest, TasksRunAtOnce) {
+  WorkerPool pool(2);
+  std::atomic<int> arrived{0};
+  pool.ForEach(2, [&](int) {
+    arrived.fetch_add(1);
+    while (arrived.load() < 2) std::this_thread::yield();
+  });
+  EXPECT_EQ(arrived.load(), 2);
+}
+
+// Fewer than one thread means the calling thread alone.
+TEST(WorkerPoolTest, ZeroThreadsRunsOnCaller) {
+  WorkerPool pool(0);
+  EXPECT_EQ(pool.threads(), 1);
+  const std::thread::id caller = std::this_thread::get_id();
+  int ran = 0;
+  pool.ForEach(3, [&](int) {
+    EXPECT_EQ(std::this_thread::get_id(), caller);
+    ++ran;
+  });
+  EXPECT_EQ(ran, 3);
+}
+
+}  // namespace
+}  // namespace hs
