@@ -46,12 +46,6 @@ fcl::RSSd Swept(const fcl::RSSd& bv, const Vector3d& v) {
   out.r += v.norm() / 2;
   return out;
 }
-fcl::OBBRSSd Swept(const fcl::OBBRSSd& bv, const Vector3d& v) {
-  fcl::OBBRSSd out;
-  out.obb = Swept(bv.obb, v);
-  out.rss = Swept(bv.rss, v);
-  return out;
-}
 fcl::kIOSd Swept(const fcl::kIOSd& bv, const Vector3d& v) {
   fcl::kIOSd out = bv;
   for (unsigned i = 0; i < out.num_spheres; ++i) {
@@ -80,16 +74,16 @@ class VolumeTest {
   VolumeTest(const fcl::BVHModel<BV>& mb, const Matrix3d& R, const Vector3d& T,
              const Vector3d* sweep_A)
       : R_(R), T_(T), sweep_A_(sweep_A) {
-    if (kFast && !sweep_A) cache().Start(mb.getNumBVs(), R, T);
+    if (kFast) cache().Start(mb.getNumBVs(), R, T);
   }
 
   bool Overlap(const BV& a, int j, const BV& b) const {
-    if (sweep_A_) return hs::Overlap(R_, T_, Swept(a, *sweep_A_), b);
     if constexpr (kFast) {
-      const fcl::OBBd& box_a = CullingBox(a);
+      // A swept box is a box: the lean test serves both queries.
+      const fcl::OBBd box_a = sweep_A_ ? Swept(CullingBox(a), *sweep_A_) : CullingBox(a);
       return !BoxesDisjoint(box_a, box_a.extent.norm(), cache().Get(j, CullingBox(b)));
     } else {
-      return hs::Overlap(R_, T_, a, b);
+      return hs::Overlap(R_, T_, sweep_A_ ? Swept(a, *sweep_A_) : a, b);
     }
   }
 
