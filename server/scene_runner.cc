@@ -49,18 +49,27 @@ void SceneRunner::Stop(const absl::Status& status) {
 void SceneRunner::Run() {
   const auto period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(step_s_));
-  Clock::time_point next = Clock::now();
+  // A device faster than the scene's rate speeds it up by 4/3 at most.
+  const Clock::duration shortest = period * 3 / 4;
+  Clock::time_point last = Clock::now();
+  Clock::time_point next = last + period;  // the deadline of the next step
   absl::Status status;
   while (true) {
-    next += period;
+    bool early = false;
     {
       std::unique_lock lock(stop_mu_);
-      if (stop_cv_.wait_until(lock, next, [this] { return stop_; })) {
+      // Not sooner than `shortest` after the last step; then at the
+      // deadline, or once every device has sent.
+      stop_cv_.wait_until(lock, std::min(next, last + shortest), [this] { return stop_; });
+      stop_cv_.wait_until(lock, next, [this] { return stop_ || devices_fresh_; });
+      if (stop_) {
         status = stop_status_;
         break;
       }
+      early = devices_fresh_;
     }
-    const Clock::duration lag = Clock::now() - next;
+    const Clock::time_point now = Clock::now();
+    const Clock::duration lag = now - next;  // negative when the devices came first
     if (lag > period) {
       // Too late to catch up: skip the missed steps rather than run a burst.
       const int64_t missed = lag / period;
@@ -68,7 +77,10 @@ void SceneRunner::Run() {
       metrics_.AddMissedSteps(missed);
       next += missed * period;
     }
-    StepOnce(Nanoseconds(lag));
+    StepOnce(std::max<int64_t>(Nanoseconds(lag), 0));
+    last = now;
+    // Devices that came first set the phase of the period from now on.
+    next = early ? now + period : next + period;
   }
   StepOnce(0);  // the final frame
   std::lock_guard lock(io_mu_);
@@ -87,6 +99,8 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
       pose.fresh = false;
     }
     needs = NeedsLocked();
+    std::lock_guard stop(stop_mu_);
+    devices_fresh_ = false;
   }
   auto snapshot = std::make_shared<StepSnapshot>();
   {
@@ -122,6 +136,17 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
   snapshot->missed_steps = missed_steps_;
   std::lock_guard lock(io_mu_);
   for (auto& [sink, attached] : sinks_) sink->Offer(snapshot);
+}
+
+bool SceneRunner::DevicesFreshLocked() const {
+  bool any = false;
+  for (const auto& [sink, attached] : sinks_) {
+    if (attached.tool.empty()) continue;
+    const auto it = pending_.find(attached.tool);
+    if (it == pending_.end() || !it->second.fresh) return false;
+    any = true;
+  }
+  return any;
 }
 
 EffectSet SceneRunner::NeedsLocked() const {
@@ -166,6 +191,13 @@ void SceneRunner::SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const A
   const auto it = sinks_.find(sink);
   if (it == sinks_.end() || it->second.tool.empty()) return;
   pending_[it->second.tool] = PendingPose{X_WD, stamp, true};
+  if (DevicesFreshLocked()) {
+    {
+      std::lock_guard lock(stop_mu_);
+      devices_fresh_ = true;
+    }
+    stop_cv_.notify_all();
+  }
 }
 
 haptics::v1::SceneSpec SceneRunner::spec() const {

@@ -1,6 +1,10 @@
 #pragma once
 // One running scene: the spec it was built from, its simulation, and the
 // thread that steps it at the scene's rate with the latest device poses.
+// Devices clock the steps: once every attached device has sent a pose since
+// the last step, the next step runs at once (but not sooner than 3/4 of a
+// period after the last), so a pose waits for no tick; without them the
+// scene steps on its own period.
 // hs::Scene is not thread-safe: only the runner's thread steps it; requests
 // reach it through the runner's mutexes, never by touching the Scene.
 
@@ -83,6 +87,8 @@ class SceneRunner {
   void Run();
   void StepOnce(int64_t start_lag_ns);
   EffectSet NeedsLocked() const;
+  // Whether every attached device has a pose the last step did not apply.
+  bool DevicesFreshLocked() const;
 
   Metrics& metrics_;
   const double step_s_;
@@ -103,9 +109,11 @@ class SceneRunner {
   std::map<std::string, PendingPose> pending_;  // by tool name
   bool stopping_ = false;
 
+  // Taken after io_mu_ when both are held.
   std::mutex stop_mu_;
-  std::condition_variable stop_cv_;
+  std::condition_variable stop_cv_;  // stop_ or devices_fresh_ set
   bool stop_ = false;
+  bool devices_fresh_ = false;  // DevicesFreshLocked() held at the last pose
   absl::Status stop_status_;
   std::thread thread_;
   int64_t missed_steps_ = 0;  // runner thread only

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 
@@ -116,6 +117,41 @@ TEST(SceneRunnerTest, ReplaceAndStop) {
   EXPECT_EQ(device.closed().code(), absl::StatusCode::kUnavailable);
   RecordingSink late;
   EXPECT_EQ(runner->AttachViewer(&late, EffectSet()).code(), absl::StatusCode::kUnavailable);
+}
+
+// Devices clock the steps: while one of two devices is silent the scene
+// keeps its period (2 s here); once both have sent, it steps without waiting
+// for the period's end, though not sooner than 3/4 of it after the last step.
+TEST(SceneRunnerTest, DevicesClockTheSteps) {
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  Metrics metrics;
+  haptics::v1::SceneSpec spec = testing::SmallScene("r", /*second_tool=*/true);
+  spec.set_step_s(2.0);
+  absl::StatusOr<LoadedScene> loaded = BuildScene(spec, "");
+  ASSERT_TRUE(loaded.ok());
+  const Clock::time_point start = Clock::now();
+  SceneRunner runner(spec, std::move(loaded).value(), metrics);
+  RecordingSink probe, stylus;
+  ASSERT_TRUE(runner.AttachDevice(&probe, "probe", EffectSet()).ok());
+  ASSERT_TRUE(runner.AttachDevice(&stylus, "stylus", EffectSet()).ok());
+  const Isometry3d X = Isometry3d::Identity();
+  runner.SetDevicePose(&probe, X, AppliedPose{1, 0});
+  EXPECT_EQ(probe.WaitForOffers(1)->applied[0].sequence, 1u);
+  EXPECT_GE(seconds_since(start), 1.8);  // the stylus is silent: the period's end
+
+  const Clock::time_point second = Clock::now();
+  runner.SetDevicePose(&probe, X, AppliedPose{2, 0});
+  runner.SetDevicePose(&stylus, X, AppliedPose{1, 0});
+  const std::shared_ptr<const StepSnapshot> s = probe.WaitForOffers(2);
+  const double waited = seconds_since(second);
+  EXPECT_LT(waited, 1.9);  // both sent: about 1.5 s, not the period's 2 s
+  EXPECT_GE(waited, 1.3);
+  ASSERT_EQ(s->applied.size(), 2u);
+  EXPECT_EQ(s->applied[0].sequence, 2u);
+  EXPECT_EQ(s->applied[1].sequence, 1u);
 }
 
 }  // namespace
