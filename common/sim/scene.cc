@@ -138,7 +138,10 @@ const StepFrame& Scene::Step() {
   for (const Tool& tool : tools_) {
     if (tool.moved) broad_phase_.SetPose(tool.id, tool.X_WD);
   }
-  if (stages.Has(Effect::kCollision) && options_.broad_phase && !tools_.empty()) {
+  // The broad phase's pairs at the device poses, for tools whose collision
+  // stage is neither continuous nor sub-stepped (those take swept boxes).
+  if (stages.Has(Effect::kCollision) && !stages.Has(Effect::kContinuousCollision) &&
+      options_.broad_phase && !tools_.empty()) {
     broad_pairs_ = broad_phase_.CandidatePairs();
   }
   frame_.tools.resize(tools_.size());

@@ -190,8 +190,8 @@ class Scene {
   // moves farther in one sub-step.
   double smallest_edge_m_ = std::numeric_limits<double>::infinity();
   // Every object at its current pose (tools at the device pose), keyed by
-  // id; its pairs are computed once per step that runs the collision stage,
-  // before the tools are stepped.
+  // id; its pairs are computed before the tools are stepped, once per step
+  // that runs the collision stage without continuous collision.
   BroadPhase broad_phase_;
   std::vector<std::pair<BroadPhase::Key, BroadPhase::Key>> broad_pairs_;
   // Per tool, in tools_' order.
