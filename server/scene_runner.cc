@@ -79,8 +79,11 @@ void SceneRunner::Run() {
     }
     StepOnce(std::max<int64_t>(Nanoseconds(lag), 0));
     last = now;
-    // Devices that came first set the phase of the period from now on.
-    next = early ? now + period : next + period;
+    // Devices that came first set the phase from now on, and their next
+    // poses are due one period later: the deadline falls a quarter period
+    // after that, so that a pose a little late joins its step instead of
+    // waiting a whole period for the next.
+    next = early ? now + period + period / 4 : next + period;
   }
   StepOnce(0);  // the final frame
   std::lock_guard lock(io_mu_);

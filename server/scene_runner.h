@@ -3,8 +3,9 @@
 // thread that steps it at the scene's rate with the latest device poses.
 // Devices clock the steps: once every attached device has sent a pose since
 // the last step, the next step runs at once (but not sooner than 3/4 of a
-// period after the last), so a pose waits for no tick; without them the
-// scene steps on its own period.
+// period after the last), so a pose waits for no tick; the deadline after
+// such a step leaves a quarter period for a late device. Without devices
+// the scene steps on its own period.
 // hs::Scene is not thread-safe: only the runner's thread steps it; requests
 // reach it through the runner's mutexes, never by touching the Scene.
 

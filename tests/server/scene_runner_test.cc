@@ -5,6 +5,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <thread>
 
 #include "tests/server/test_server.h"
 
@@ -121,7 +122,8 @@ TEST(SceneRunnerTest, ReplaceAndStop) {
 
 // Devices clock the steps: while one of two devices is silent the scene
 // keeps its period (2 s here); once both have sent, it steps without waiting
-// for the period's end, though not sooner than 3/4 of it after the last step.
+// for the period's end, though not sooner than 3/4 of it after the last step,
+// and after such a step a device a little late still joins the next one.
 TEST(SceneRunnerTest, DevicesClockTheSteps) {
   using Clock = std::chrono::steady_clock;
   auto seconds_since = [](Clock::time_point t) {
@@ -152,6 +154,20 @@ TEST(SceneRunnerTest, DevicesClockTheSteps) {
   ASSERT_EQ(s->applied.size(), 2u);
   EXPECT_EQ(s->applied[0].sequence, 2u);
   EXPECT_EQ(s->applied[1].sequence, 1u);
+
+  // After a step the devices clocked, a pose a little late (a tenth of a
+  // period past the period's end) still joins the next step: its deadline
+  // is a quarter period past the period's end.
+  const Clock::time_point third = Clock::now();
+  runner.SetDevicePose(&probe, X, AppliedPose{3, 0});
+  std::this_thread::sleep_until(third + std::chrono::milliseconds(2100));
+  EXPECT_EQ(probe.offers(), 2);  // no step at the period's end without the stylus
+  runner.SetDevicePose(&stylus, X, AppliedPose{2, 0});
+  const std::shared_ptr<const StepSnapshot> late = probe.WaitForOffers(3);
+  EXPECT_LT(seconds_since(third), 2.45);  // at once, not at the deadline (2.5 s)
+  ASSERT_EQ(late->applied.size(), 2u);
+  EXPECT_EQ(late->applied[0].sequence, 3u);
+  EXPECT_EQ(late->applied[1].sequence, 2u);
 }
 
 }  // namespace
