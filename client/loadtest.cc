@@ -7,6 +7,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
 #include <thread>
 
 #include "absl/cleanup/cleanup.h"
@@ -16,6 +19,7 @@
 #include "client/echo_server.h"
 #include "client/needs_args.h"
 #include "client/process_cpu.h"
+#include "client/send_schedule.h"
 #include "haptics/v1/echo_service.grpc.pb.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
@@ -30,10 +34,6 @@ using Clock = std::chrono::steady_clock;
 int64_t NowNs() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
       .count();
-}
-
-Clock::duration Seconds(double s) {
-  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
 }
 
 absl::Status FromGrpc(const grpc::Status& status, const std::string& what) {
@@ -81,13 +81,13 @@ class RoundTrips {
   std::vector<double> rtt_ms_;
 };
 
-// Sends messages 1..count at start + i / rate_hz through `write(sequence)`
+// Sends messages 1..count at the schedule's times through `write(sequence)`
 // (false: the stream ended), then waits up to 2 s for their answers and
 // closes the sending side with `done()`.
 template <typename Write, typename Done>
-void SendPaced(RoundTrips& trips, double rate_hz, Clock::time_point start, Write write, Done done) {
+void SendPaced(RoundTrips& trips, const SendSchedule& schedule, Write write, Done done) {
   for (uint64_t i = 0; i < trips.count(); ++i) {
-    std::this_thread::sleep_until(start + Seconds(static_cast<double>(i) / rate_hz));
+    std::this_thread::sleep_until(schedule.At(i));
     trips.MarkSent(i + 1);
     if (!write(i + 1)) return;
   }
@@ -132,9 +132,11 @@ class FrameCounts {
 // One device: an Interact stream driving one tool with a press motion.
 class DeviceStream {
  public:
+  // `frame_bytes` gets the size of a frame now and then, for the echo.
   DeviceStream(pb::SessionService::Stub& stub, const std::string& scene, const std::string& tool,
-               const EffectSet& needs, std::vector<TimedPose> path, double rate_hz)
-      : path_(std::move(path)), rate_hz_(rate_hz), trips_(path_.size()) {
+               const EffectSet& needs, std::vector<TimedPose> path,
+               std::atomic<int64_t>& frame_bytes)
+      : path_(std::move(path)), trips_(path_.size()), frame_bytes_out_(frame_bytes) {
     stream_ = stub.Interact(&context_);
     pb::InteractRequest open;
     open.mutable_open()->set_scene(scene);
@@ -148,35 +150,42 @@ class DeviceStream {
   // Waits for the first frame: the device is attached. False when the stream ended.
   bool Attached() {
     pb::Frame frame;
-    return stream_->Read(&frame);
+    if (!stream_->Read(&frame)) return false;
+    frame_bytes_out_.store(static_cast<int64_t>(frame.ByteSizeLong()));
+    return true;
   }
 
-  // Sends the path from `start` and reads frames until the stream ends.
-  void Run(Clock::time_point start, bool keep_step_times) {
+  // Pose message `sequence` (1-based).
+  pb::InteractRequest Request(uint64_t sequence) const {
+    pb::InteractRequest request;
+    pb::ToolPose* pose = request.mutable_pose();
+    pose->set_sequence(sequence);
+    pose->set_device_time_ns(NowNs());
+    PoseToProto(path_[sequence - 1].X_WD, pose->mutable_pose());
+    return request;
+  }
+
+  // Sends the path on `schedule` and reads frames until the stream ends.
+  void Run(const SendSchedule& schedule, bool keep_step_times) {
     std::thread writer([&] {
       SendPaced(
-          trips_, rate_hz_, start,
-          [&](uint64_t sequence) {
-            pb::InteractRequest request;
-            pb::ToolPose* pose = request.mutable_pose();
-            pose->set_sequence(sequence);
-            pose->set_device_time_ns(NowNs());
-            PoseToProto(path_[sequence - 1].X_WD, pose->mutable_pose());
-            request_bytes_.store(static_cast<int64_t>(request.ByteSizeLong()));
-            return stream_->Write(request);
-          },
+          trips_, schedule, [&](uint64_t sequence) { return stream_->Write(Request(sequence)); },
           [&] { stream_->WritesDone(); });
     });
     pb::Frame frame;
+    uint64_t applied = 0;  // the last pose sequence a frame applied
     while (stream_->Read(&frame)) {
-      if (Clock::now() < start) continue;
+      if (Clock::now() < schedule.start) continue;
       counts_.Add(frame);
       trips_.MarkAnswered(frame.last_pose_sequence());
-      if (keep_step_times)
+      // Only steps that applied a new pose: in the echo's turns the devices
+      // are still, and those steps run no stage.
+      if (keep_step_times && frame.last_pose_sequence() > applied) {
         step_ms_.push_back(1e-6 * static_cast<double>(frame.timings().step_ns()));
+      }
+      applied = std::max(applied, frame.last_pose_sequence());
       if (counts_.frames() % 64 == 1) {
-        frame_bytes_ += static_cast<int64_t>(frame.ByteSizeLong());
-        ++frame_samples_;
+        frame_bytes_out_.store(static_cast<int64_t>(frame.ByteSizeLong()));
       }
     }
     writer.join();
@@ -197,42 +206,42 @@ class DeviceStream {
   const grpc::Status& status() const { return status_; }
   RoundTrips& trips() { return trips_; }
   std::vector<double>& step_ms() { return step_ms_; }
-  int64_t mean_frame_bytes() const { return frame_samples_ ? frame_bytes_ / frame_samples_ : 0; }
-  int64_t request_bytes() const { return request_bytes_.load(); }
 
  private:
   std::vector<TimedPose> path_;
-  double rate_hz_;
   RoundTrips trips_;
+  std::atomic<int64_t>& frame_bytes_out_;
   grpc::ClientContext context_;
   std::unique_ptr<grpc::ClientReaderWriter<pb::InteractRequest, pb::Frame>> stream_;
   FrameCounts counts_;
   std::vector<double> step_ms_;
-  int64_t frame_bytes_ = 0, frame_samples_ = 0;
-  std::atomic<int64_t> request_bytes_{0};
   grpc::Status status_;
 };
 
-// One echo stream at the devices' rate with their message sizes.
+// One echo stream with the devices' message sizes: requests as large as a
+// pose message, answers as large as the devices' latest frames.
 class EchoStream {
  public:
-  EchoStream(pb::EchoService::Stub& stub, size_t count, double rate_hz, int64_t request_bytes,
-             int64_t reply_bytes)
-      : rate_hz_(rate_hz), trips_(count) {
+  EchoStream(pb::EchoService::Stub& stub, size_t count, int64_t request_bytes,
+             const std::atomic<int64_t>& frame_bytes)
+      : trips_(count), frame_bytes_(frame_bytes) {
     stream_ = stub.Echo(&context_);
-    request_.set_reply_bytes(static_cast<uint32_t>(reply_bytes));
-    request_.set_sent_ns(1);
-    request_.set_sequence(1);
+    request_.set_reply_bytes(static_cast<uint32_t>(frame_bytes.load()));
+    request_.set_sent_ns(NowNs());
+    request_.set_sequence(count);
     // Pad so the message is as large as a device's pose message.
     const int64_t bare = static_cast<int64_t>(request_.ByteSizeLong()) + 2;
     request_.set_payload(std::string(std::max<int64_t>(0, request_bytes - bare), 'p'));
   }
 
-  void Run(Clock::time_point start) {
+  void Run(const SendSchedule& schedule) {
     std::thread writer([&] {
       SendPaced(
-          trips_, rate_hz_, start,
+          trips_, schedule,
           [&](uint64_t sequence) {
+            const int64_t reply_bytes = frame_bytes_.load();
+            reply_bytes_ += reply_bytes;
+            request_.set_reply_bytes(static_cast<uint32_t>(reply_bytes));
             request_.set_sequence(sequence);
             request_.set_sent_ns(NowNs());
             return stream_->Write(request_);
@@ -259,10 +268,15 @@ class EchoStream {
   }
   const grpc::Status& status() const { return status_; }
   RoundTrips& trips() { return trips_; }
+  // The mean size of the answers asked for.
+  int64_t mean_reply_bytes() const {
+    return trips_.sent() ? reply_bytes_ / static_cast<int64_t>(trips_.sent()) : 0;
+  }
 
  private:
-  double rate_hz_;
   RoundTrips trips_;
+  const std::atomic<int64_t>& frame_bytes_;
+  int64_t reply_bytes_ = 0;  // summed over the requests sent
   grpc::ClientContext context_;
   std::unique_ptr<grpc::ClientReaderWriter<pb::EchoMessage, pb::EchoMessage>> stream_;
   pb::EchoMessage request_;
@@ -350,6 +364,82 @@ void RunAll(std::vector<std::unique_ptr<Stream>>& streams, RunOne run_one, const
   }
   for (std::thread& t : threads) t.join();
 }
+
+// The devices' and the echo's turns, each this long: short enough that
+// both meet the same noise of a shared machine, long enough that a turn's
+// first round trips (streams waking up) weigh little.
+constexpr double kTurnSeconds = 0.5;
+
+// CPU seconds of the server (by pid, when known) and of this process,
+// split by whose turn it was: a thread samples both at every slice
+// boundary of `schedule` (or only at the start and at Stop without turns).
+class TurnCpu {
+ public:
+  TurnCpu(int server_pid, const SendSchedule& schedule)
+      : server_pid_(server_pid), schedule_(schedule) {
+    thread_ = std::thread([this] { Sample(); });
+  }
+  ~TurnCpu() { Stop(); }
+
+  // Takes the last sample now and stops.
+  void Stop() {
+    {
+      std::lock_guard lock(mu_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+  // Per turn (0: devices, 1: echo): wall, server and client seconds. The
+  // server's are unknown (nullopt) without a pid or when a sample failed.
+  double wall_s[2] = {0, 0};
+  std::optional<double> server_s[2] = {0.0, 0.0};
+  double client_s[2] = {0, 0};
+
+ private:
+  struct Reading {
+    Clock::time_point at;
+    std::optional<double> server;
+    double client;
+  };
+  Reading Read() const {
+    return {Clock::now(), server_pid_ ? ProcessCpuSeconds(server_pid_) : std::nullopt,
+            ProcessCpuNow()};
+  }
+
+  void Sample() {
+    std::unique_lock lock(mu_);
+    cv_.wait_until(lock, schedule_.start, [this] { return stop_; });
+    Reading last = Read();
+    for (int slice = 0; !stop_; ++slice) {
+      const Clock::time_point end =
+          schedule_.slice_s > 0
+              ? schedule_.start +
+                    std::chrono::duration_cast<Clock::duration>(
+                        std::chrono::duration<double>((slice + 1) * schedule_.slice_s))
+              : Clock::time_point::max();
+      cv_.wait_until(lock, end, [this] { return stop_; });
+      const Reading now = Read();
+      const int turn = slice % 2;
+      wall_s[turn] += std::chrono::duration<double>(now.at - last.at).count();
+      client_s[turn] += now.client - last.client;
+      if (server_s[turn] && now.server && last.server) {
+        *server_s[turn] += *now.server - *last.server;
+      } else {
+        server_s[turn].reset();
+      }
+      last = now;
+    }
+  }
+
+  const int server_pid_;
+  const SendSchedule schedule_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool stop_ = false;
+  std::thread thread_;
+};
 
 }  // namespace
 
@@ -480,9 +570,9 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
     }
   }
 
-  // Devices and viewers; a few streams per channel spread them over
-  // several connections as separate devices would be.
+  // Devices and viewers.
   auto sessions = pb::SessionService::NewStub(channel);
+  std::atomic<int64_t> frame_bytes{0};
   std::vector<std::unique_ptr<DeviceStream>> devices;
   for (int i = 0; i < options.clients; ++i) {
     absl::StatusOr<Isometry3d> X_WT = PoseFromProto(
@@ -493,31 +583,67 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
     devices.push_back(std::make_unique<DeviceStream>(
         *sessions, report.scene, "tool-" + std::to_string(i), options.needs,
         MotionPath(Motion::kPress, *X_WT, options.rate_hz, options.duration_s, params),
-        options.rate_hz));
+        frame_bytes));
   }
   for (auto& device : devices) {
     if (!device->Attached()) return FromGrpc(device->Finish(), "Interact");
   }
-  std::vector<std::unique_ptr<ViewerStream>> viewers;
-  std::vector<std::thread> viewer_threads;
-  const Clock::time_point start = Clock::now() + std::chrono::milliseconds(200);
-  for (int i = 0; i < options.viewers; ++i) {
-    viewers.push_back(std::make_unique<ViewerStream>(*sessions, report.scene));
-    viewer_threads.emplace_back([v = viewers.back().get(), start] { v->Run(start); });
+  const size_t count = devices.front()->trips().count();
+
+  // The echo baseline: as many streams as devices, in-process, taking turns
+  // with the devices.
+  std::unique_ptr<EchoServer> echo_server;
+  std::vector<std::unique_ptr<EchoStream>> echoes;
+  if (options.echo) {
+    absl::StatusOr<std::unique_ptr<EchoServer>> started = EchoServer::Start();
+    if (!started.ok()) return started.status();
+    echo_server = *std::move(started);
+    auto echo_stub = pb::EchoService::NewStub(MakeChannel(echo_server->address()));
+    // A pose message's size depends on the pose: the mean over the path.
+    constexpr uint64_t kSamples = 16;
+    int64_t sampled = 0;
+    for (uint64_t k = 0; k < kSamples && count > 0; ++k) {
+      sampled += static_cast<int64_t>(
+          devices.front()->Request(1 + k * (count - 1) / (kSamples - 1)).ByteSizeLong());
+    }
+    report.echo_request_bytes = sampled / static_cast<int64_t>(kSamples);
+    for (int i = 0; i < options.clients; ++i) {
+      echoes.push_back(
+          std::make_unique<EchoStream>(*echo_stub, count, report.echo_request_bytes, frame_bytes));
+    }
   }
 
-  const std::optional<double> server_cpu_before =
-      server_pid ? ProcessCpuSeconds(server_pid) : std::nullopt;
-  const double client_cpu_before = ProcessCpuNow();
+  const SendSchedule device_turns{.start = Clock::now() + std::chrono::milliseconds(200),
+                                  .rate_hz = options.rate_hz,
+                                  .slice_s = options.echo ? kTurnSeconds : 0,
+                                  .turn = 0};
+  SendSchedule echo_turns = device_turns;
+  echo_turns.turn = 1;
+  std::vector<std::unique_ptr<ViewerStream>> viewers;
+  std::vector<std::thread> viewer_threads;
+  for (int i = 0; i < options.viewers; ++i) {
+    viewers.push_back(std::make_unique<ViewerStream>(*sessions, report.scene));
+    viewer_threads.emplace_back(
+        [v = viewers.back().get(), start = device_turns.start] { v->Run(start); });
+  }
+
+  TurnCpu cpu(server_pid, device_turns);
+  std::thread echo_thread;
+  if (options.echo) {
+    echo_thread = std::thread([&] {
+      RunAll(
+          echoes, [&](EchoStream& e) { e.Run(echo_turns); }, "echo", 0, nullptr);
+    });
+  }
   RunAll(
-      devices, [&](DeviceStream& d) { d.Run(start, &d == devices.front().get()); }, "devices",
-      options.duration_s, options.progress);
-  const double window_s = std::chrono::duration<double>(Clock::now() - start).count();
-  const std::optional<double> server_cpu_after =
-      server_pid ? ProcessCpuSeconds(server_pid) : std::nullopt;
-  report.client_cpu_percent = 100 * (ProcessCpuNow() - client_cpu_before) / window_s;
-  if (server_cpu_before && server_cpu_after) {
-    report.server_cpu_percent = 100 * (*server_cpu_after - *server_cpu_before) / window_s;
+      devices, [&](DeviceStream& d) { d.Run(device_turns, &d == devices.front().get()); },
+      "devices", options.echo ? 2 * options.duration_s : options.duration_s, options.progress);
+  if (echo_thread.joinable()) echo_thread.join();
+  const double window_s = std::chrono::duration<double>(Clock::now() - device_turns.start).count();
+  cpu.Stop();
+  report.client_cpu_percent = 100 * cpu.client_s[0] / cpu.wall_s[0];
+  if (cpu.server_s[0]) {
+    report.server_cpu_percent = 100 * *cpu.server_s[0] / cpu.wall_s[0];
     report.server_cpu_source =
         absl::StrCat("/proc/", server_pid, "/stat",
                      server_pid == getpid() ? " (this process: server and load generator)" : "");
@@ -533,12 +659,9 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   }
   std::vector<StreamReport> each;
   std::vector<double> pooled;
-  int64_t request_bytes = 0, reply_bytes = 0;
   for (auto& device : devices) {
     pooled.insert(pooled.end(), device->trips().rtt_ms().begin(), device->trips().rtt_ms().end());
     each.push_back(device->Report(window_s));
-    request_bytes += device->request_bytes();
-    reply_bytes += device->mean_frame_bytes();
   }
   report.per_device = each;
   report.devices = Pool(each, pooled, window_s);
@@ -554,34 +677,20 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   report.viewers_total = Pool(viewer_reports, no_rtt, window_s);
 
   if (options.echo) {
-    absl::StatusOr<std::unique_ptr<EchoServer>> echo_server = EchoServer::Start();
-    if (!echo_server.ok()) return echo_server.status();
     report.echo_run = true;
-    report.echo_request_bytes = request_bytes / options.clients;
-    report.echo_reply_bytes = reply_bytes / options.clients;
-    auto echo_stub = pb::EchoService::NewStub(MakeChannel((*echo_server)->address()));
-    std::vector<std::unique_ptr<EchoStream>> echoes;
-    const auto count = static_cast<size_t>(std::llround(options.duration_s * options.rate_hz));
-    for (int i = 0; i < options.clients; ++i) {
-      echoes.push_back(std::make_unique<EchoStream>(
-          *echo_stub, count, options.rate_hz, report.echo_request_bytes, report.echo_reply_bytes));
-    }
-    const double echo_cpu_before = ProcessCpuNow();
-    const Clock::time_point echo_start = Clock::now() + std::chrono::milliseconds(200);
-    RunAll(
-        echoes, [&](EchoStream& e) { e.Run(echo_start); }, "echo", options.duration_s,
-        options.progress);
-    const double echo_window_s = std::chrono::duration<double>(Clock::now() - echo_start).count();
-    report.echo_phase_cpu_percent = 100 * (ProcessCpuNow() - echo_cpu_before) / echo_window_s;
+    report.echo_phase_cpu_percent = 100 * cpu.client_s[1] / cpu.wall_s[1];
     std::vector<StreamReport> echo_each;
     std::vector<double> echo_pooled;
+    int64_t reply_bytes = 0;
     for (auto& echo : echoes) {
       if (!echo->status().ok()) return FromGrpc(echo->status(), "Echo");
       echo_pooled.insert(echo_pooled.end(), echo->trips().rtt_ms().begin(),
                          echo->trips().rtt_ms().end());
-      echo_each.push_back(echo->Report(echo_window_s));
+      echo_each.push_back(echo->Report(cpu.wall_s[1]));
+      reply_bytes += echo->mean_reply_bytes();
     }
-    report.echo = Pool(echo_each, echo_pooled, echo_window_s);
+    report.echo_reply_bytes = reply_bytes / options.clients;
+    report.echo = Pool(echo_each, echo_pooled, cpu.wall_s[1]);
     if (report.echo.rtt_ms.p99 > 0) {
       report.p99_ratio = report.devices.rtt_ms.p99 / report.echo.rtt_ms.p99;
     }

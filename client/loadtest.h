@@ -1,7 +1,8 @@
 #pragma once
 // The load generator of `hapticctl loadtest`: N device streams at a fixed
 // rate into one scene (each its own tool), optional viewers, and in the
-// same run a bare gRPC echo baseline with messages of the same sizes.
+// same run a bare gRPC echo baseline with messages of the same sizes,
+// taking turns with the devices in half-second slices (send_schedule.h).
 // Round trip: a pose sent -> the first frame whose last applied pose
 // sequence is >= that pose's sequence (the echo: a message sent -> its
 // answer). All bounded in count and time.
@@ -32,7 +33,8 @@ struct LoadtestOptions {
   int clients = 8;
   /// Poses per second per device.
   double rate_hz = 1000;
-  /// Seconds of load (the echo baseline runs as long again, afterwards).
+  /// Seconds of load per kind: with the echo baseline the two take turns,
+  /// so the run lasts twice as long.
   double duration_s = 10;
   /// The scene: its fixed objects, and its first tool copied once per
   /// client, copy i turned by i * 360 / clients degrees about the world z
@@ -88,12 +90,16 @@ struct LoadReport {
   std::vector<StreamReport> per_device;
   /// Viewers, counts summed.
   StreamReport viewers_total;
-  /// Echo streams, as many as devices at the same rate, pooled.
+  /// Echo streams, as many as devices at the same rate, pooled; their
+  /// frames_per_s is over the echo's turns. Requests as large as a pose
+  /// message; answers as large as the devices' latest frames (the mean of
+  /// what was asked is echo_reply_bytes).
   bool echo_run = false;
   StreamReport echo;
   int64_t echo_request_bytes = 0;
   int64_t echo_reply_bytes = 0;
-  /// The scene's step wall time (server timings of device 0's frames), ms.
+  /// The scene's step wall time (server timings of device 0's frames that
+  /// applied a new pose of it), ms.
   Percentiles step_ms;
   /// Steps the scene ran and missed in the window (device 0's view).
   int64_t steps = 0;
@@ -104,12 +110,12 @@ struct LoadReport {
   double p99_ratio = 0;
   /// 1.5 x echo p99 + step p99, ms: the round-trip budget of issue 6.
   double p99_budget_ms = 0;
-  /// Server CPU, % of one core over the device phase; -1 when unknown.
+  /// Server CPU, % of one core over the devices' turns; -1 when unknown.
   double server_cpu_percent = -1;
   /// Where server_cpu_percent comes from.
   std::string server_cpu_source;
-  /// hapticctl's own CPU (its streams, and the echo server in the echo
-  /// phase), % of one core, over the device phase and the echo phase.
+  /// hapticctl's own CPU (its streams, and the echo server in the echo's
+  /// turns), % of one core, over the devices' turns and the echo's.
   double client_cpu_percent = 0;
   double echo_phase_cpu_percent = 0;
 };
@@ -119,8 +125,8 @@ struct LoadReport {
 absl::Status CheckLoadtestOptions(const LoadtestOptions& options);
 
 /// Runs the load test (after CheckLoadtestOptions): creates the scene (named "loadtest-PID"),
-/// drives it, deletes it, runs the echo baseline. INVALID_ARGUMENT for options past the bounds or a
-/// remote server without allow_remote; a server's status (its code, "server: " and its message)
+/// drives it beside the echo baseline, deletes it. INVALID_ARGUMENT for options past the bounds or
+/// a remote server without allow_remote; a server's status (its code, "server: " and its message)
 /// when a request or stream fails.
 absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options);
 

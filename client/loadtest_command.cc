@@ -54,8 +54,8 @@ void PrintReport(const LoadReport& r, std::ostream& out) {
       << 100 * r.missed_fraction << "%); step time ms p50 " << r.step_ms.p50 << ", p99 "
       << r.step_ms.p99 << ", max " << r.step_ms.max << "\n";
   if (r.echo_run) {
-    out << "echo: " << r.echo_request_bytes << " B requests, " << r.echo_reply_bytes
-        << " B replies; p99 ratio devices/echo " << r.p99_ratio
+    out << "echo (turns with the devices): " << r.echo_request_bytes << " B requests, "
+        << r.echo_reply_bytes << " B replies; p99 ratio devices/echo " << r.p99_ratio
         << "; budget 1.5 x echo p99 + step p99 = " << r.p99_budget_ms
         << " ms: " << (r.devices.rtt_ms.p99 <= r.p99_budget_ms ? "met" : "not met") << "\n";
   }
@@ -141,7 +141,8 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--rate", o.rate_hz, "Poses per second per device (1..5000)")
       ->capture_default_str();
-  cmd->add_option("--duration", o.duration_s, "Seconds of load, (0, 60]; the echo runs as long")
+  cmd->add_option("--duration", o.duration_s,
+                  "Seconds of load, (0, 60]; the echo takes turns with the devices, as long again")
       ->capture_default_str();
   cmd->add_option("--scene", args->scene_file,
                   "Scene file; its first tool is copied per device (default: built-in demo)");

@@ -1,5 +1,7 @@
 #include "common/sim/worker_pool.h"
 
+#include <pthread.h>
+
 namespace hs {
 
 WorkerPool::WorkerPool(int threads) {
@@ -45,6 +47,7 @@ void WorkerPool::ForEach(int n, absl::FunctionRef<void(int)> task) {
 }
 
 void WorkerPool::Work() {
+  pthread_setname_np(pthread_self(), "step-worker");
   long seen = 0;
   std::unique_lock lock(mu_);
   while (true) {
