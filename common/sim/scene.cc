@@ -146,18 +146,43 @@ const StepFrame& Scene::Step() {
   }
   frame_.tools.resize(tools_.size());
   scratch_.resize(tools_.size());
-  workers_->ForEach(static_cast<int>(tools_.size()), [&](int i) {
-    tools_[i].X_WP_previous = tools_[i].X_WP;
-    StepTool(tools_[i], stages, frame_.tools[i], scratch_[i]);
-    tools_[i].X_WD_previous = tools_[i].X_WD;
-    tools_[i].moved = false;
-  });
-  for (ToolScratch& scratch : scratch_) {
-    for (int e = 0; e < kNumEffects; ++e) {
-      stats_[e].runs += scratch.stats[e].runs;
-      stats_[e].total_ns += scratch.stats[e].total_ns;
+  for (size_t i = 0; i < tools_.size(); ++i) {
+    frame_.tools[i].tool = tools_[i].id;
+    frame_.tools[i].X_WD = tools_[i].X_WD;
+  }
+  // Each tool's step is two halves that read the same state and write apart
+  // (its contacts; its proxy and force), so they run at once too: a scene
+  // of one tool uses a second core as well. A half with no stage to run
+  // only clears its part of the frame, here, and takes no thread.
+  const bool contacts = stages.Has(Effect::kCollision) || stages.Has(Effect::kContactSet);
+  const bool proxy = stages.Has(Effect::kReversingVector);
+  halves_.clear();
+  for (int i = 0; i < static_cast<int>(tools_.size()); ++i) {
+    for (const bool is_contacts : {true, false}) {
+      if (is_contacts ? contacts : proxy) {
+        halves_.push_back({i, is_contacts});
+      } else {
+        StepHalf({i, is_contacts}, stages);
+      }
     }
-    scratch.stats = {};
+  }
+  workers_->ForEach(static_cast<int>(halves_.size()), [&](int k) { StepHalf(halves_[k], stages); });
+  for (size_t i = 0; i < tools_.size(); ++i) {
+    Tool& tool = tools_[i];
+    tool.X_WP_previous = tool.X_WP;
+    tool.X_WP = frame_.tools[i].X_WP;
+    tool.X_WD_previous = tool.X_WD;
+    tool.moved = false;
+  }
+  for (ToolScratch& scratch : scratch_) {
+    for (const StageStatsTable* half : {&scratch.contact_stats, &scratch.proxy_stats}) {
+      for (int e = 0; e < kNumEffects; ++e) {
+        stats_[e].runs += (*half)[e].runs;
+        stats_[e].total_ns += (*half)[e].total_ns;
+      }
+    }
+    scratch.contact_stats = {};
+    scratch.proxy_stats = {};
   }
   frame_.bodies.resize(bodies_.size());
   if (stages.Has(Effect::kFreeBodyMotion)) {
@@ -265,84 +290,95 @@ void Scene::FindToolContacts(const Tool& tool, bool continuous, ToolFrame& frame
   }
 }
 
-void Scene::StepTool(Tool& tool, EffectSet stages, ToolFrame& frame, ToolScratch& scratch) const {
+void Scene::StepHalf(ToolHalf half, EffectSet stages) {
+  if (half.contacts) {
+    StepToolContacts(tools_[half.tool], stages, frame_.tools[half.tool], scratch_[half.tool]);
+  } else {
+    StepToolProxy(tools_[half.tool], stages, frame_.tools[half.tool], scratch_[half.tool]);
+  }
+}
+
+void Scene::StepToolContacts(const Tool& tool, EffectSet stages, ToolFrame& frame,
+                             ToolScratch& scratch) const {
   const Object& t = *objects_[tool.id];
   const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
   const bool continuous = stages.Has(Effect::kContinuousCollision);
-  frame.tool = tool.id;
-  frame.X_WD = tool.X_WD;
+  StageStatsTable& stats = scratch.contact_stats;
+  frame.contacts.clear();
+  frame.substeps = 1;
+  // Continuous collision runs inside the collision stage: its runs are
+  // counted here, its time is the collision stage's.
+  if (continuous && stages.Has(Effect::kCollision)) {
+    ++stats[static_cast<int>(Effect::kContinuousCollision)].runs;
+  }
+  if (stages.Has(Effect::kCollision)) {
+    StageTimer timer(stats[static_cast<int>(Effect::kCollision)]);
+    FindToolContacts(tool, continuous, frame, scratch);
+  }
+  if (!stages.Has(Effect::kContactSet)) return;
+  StageTimer timer(stats[static_cast<int>(Effect::kContactSet)]);
+  const PosedObject device = Posed(t, tool.X_WD);
+  // D is the device's way in from its proxy, which the last step left
+  // outside every object: reversing it ends at the surface the device
+  // went through. The device's own motion is tangent to the surface while
+  // it slides, and reversing that would travel far inside the object.
+  const Vector3d from_proxy = tool.X_WD.translation() - tool.X_WP.translation();
+  const ContactQuery at_device{.direction_W = from_proxy.squaredNorm() > 0 ? from_proxy : motion,
+                               .method = options_.method,
+                               .relative_tolerance = options_.relative_tolerance};
+  // A device that passed through an object in this step (the collision
+  // stage's swept query caught it) is reconstructed at its first touch
+  // along the step; the swept query is not paid for when the device is in.
+  ContactQuery along_motion = at_device;
+  along_motion.direction_W = motion;
+  ContactQuery along_step = along_motion;
+  along_step.continuous = true;
+  for (PairContact& pair : frame.contacts) {
+    const Object& o = *objects_[pair.object];
+    // A pair found at an earlier sub-step is reported at that sub-step's
+    // pose, along the motion: the tool passed through and no longer
+    // touches at the end.
+    const bool at_end = pair.substep == frame.substeps;
+    const PosedObject at =
+        at_end ? device
+               : Posed(t, InterpolatePose(tool.X_WD_previous, tool.X_WD,
+                                          static_cast<double>(pair.substep) / frame.substeps));
+    absl::StatusOr<ContactSet> contact =
+        ComputeContact(at, Posed(o, o.X_WO), at_end ? at_device : along_motion);
+    if (continuous && contact.ok() && !contact->colliding) {
+      contact = ComputeContact(device, Posed(o, o.X_WO), along_step);
+    }
+    if (contact.ok()) pair.contact = *std::move(contact);
+  }
+}
+
+void Scene::StepToolProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
+                          ToolScratch& scratch) const {
+  const Object& t = *objects_[tool.id];
+  const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
+  StageStatsTable& stats = scratch.proxy_stats;
   frame.X_WP = tool.X_WD;
   frame.force_W.setZero();
   frame.torque_W.setZero();
   frame.force_clamped = false;
-  frame.contacts.clear();
-  frame.substeps = 1;
-  const PosedObject device = Posed(t, tool.X_WD);
-  // Continuous collision and friction run inside the collision and proxy
-  // stages: their runs are counted here, their time is their hosts'.
-  if (continuous && stages.Has(Effect::kCollision)) {
-    ++scratch.stats[static_cast<int>(Effect::kContinuousCollision)].runs;
-  }
-  if (stages.Has(Effect::kFriction)) ++scratch.stats[static_cast<int>(Effect::kFriction)].runs;
-
-  if (stages.Has(Effect::kCollision)) {
-    StageTimer timer(scratch.stats[static_cast<int>(Effect::kCollision)]);
-    FindToolContacts(tool, continuous, frame, scratch);
-  }
-  if (stages.Has(Effect::kContactSet)) {
-    StageTimer timer(scratch.stats[static_cast<int>(Effect::kContactSet)]);
-    // D is the device's way in from its proxy, which the last step left
-    // outside every object: reversing it ends at the surface the device
-    // went through. The device's own motion is tangent to the surface while
-    // it slides, and reversing that would travel far inside the object.
-    const Vector3d from_proxy = tool.X_WD.translation() - tool.X_WP.translation();
-    const ContactQuery at_device{.direction_W = from_proxy.squaredNorm() > 0 ? from_proxy : motion,
-                                 .method = options_.method,
-                                 .relative_tolerance = options_.relative_tolerance};
-    // A device that passed through an object in this step (the collision
-    // stage's swept query caught it) is reconstructed at its first touch
-    // along the step; the swept query is not paid for when the device is in.
-    ContactQuery along_motion = at_device;
-    along_motion.direction_W = motion;
-    ContactQuery along_step = along_motion;
-    along_step.continuous = true;
-    for (PairContact& pair : frame.contacts) {
-      const Object& o = *objects_[pair.object];
-      // A pair found at an earlier sub-step is reported at that sub-step's
-      // pose, along the motion: the tool passed through and no longer
-      // touches at the end.
-      const bool at_end = pair.substep == frame.substeps;
-      const PosedObject at =
-          at_end ? device
-                 : Posed(t, InterpolatePose(tool.X_WD_previous, tool.X_WD,
-                                            static_cast<double>(pair.substep) / frame.substeps));
-      absl::StatusOr<ContactSet> contact =
-          ComputeContact(at, Posed(o, o.X_WO), at_end ? at_device : along_motion);
-      if (continuous && contact.ok() && !contact->colliding) {
-        contact = ComputeContact(device, Posed(o, o.X_WO), along_step);
-      }
-      if (contact.ok()) pair.contact = *std::move(contact);
-    }
-  }
-  if (!stages.Has(Effect::kReversingVector)) {
-    tool.X_WP = tool.X_WD;
-    return;
-  }
+  // Friction runs inside the proxy stage: its runs are counted here, its
+  // time is the proxy's.
+  if (stages.Has(Effect::kFriction)) ++stats[static_cast<int>(Effect::kFriction)].runs;
+  if (!stages.Has(Effect::kReversingVector)) return;
   ProxyState proxy;
   {
-    StageTimer timer(scratch.stats[static_cast<int>(Effect::kReversingVector)]);
+    StageTimer timer(stats[static_cast<int>(Effect::kReversingVector)]);
     const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
                                .friction = stages.Has(Effect::kFriction)};
     FindProxyObstacles(tool, scratch);
     absl::StatusOr<ProxyState> moved =
-        MoveProxy(device, tool.X_WP, tool.X_WD, scratch.proxy_obstacles, options);
+        MoveProxy(Posed(t, tool.X_WD), tool.X_WP, tool.X_WD, scratch.proxy_obstacles, options);
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
     if (proxy.touching) proxy.obstacle = scratch.proxy_obstacle_ids[proxy.obstacle];
-    tool.X_WP = proxy.X_WP;
     frame.X_WP = proxy.X_WP;
   }
   if (stages.Has(Effect::kForce) && proxy.touching) {
-    StageTimer timer(scratch.stats[static_cast<int>(Effect::kForce)]);
+    StageTimer timer(stats[static_cast<int>(Effect::kForce)]);
     const Material& m = objects_[proxy.obstacle]->object.face_material(proxy.face);
     const Vector3d stretch = proxy.X_WP.translation() - tool.X_WD.translation();
     const Vector3d velocity = motion / options_.step_s;

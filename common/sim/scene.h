@@ -81,8 +81,9 @@ class Scene {
   absl::Status SetDevicePose(ObjectId id, const Isometry3d& X_WD);
 
   /// Steps the tools on up to `threads` threads (the stepping one
-  /// included): tools never meet each other, so each is stepped alone and
-  /// the results are bit-identical whatever the number. Stage times are
+  /// included): tools never meet each other, so each is stepped alone, its
+  /// contacts apart from its proxy and force, and the results are
+  /// bit-identical whatever the number. Stage times are
   /// then summed over the threads. INVALID_ARGUMENT outside [1, 64].
   absl::Status SetThreads(int threads);
 
@@ -114,16 +115,20 @@ class Scene {
     // Impulse the tool gave free bodies this step, world frame, N*s.
     Vector3d push_impulse_W = Vector3d::Zero();
   };
-  // What one tool's step writes besides its own state and frame, so that
-  // tools can be stepped at once.
+  // What one tool's step writes besides its frame, so that tools, and the
+  // two halves of a tool's step, can be stepped at once: each half writes
+  // its own members only.
   struct ToolScratch {
-    // FindCandidates: indices into targets_, ascending.
+    // StepToolContacts. FindCandidates: indices into targets_, ascending.
     std::vector<int> candidates;
-    // FindProxyObstacles: a subset of obstacles_, in order, and their ids.
+    // StepToolProxy. FindProxyObstacles: a subset of obstacles_, in order,
+    // and their ids.
     std::vector<PosedObject> proxy_obstacles;
     std::vector<ObjectId> proxy_obstacle_ids;
-    // The stages' runs and times of this step, added to stats_ after it.
-    StageStatsTable stats{};
+    // Each half's stages' runs and times of this step, added to stats_
+    // after it.
+    StageStatsTable contact_stats{};
+    StageStatsTable proxy_stats{};
   };
   struct Body {
     ObjectId id;
@@ -141,7 +146,20 @@ class Scene {
 
   explicit Scene(const SceneOptions& options) : options_(options) {}
   PosedObject Posed(const Object& o, const Isometry3d& X) const { return {&o.object, &o.model, X}; }
-  void StepTool(Tool& tool, EffectSet stages, ToolFrame& frame, ToolScratch& scratch) const;
+  // The two halves of a tool's step. Both read the tool's state as the last
+  // step left it (the proxy too) and write apart: the contacts half
+  // frame.contacts and frame.substeps (collision, contact sets); the proxy
+  // half frame.X_WP and the force (reversing vector, force, friction).
+  void StepToolContacts(const Tool& tool, EffectSet stages, ToolFrame& frame,
+                        ToolScratch& scratch) const;
+  void StepToolProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
+                     ToolScratch& scratch) const;
+  // One half of tool `tool`'s step (an index into tools_).
+  struct ToolHalf {
+    int tool;
+    bool contacts;  // else the proxy half
+  };
+  void StepHalf(ToolHalf half, EffectSet stages);
   void MoveFreeBody(Body& body, BodyFrame& frame);
   // Adds the reaction of the free bodies the tool pushed to its force.
   void AddPushReaction(const Tool& tool, ToolFrame& frame) const;
@@ -196,6 +214,8 @@ class Scene {
   std::vector<std::pair<BroadPhase::Key, BroadPhase::Key>> broad_pairs_;
   // Per tool, in tools_' order.
   std::vector<ToolScratch> scratch_;
+  // The halves of this step's tool steps that have a stage to run.
+  std::vector<ToolHalf> halves_;
   std::unique_ptr<WorkerPool> workers_ = std::make_unique<WorkerPool>(1);
   StageStatsTable stats_{};
   StepFrame frame_;

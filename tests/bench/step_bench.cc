@@ -13,6 +13,7 @@
 #include <chrono>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "client/pose_args.h"
@@ -45,7 +46,7 @@ std::vector<Isometry3d> ReadPath(const std::string& file) {
   return poses;
 }
 
-void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs) {
+void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, int threads) {
   const std::string dir = std::string(HS_SCENES_DIR) + "/";
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(dir + demo.scene);
   if (!loaded.ok()) {
@@ -53,6 +54,10 @@ void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs) {
     return;
   }
   loaded->scene->SetNeeded(needs);
+  if (absl::Status s = loaded->scene->SetThreads(threads); !s.ok()) {
+    state.SkipWithError(std::string(s.message()).c_str());
+    return;
+  }
   const std::vector<Isometry3d> path = ReadPath(dir + demo.path);
   std::vector<double> step_us;
   step_us.reserve(1 << 20);
@@ -78,14 +83,23 @@ void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs) {
   state.counters["allocs_per_step"] = static_cast<double>(step_allocations) / step_us.size();
 }
 
+// One thread, and the server's default (haptic-server --threads-per-scene:
+// one per core, at most 4).
 void Register() {
-  for (const DemoScene& demo : kScenes) {
-    benchmark::RegisterBenchmark((std::string("Step/") + demo.name + "/all_effects").c_str(),
-                                 BM_Step, demo, EffectSet::All());
-    benchmark::RegisterBenchmark((std::string("Step/") + demo.name + "/force_only").c_str(),
-                                 BM_Step, demo, EffectSet{Effect::kForce, Effect::kFriction});
-    benchmark::RegisterBenchmark((std::string("Step/") + demo.name + "/collision_only").c_str(),
-                                 BM_Step, demo, EffectSet{Effect::kCollision});
+  const int server_threads =
+      static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
+  for (const int threads : {1, server_threads}) {
+    const std::string suffix = "/threads:" + std::to_string(threads);
+    for (const DemoScene& demo : kScenes) {
+      const std::string name = std::string("Step/") + demo.name;
+      benchmark::RegisterBenchmark((name + "/all_effects" + suffix).c_str(), BM_Step, demo,
+                                   EffectSet::All(), threads);
+      benchmark::RegisterBenchmark((name + "/force_only" + suffix).c_str(), BM_Step, demo,
+                                   EffectSet{Effect::kForce, Effect::kFriction}, threads);
+      benchmark::RegisterBenchmark((name + "/collision_only" + suffix).c_str(), BM_Step, demo,
+                                   EffectSet{Effect::kCollision}, threads);
+    }
+    if (server_threads == 1) break;  // one run is both
   }
 }
 
