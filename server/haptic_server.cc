@@ -9,11 +9,16 @@
 #include <filesystem>
 
 #include "absl/strings/str_cat.h"
+#include "common/core/status_macros.h"
+#include "server/thread_priority.h"
 
 namespace hs {
 
 absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOptions& options,
                                                                   Metrics& metrics) {
+  if (options.limits.realtime_priority != 0) {
+    HS_RETURN_IF_ERROR(CheckRealtimePriority(options.limits.realtime_priority));
+  }
   std::unique_ptr<HapticServer> server(new HapticServer());
   std::string model_dir = options.model_dir;
   if (model_dir.empty()) {

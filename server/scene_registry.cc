@@ -3,6 +3,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/core/status_macros.h"
 #include "server/spec_edit.h"
+#include "server/thread_priority.h"
 
 namespace hs {
 
@@ -21,7 +22,11 @@ absl::StatusOr<LoadedScene> SceneRegistry::BuildChecked(const pb::SceneSpec& spe
         absl::StrCat("at most ", limits_.max_objects_per_scene, " objects per scene"));
   }
   HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildScene(spec, BuildPaths{base_dir, models_.dir()}));
-  HS_RETURN_IF_ERROR(loaded.scene->SetThreads(limits_.threads_per_scene));
+  std::function<void()> on_worker_start;
+  if (const int priority = limits_.realtime_priority; priority != 0) {
+    on_worker_start = [priority] { (void)SetRealtimePriority(priority); };  // as SceneRunner
+  }
+  HS_RETURN_IF_ERROR(loaded.scene->SetThreads(limits_.threads_per_scene, on_worker_start));
   const double step_s = loaded.scene->options().step_s;
   if (!(step_s >= limits_.min_step_s && step_s <= limits_.max_step_s)) {
     return absl::InvalidArgumentError(absl::StrCat("step_s: ", step_s, " is outside [",
@@ -54,7 +59,8 @@ absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::
   }
   AbsoluteModelPaths(base_dir, spec);
   HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildChecked(spec, base_dir, deadline));
-  auto runner = std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_);
+  auto runner =
+      std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_, limits_.realtime_priority);
   std::lock_guard lock(mu_);
   scenes_[spec.name()] = runner;
   return runner->Info();

@@ -35,6 +35,11 @@ struct ServerLimits {
   /// Threads that step one scene's tools at once (Scene::SetThreads), in
   /// [1, 64]: its runner thread and up to this many - 1 workers.
   int threads_per_scene = 1;
+  /// SCHED_FIFO priority (1..99) of those threads; 0: the default
+  /// scheduler. A scene whose step outlasts its period then holds its
+  /// cores, so it is the operator's choice (haptic-server
+  /// --realtime-priority), checked when the server starts.
+  int realtime_priority = 0;
 };
 
 class SceneRegistry {

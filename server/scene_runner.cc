@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
+#include "server/thread_priority.h"
 
 namespace hs {
 namespace {
@@ -25,14 +26,15 @@ ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
 
 }  // namespace
 
-SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics)
+SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,
+                         int realtime_priority)
     : metrics_(metrics),
       step_s_(scene.scene->options().step_s),
       spec_(std::move(spec)),
       loaded_(std::move(scene)),
       names_(std::make_shared<const std::vector<std::string>>(loaded_.names)) {
   loaded_.scene->SetNeeded(EffectSet());
-  thread_ = std::thread([this] { Run(); });
+  thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
 }
 
 SceneRunner::~SceneRunner() { Stop(absl::UnavailableError("the scene was deleted")); }
@@ -48,9 +50,12 @@ void SceneRunner::Stop(const absl::Status& status) {
   thread_.join();
 }
 
-void SceneRunner::Run() {
+void SceneRunner::Run(int realtime_priority) {
   // Named so that `top -H` and profilers tell the stepping thread apart.
   pthread_setname_np(pthread_self(), "scene-step");
+  // Checked when the server started; should the system refuse now, the
+  // scene steps at the default scheduler, as without the option.
+  if (realtime_priority != 0) (void)SetRealtimePriority(realtime_priority);
   const auto period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(step_s_));
   // A device faster than the scene's rate speeds it up by 4/3 at most.

@@ -38,8 +38,12 @@ struct RunnerInfo {
 
 class SceneRunner {
  public:
-  /// Starts stepping `scene`, built from `spec`. `metrics` outlives the runner.
-  SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics);
+  /// Starts stepping `scene`, built from `spec`, on a thread under
+  /// SCHED_FIFO at `realtime_priority` when it is not 0 (as far as the
+  /// system allows: see CheckRealtimePriority). `metrics` outlives the
+  /// runner.
+  SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,
+              int realtime_priority = 0);
   /// Stop(UNAVAILABLE) if not stopped yet.
   ~SceneRunner();
   SceneRunner(const SceneRunner&) = delete;
@@ -85,7 +89,7 @@ class SceneRunner {
     bool fresh = false;
   };
 
-  void Run();
+  void Run(int realtime_priority);
   void StepOnce(int64_t start_lag_ns);
   EffectSet NeedsLocked() const;
   // Whether every attached device has a pose the last step did not apply.

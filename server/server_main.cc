@@ -35,6 +35,12 @@ int main(int argc, char** argv) {
                  "Threads that step one scene's tools at once")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  app.add_option("--realtime-priority", options.limits.realtime_priority,
+                 "SCHED_FIFO priority (1-99) of the threads that step scenes, so that a busy "
+                 "machine delays no step; needs root or CAP_SYS_NICE, checked at start. 0: the "
+                 "default scheduler. A scene whose step outlasts its period then holds its cores")
+      ->check(CLI::Range(0, 99))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   // SIGTERM and SIGINT are taken by sigwait below, not by any thread.

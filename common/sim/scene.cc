@@ -98,11 +98,13 @@ absl::StatusOr<ObjectId> Scene::AddObject(HapticObject object, ObjectKind kind,
   return id;
 }
 
-absl::Status Scene::SetThreads(int threads) {
+absl::Status Scene::SetThreads(int threads, const std::function<void()>& on_worker_start) {
   if (threads < 1 || threads > 64) {
     return absl::InvalidArgumentError(absl::StrCat("threads: ", threads, " is outside [1, 64]"));
   }
-  if (threads != workers_->threads()) workers_ = std::make_unique<WorkerPool>(threads);
+  if (threads != workers_->threads() || on_worker_start) {
+    workers_ = std::make_unique<WorkerPool>(threads, on_worker_start);
+  }
   return absl::OkStatus();
 }
 

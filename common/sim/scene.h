@@ -4,6 +4,7 @@
 // only the stages (effects) the scene enables and its consumers need, and
 // counts their runs and time.
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -84,8 +85,9 @@ class Scene {
   /// included): tools never meet each other, so each is stepped alone, its
   /// contacts apart from its proxy and force, and the results are
   /// bit-identical whatever the number. Stage times are
-  /// then summed over the threads. INVALID_ARGUMENT outside [1, 64].
-  absl::Status SetThreads(int threads);
+  /// then summed over the threads. Each new worker thread first runs
+  /// `on_worker_start` when set. INVALID_ARGUMENT outside [1, 64].
+  absl::Status SetThreads(int threads, const std::function<void()>& on_worker_start = {});
 
   /// What the scene's consumers need from now on (their union).
   void SetNeeded(EffectSet needed) { needed_ = needed; }

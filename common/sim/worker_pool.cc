@@ -4,8 +4,13 @@
 
 namespace hs {
 
-WorkerPool::WorkerPool(int threads) {
-  for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { Work(); });
+WorkerPool::WorkerPool(int threads, const std::function<void()>& on_start) {
+  for (int i = 1; i < threads; ++i) {
+    workers_.emplace_back([this, on_start] {
+      if (on_start) on_start();
+      Work();
+    });
+  }
 }
 
 WorkerPool::~WorkerPool() {

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -20,8 +21,10 @@ namespace hs {
 class WorkerPool {
  public:
   /// A pool of `threads` - 1 workers: with the calling thread, `threads`
-  /// run at once. 1 or less runs everything on the calling thread.
-  explicit WorkerPool(int threads);
+  /// run at once. 1 or less runs everything on the calling thread. Each
+  /// worker first runs `on_start` (when set), e.g. to take the scheduling
+  /// of the calling thread.
+  explicit WorkerPool(int threads, const std::function<void()>& on_start = {});
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -34,6 +35,27 @@ TEST(WorkerPoolTest, TasksRunAtOnce) {
     while (arrived.load() < 2) std::this_thread::yield();
   });
   EXPECT_EQ(arrived.load(), 2);
+}
+
+// Each worker runs the start hook once, on itself, before it takes tasks;
+// the calling thread never runs it.
+TEST(WorkerPoolTest, StartHookRunsOnEachWorker) {
+  std::mutex mu;
+  std::vector<std::thread::id> started;
+  {
+    WorkerPool pool(3, [&] {
+      std::lock_guard lock(mu);
+      started.push_back(std::this_thread::get_id());
+    });
+    std::atomic<int> arrived{0};
+    pool.ForEach(3, [&](int) {  // all three at once: both workers are up
+      arrived.fetch_add(1);
+      while (arrived.load() < 3) std::this_thread::yield();
+    });
+  }
+  ASSERT_EQ(started.size(), 2u);
+  EXPECT_NE(started[0], started[1]);
+  for (const std::thread::id id : started) EXPECT_NE(id, std::this_thread::get_id());
 }
 
 // Fewer than one thread means the calling thread alone.
