@@ -34,6 +34,7 @@ SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics
       loaded_(std::move(scene)),
       names_(std::make_shared<const std::vector<std::string>>(loaded_.names)) {
   loaded_.scene->SetNeeded(EffectSet());
+  fanout_thread_ = std::thread([this, realtime_priority] { FanOut(realtime_priority); });
   thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
 }
 
@@ -95,6 +96,12 @@ void SceneRunner::Run(int realtime_priority) {
     next = early ? now + period + period / 4 : next + period;
   }
   StepOnce(0);  // the final frame
+  {
+    std::lock_guard lock(fanout_mu_);
+    fanout_stop_ = true;
+  }
+  fanout_cv_.notify_all();
+  fanout_thread_.join();  // every frame handed over
   std::lock_guard lock(io_mu_);
   stopping_ = true;
   for (auto& [sink, attached] : sinks_) sink->Close(status);
@@ -146,8 +153,33 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
   }
   snapshot->start_lag_ns = start_lag_ns;
   snapshot->missed_steps = missed_steps_;
-  std::lock_guard lock(io_mu_);
-  for (auto& [sink, attached] : sinks_) sink->Offer(snapshot);
+  {
+    std::lock_guard lock(fanout_mu_);
+    if (fanout_queue_.size() >= kMaxQueuedFrames) {
+      fanout_queue_.pop_front();
+      metrics_.AddFramesDropped(1);
+    }
+    fanout_queue_.push_back(std::move(snapshot));
+  }
+  fanout_cv_.notify_one();
+}
+
+void SceneRunner::FanOut(int realtime_priority) {
+  pthread_setname_np(pthread_self(), "scene-frames");
+  if (realtime_priority != 0) (void)SetRealtimePriority(realtime_priority);  // as Run
+  std::unique_lock lock(fanout_mu_);
+  while (true) {
+    fanout_cv_.wait(lock, [this] { return fanout_stop_ || !fanout_queue_.empty(); });
+    if (fanout_queue_.empty()) return;  // stopped, and every frame handed over
+    std::shared_ptr<const StepSnapshot> snapshot = std::move(fanout_queue_.front());
+    fanout_queue_.pop_front();
+    lock.unlock();
+    {
+      std::lock_guard io(io_mu_);
+      for (auto& [sink, attached] : sinks_) sink->Offer(snapshot);
+    }
+    lock.lock();
+  }
 }
 
 bool SceneRunner::DevicesFreshLocked() const {

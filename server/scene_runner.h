@@ -6,10 +6,13 @@
 // period after the last), so a pose waits for no tick; the deadline after
 // such a step leaves a quarter period for a late device. Without devices
 // the scene steps on its own period.
+// Frames go to the streams from a second thread (scene-frames), so that no
+// step waits on gRPC.
 // hs::Scene is not thread-safe: only the runner's thread steps it; requests
 // reach it through the runner's mutexes, never by touching the Scene.
 
 #include <condition_variable>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -90,6 +93,10 @@ class SceneRunner {
   };
 
   void Run(int realtime_priority);
+  // Hands each step's frame to the streams, in step order, off the
+  // stepping thread: a stream's write can wait on gRPC's locks for
+  // milliseconds, and a step must not.
+  void FanOut(int realtime_priority);
   void StepOnce(int64_t start_lag_ns);
   EffectSet NeedsLocked() const;
   // Whether every attached device has a pose the last step did not apply.
@@ -122,6 +129,16 @@ class SceneRunner {
   absl::Status stop_status_;
   std::thread thread_;
   int64_t missed_steps_ = 0;  // runner thread only
+
+  // Frames stepped and not yet handed to the streams, oldest first. Past
+  // kMaxQueuedFrames (the hand-over stalled for that many steps) the
+  // oldest is dropped and counted in the metrics.
+  static constexpr size_t kMaxQueuedFrames = 64;
+  std::mutex fanout_mu_;
+  std::condition_variable fanout_cv_;
+  std::deque<std::shared_ptr<const StepSnapshot>> fanout_queue_;
+  bool fanout_stop_ = false;
+  std::thread fanout_thread_;
 };
 
 }  // namespace hs
