@@ -175,8 +175,13 @@ void SceneRunner::FanOut(int realtime_priority) {
     fanout_queue_.pop_front();
     lock.unlock();
     {
-      std::lock_guard io(io_mu_);
-      for (auto& [sink, attached] : sinks_) sink->Offer(snapshot);
+      std::lock_guard offering(offer_mu_);
+      offer_to_.clear();
+      {
+        std::lock_guard io(io_mu_);
+        for (const auto& [sink, attached] : sinks_) offer_to_.push_back(sink);
+      }
+      for (FrameSink* sink : offer_to_) sink->Offer(snapshot);
     }
     lock.lock();
   }
@@ -226,8 +231,12 @@ absl::Status SceneRunner::AttachViewer(FrameSink* sink, EffectSet needs) {
 }
 
 void SceneRunner::Detach(FrameSink* sink) {
-  std::lock_guard io(io_mu_);
-  sinks_.erase(sink);
+  {
+    std::lock_guard io(io_mu_);
+    sinks_.erase(sink);
+  }
+  // An offer to `sink` that started before the erase ends before this.
+  std::lock_guard offering(offer_mu_);
 }
 
 void SceneRunner::SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp) {

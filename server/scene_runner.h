@@ -139,6 +139,12 @@ class SceneRunner {
   std::deque<std::shared_ptr<const StepSnapshot>> fanout_queue_;
   bool fanout_stop_ = false;
   std::thread fanout_thread_;
+  // Held by scene-frames while it offers a frame, and taken by Detach once
+  // the sink is out of sinks_: so io_mu_, which the stepping thread needs,
+  // is never held across a stream's write. Taken before io_mu_ when both
+  // are held.
+  std::mutex offer_mu_;
+  std::vector<FrameSink*> offer_to_;  // scene-frames only
 };
 
 }  // namespace hs
