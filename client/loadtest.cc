@@ -628,6 +628,7 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   }
 
   TurnCpu cpu(server_pid, device_turns);
+  const std::optional<double> steal_before = MachineStealSeconds();
   std::thread echo_thread;
   if (options.echo) {
     echo_thread = std::thread([&] {
@@ -641,6 +642,10 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   if (echo_thread.joinable()) echo_thread.join();
   const double window_s = std::chrono::duration<double>(Clock::now() - device_turns.start).count();
   cpu.Stop();
+  if (const std::optional<double> steal_after = MachineStealSeconds();
+      steal_before && steal_after) {
+    report.machine_steal_ms = 1e3 * (*steal_after - *steal_before);
+  }
   report.client_cpu_percent = 100 * cpu.client_s[0] / cpu.wall_s[0];
   if (cpu.server_s[0]) {
     report.server_cpu_percent = 100 * *cpu.server_s[0] / cpu.wall_s[0];

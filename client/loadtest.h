@@ -118,6 +118,9 @@ struct LoadReport {
   /// turns), % of one core, over the devices' turns and the echo's.
   double client_cpu_percent = 0;
   double echo_phase_cpu_percent = 0;
+  /// CPU the hypervisor took from this machine over the run (MachineStealSeconds),
+  /// ms summed over its cores; -1 when unknown. Missed steps follow it.
+  double machine_steal_ms = -1;
 };
 
 /// INVALID_ARGUMENT naming the option for options past the bounds or a

@@ -62,6 +62,10 @@ void PrintReport(const LoadReport& r, std::ostream& out) {
   out << "cpu, % of one core: server " << r.server_cpu_percent << " (" << r.server_cpu_source
       << "), hapticctl " << r.client_cpu_percent << " during devices, " << r.echo_phase_cpu_percent
       << " during echo (echo server included)\n";
+  if (r.machine_steal_ms >= 0) {
+    out << "hypervisor: " << r.machine_steal_ms
+        << " ms of CPU taken from this machine in the run\n";
+  }
 }
 
 }  // namespace
@@ -93,7 +97,8 @@ std::string LoadReportJson(const LoadReport& r) {
                                  {"server_cpu_percent", r.server_cpu_percent},
                                  {"server_cpu_source", r.server_cpu_source},
                                  {"client_cpu_percent", r.client_cpu_percent},
-                                 {"echo_phase_cpu_percent", r.echo_phase_cpu_percent}};
+                                 {"echo_phase_cpu_percent", r.echo_phase_cpu_percent},
+                                 {"machine_steal_ms", r.machine_steal_ms}};
   return json.dump();
 }
 

@@ -75,4 +75,15 @@ double LoadAverage1m() {
   return load;
 }
 
+std::optional<double> MachineStealSeconds() {
+  // "cpu user nice system idle iowait irq softirq steal ...", in ticks.
+  std::ifstream in("/proc/stat");
+  std::string cpu;
+  double ticks[8];
+  in >> cpu;
+  for (double& t : ticks) in >> t;
+  if (!in || cpu != "cpu") return std::nullopt;
+  return ticks[7] / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
 }  // namespace hs::cli

@@ -18,4 +18,9 @@ std::optional<int> FindListeningPid(int port);
 /// The 1-minute load average (/proc/loadavg); -1 when unknown.
 double LoadAverage1m();
 
+/// CPU seconds the hypervisor has taken from this machine's cores since
+/// boot, summed over them ("steal" in /proc/stat); nullopt when unknown.
+/// On a virtual machine a burst of it stops every thread, a scene's too.
+std::optional<double> MachineStealSeconds();
+
 }  // namespace hs::cli
