@@ -25,6 +25,8 @@ struct ContactContext {
   /// Face pairs (a: face of M, b: face of F) intersecting within the
   /// tolerance at the current pose; not empty.
   std::vector<TrianglePair> pairs;
+  /// ContactQuery::depth_hint_m, metres along direction_F from X_FM; 0: none.
+  double depth_hint_m = 0;
 
   /// Face `f` of M, in F's frame, at the current pose.
   Triangle3d MovingTriangle(FaceId f) const;

@@ -183,6 +183,9 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
                                           const ContactQuery& query) {
   HS_ASSIGN_OR_RETURN(const double tolerance,
                       PairTolerance(moving, fixed, query.direction_W, query.relative_tolerance));
+  if (!(std::isfinite(query.depth_hint_m) && query.depth_hint_m >= 0)) {
+    return absl::InvalidArgumentError("depth hint must be finite and >= 0");
+  }
 
   const Isometry3d X_FW = fixed.X_WO.inverse();
   ContactContext context{*moving.object,     *moving.model,    *fixed.object, *fixed.model,
@@ -211,6 +214,7 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
     MeetingAt(context, swept);
   } else {
     back = 0;
+    context.depth_hint_m = query.depth_hint_m;  // taken at this pose
   }
   if (context.pairs.empty()) {
     set.direction_W = no_direction ? Vector3d::Zero() : query.direction_W.normalized();

@@ -34,6 +34,12 @@ struct ContactQuery {
   /// objects' bounding-box diagonals).
   /// Finite, >= 0, and within what the collision models were built for.
   double relative_tolerance = 1e-9;
+  /// A depth along the direction, metres, at which the objects are
+  /// expected to be apart (e.g. a haptic tool's distance from its proxy,
+  /// which the last step left outside); 0: none. The exact 3D method
+  /// searches that far at once instead of in doubling stretches; the answer
+  /// is the same whatever the hint. Finite and >= 0.
+  double depth_hint_m = 0;
 };
 
 /// Reconstructs the contact of `moving` with `fixed` along the query's

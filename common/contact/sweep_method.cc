@@ -124,25 +124,31 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
   bool settled = !penetrating;
   if (!settled) {
     t_star = known.ExtendRun(t_star);
-    // A pair that could extend the run past t* meets at t*, so one query
-    // there usually settles it, and its pairs are those to locate.
     const double t1 = t_star;
-    at_t_star.clear();
-    FindIntersectingTriangles(c.moving_model, MovedBack(c, t1), c.fixed_model,
-                              Isometry3d::Identity(), c.tolerance_m, at_t_star);
-    known.Add(at_t_star);
-    t_star = known.ExtendRun(t_star);
-    settled = t_star == t1;
+    // Given a depth where M is expected to be apart, past t1: the first
+    // swept stretch below reaches it at once, and brings the pairs at t1.
+    const bool hinted = c.depth_hint_m > t1 + 2 * c.tolerance_m;
+    double stretch = hinted ? c.depth_hint_m - t1 : 0;
+    if (!hinted) {
+      // A pair that could extend the run past t* meets at t*, so one query
+      // there usually settles it, and its pairs are those to locate.
+      at_t_star.clear();
+      FindIntersectingTriangles(c.moving_model, MovedBack(c, t1), c.fixed_model,
+                                Isometry3d::Identity(), c.tolerance_m, at_t_star);
+      known.Add(at_t_star);
+      t_star = known.ExtendRun(t_star);
+      settled = t_star == t1;
+      // The first stretch is as long as the run grew at t1: a short sweep
+      // meets few faces, and a run that goes on far is reached in a few
+      // doublings.
+      stretch = std::max(2 * c.tolerance_m, t_star - t1);
+    }
     // Faces wholly inside the other object are in no pair until M backs out
     // to them, so a deep contact of a fine mesh would take a query per ring
     // of faces. Swept queries over the next stretch instead, each twice as
     // long as the last: every pair that meets in [t1, covered] is then
     // known, and none outside it can reach a run ending before `covered`.
-    // The first stretch is as long as the run grew at t1: a short sweep
-    // meets few faces, and a run that goes on far is reached in a few
-    // doublings.
     double covered = t1;
-    double stretch = std::max(2 * c.tolerance_m, t_star - t1);
     for (int round = 0; round < kMaxRounds && !settled; ++round, stretch *= 2) {
       const double reach = std::max(t_star + 2 * c.tolerance_m, covered + stretch);
       std::vector<TrianglePair> swept;
@@ -154,7 +160,7 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
       settled = t_star + c.tolerance_m <= covered;
     }
     // The pairs touching at t*: all known, since [t1, covered] holds t*.
-    if (t_star != t1) at_t_star = known.TouchingAt(t_star);
+    if (hinted || t_star != t1) at_t_star = known.TouchingAt(t_star);
   }
 
   ContactSet set;

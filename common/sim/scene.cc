@@ -325,14 +325,18 @@ void Scene::StepToolContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
   // went through. The device's own motion is tangent to the surface while
   // it slides, and reversing that would travel far inside the object.
   const Vector3d from_proxy = tool.X_WD.translation() - tool.X_WP.translation();
+  // The proxy stood outside at its distance from the device: the exact
+  // method searches that far at once.
   const ContactQuery at_device{.direction_W = from_proxy.squaredNorm() > 0 ? from_proxy : motion,
                                .method = options_.method,
-                               .relative_tolerance = options_.relative_tolerance};
+                               .relative_tolerance = options_.relative_tolerance,
+                               .depth_hint_m = from_proxy.norm()};
   // A device that passed through an object in this step (the collision
   // stage's swept query caught it) is reconstructed at its first touch
   // along the step; the swept query is not paid for when the device is in.
   ContactQuery along_motion = at_device;
   along_motion.direction_W = motion;
+  along_motion.depth_hint_m = 0;
   ContactQuery along_step = along_motion;
   along_step.continuous = true;
   for (PairContact& pair : frame.contacts) {
