@@ -517,6 +517,9 @@ absl::Status CheckLoadtestOptions(const LoadtestOptions& options) {
   if (!(options.rate_hz >= 1 && options.rate_hz <= kMaxLoadRateHz)) {
     return absl::InvalidArgumentError(absl::StrCat("--rate must be 1..", kMaxLoadRateHz, " Hz"));
   }
+  if (std::llround(options.duration_s * options.rate_hz) < 1) {
+    return absl::InvalidArgumentError("--duration x --rate must make at least one pose");
+  }
   if (!IsLoopbackAddress(options.server.address) && !options.allow_remote) {
     return absl::InvalidArgumentError(options.server.address +
                                       " is not on loopback: give --allow-remote to load it");
@@ -646,9 +649,11 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
       steal_before && steal_after) {
     report.machine_steal_ms = 1e3 * (*steal_after - *steal_before);
   }
-  report.client_cpu_percent = 100 * cpu.client_s[0] / cpu.wall_s[0];
-  if (cpu.server_s[0]) {
-    report.server_cpu_percent = 100 * *cpu.server_s[0] / cpu.wall_s[0];
+  // Percent of one core over a kind's turns; -1 when it had none.
+  auto percent = [](double cpu_s, double wall_s) { return wall_s > 0 ? 100 * cpu_s / wall_s : -1; };
+  report.client_cpu_percent = percent(cpu.client_s[0], cpu.wall_s[0]);
+  if (cpu.server_s[0] && cpu.wall_s[0] > 0) {
+    report.server_cpu_percent = percent(*cpu.server_s[0], cpu.wall_s[0]);
     report.server_cpu_source =
         absl::StrCat("/proc/", server_pid, "/stat",
                      server_pid == getpid() ? " (this process: server and load generator)" : "");
@@ -671,7 +676,7 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   report.per_device = each;
   report.devices = Pool(each, pooled, window_s);
   report.step_ms = Summarize(devices.front()->step_ms());
-  report.steps = each.front().last_step - each.front().first_step + 1;
+  report.steps = each.front().frames > 0 ? each.front().last_step - each.front().first_step + 1 : 0;
   report.missed_steps = each.front().missed_steps;
   report.missed_fraction =
       static_cast<double>(report.missed_steps) /
@@ -683,7 +688,7 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
 
   if (options.echo) {
     report.echo_run = true;
-    report.echo_phase_cpu_percent = 100 * cpu.client_s[1] / cpu.wall_s[1];
+    report.echo_phase_cpu_percent = percent(cpu.client_s[1], cpu.wall_s[1]);
     std::vector<StreamReport> echo_each;
     std::vector<double> echo_pooled;
     int64_t reply_bytes = 0;

@@ -35,7 +35,17 @@ SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics
       names_(std::make_shared<const std::vector<std::string>>(loaded_.names)) {
   loaded_.scene->SetNeeded(EffectSet());
   fanout_thread_ = std::thread([this, realtime_priority] { FanOut(realtime_priority); });
-  thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
+  try {
+    thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
+  } catch (...) {  // no thread to be had: stop the first, not std::terminate
+    {
+      std::lock_guard lock(fanout_mu_);
+      fanout_stop_ = true;
+    }
+    fanout_cv_.notify_all();
+    fanout_thread_.join();
+    throw;
+  }
 }
 
 SceneRunner::~SceneRunner() { Stop(absl::UnavailableError("the scene was deleted")); }
@@ -234,6 +244,14 @@ void SceneRunner::Detach(FrameSink* sink) {
   {
     std::lock_guard io(io_mu_);
     sinks_.erase(sink);
+    // The device that went may have been the only one not to have sent.
+    if (DevicesFreshLocked()) {
+      {
+        std::lock_guard lock(stop_mu_);
+        devices_fresh_ = true;
+      }
+      stop_cv_.notify_all();
+    }
   }
   // An offer to `sink` that started before the erase ends before this.
   std::lock_guard offering(offer_mu_);
@@ -276,8 +294,10 @@ absl::Status SceneRunner::Replace(haptics::v1::SceneSpec spec, LoadedScene scene
       ++it;
     }
   }
-  spec_ = std::move(spec);
-  loaded_ = std::move(scene);
+  // The old scene goes with `scene` once the locks are released: tearing
+  // down its meshes and threads must not hold up the steps.
+  std::swap(spec_, spec);
+  std::swap(loaded_, scene);
   names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
   last_stats_ = StageStatsTable{};
   ++revision_;

@@ -39,11 +39,14 @@ struct StepSnapshot {
   int64_t missed_steps = 0;
 };
 
-/// A stream's end of a scene: receives every step's snapshot.
+/// A stream's end of a scene: receives every step's snapshot. Offer and
+/// Close run with the runner's locks held: they must not call back into the
+/// SceneRunner (Detach, SetDevicePose, ...), which would deadlock.
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
-  /// Called on the scene thread after each step; must not block.
+  /// Called on the scene's frames thread after each step, in step order;
+  /// must not block.
   virtual void Offer(std::shared_ptr<const StepSnapshot> snapshot) = 0;
   /// The scene ends (deleted, server shutting down): send what is pending,
   /// then end the stream with `status`. Called at most once; no Offer after.

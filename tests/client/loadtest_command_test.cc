@@ -93,6 +93,9 @@ TEST(LoadtestCommandTest, Bounds) {
   args.options.clients = 1;
   args.options.duration_s = 61;
   EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
+  args.options.duration_s = 0.0004;  // at 1 kHz: no pose to send
+  EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("at least one pose"), std::string::npos) << err.str();
   args.options.duration_s = 1;
   args.needs = {"gravity"};
   EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);

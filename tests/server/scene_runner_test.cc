@@ -67,8 +67,8 @@ std::unique_ptr<SceneRunner> Runner(Metrics& metrics) {
 // unknown tool NOT_FOUND.
 TEST(SceneRunnerTest, PosesAppliedAndToolsHeldOnce) {
   Metrics metrics;
+  RecordingSink device, other;  // outlive the runner, which offers its last frame
   auto runner = Runner(metrics);
-  RecordingSink device, other;
   ASSERT_TRUE(runner->AttachDevice(&device, "probe", EffectSet::All()).ok());
   EXPECT_EQ(runner->AttachDevice(&other, "probe", EffectSet()).code(),
             absl::StatusCode::kFailedPrecondition);
@@ -94,8 +94,8 @@ TEST(SceneRunnerTest, PosesAppliedAndToolsHeldOnce) {
 // sink once with the given status.
 TEST(SceneRunnerTest, ReplaceAndStop) {
   Metrics metrics;
+  RecordingSink device;  // outlives the runner, which offers its last frame
   auto runner = Runner(metrics);
-  RecordingSink device;
   ASSERT_TRUE(runner->AttachDevice(&device, "stylus", EffectSet::All()).ok());
   const int64_t before = device.WaitForOffers(3)->step;
 
@@ -135,8 +135,8 @@ TEST(SceneRunnerTest, DevicesClockTheSteps) {
   absl::StatusOr<LoadedScene> loaded = BuildScene(spec, "");
   ASSERT_TRUE(loaded.ok());
   const Clock::time_point start = Clock::now();
+  RecordingSink probe, stylus;  // outlive the runner, which offers its last frame
   SceneRunner runner(spec, std::move(loaded).value(), metrics);
-  RecordingSink probe, stylus;
   ASSERT_TRUE(runner.AttachDevice(&probe, "probe", EffectSet()).ok());
   ASSERT_TRUE(runner.AttachDevice(&stylus, "stylus", EffectSet()).ok());
   const Isometry3d X = Isometry3d::Identity();

@@ -66,7 +66,8 @@ TEST(ThreadPriorityTest, SetsTheCallingThreadOnly) {
 }
 
 // A server with a real-time priority steps its scenes on SCHED_FIFO
-// threads: the scene's own thread and its workers, found by name.
+// threads: the scene's own thread, its workers and its frames thread,
+// found by name.
 TEST(ThreadPriorityTest, SceneThreadsRunRealtime) {
   if (!CheckRealtimePriority(7).ok()) GTEST_SKIP() << "no real-time scheduling here";
   ServerLimits limits;
@@ -77,16 +78,16 @@ TEST(ThreadPriorityTest, SceneThreadsRunRealtime) {
   std::filesystem::create_directories(dir);
   SceneRegistry registry(limits, dir, metrics);
   ASSERT_TRUE(registry.Create(testing::SmallScene("rt"), "").ok());
-  // The threads take their scheduling as they start: wait for both, 2 s at most.
+  // The threads take their scheduling as they start: wait for all, 2 s at most.
   std::vector<std::string> found;
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(2);
-  while (found.size() < 2 && std::chrono::steady_clock::now() < give_up) {
+  while (found.size() < 3 && std::chrono::steady_clock::now() < give_up) {
     found.clear();
     for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
       std::ifstream comm(task.path() / "comm");
       std::string name;
       std::getline(comm, name);
-      if (name != "scene-step" && name != "step-worker") continue;
+      if (name != "scene-step" && name != "step-worker" && name != "scene-frames") continue;
       int priority = 0;
       if (PolicyOfTask(std::stoi(task.path().filename()), &priority) == SCHED_FIFO &&
           priority == 7) {
@@ -96,7 +97,7 @@ TEST(ThreadPriorityTest, SceneThreadsRunRealtime) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   std::sort(found.begin(), found.end());
-  EXPECT_EQ(found, (std::vector<std::string>{"scene-step", "step-worker"}));
+  EXPECT_EQ(found, (std::vector<std::string>{"scene-frames", "scene-step", "step-worker"}));
 }
 
 }  // namespace
