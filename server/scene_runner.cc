@@ -38,12 +38,7 @@ SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics
   try {
     thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
   } catch (...) {  // no thread to be had: stop the first, not std::terminate
-    {
-      std::lock_guard lock(fanout_mu_);
-      fanout_stop_ = true;
-    }
-    fanout_cv_.notify_all();
-    fanout_thread_.join();
+    StopFanOut();
     throw;
   }
 }
@@ -106,12 +101,7 @@ void SceneRunner::Run(int realtime_priority) {
     next = early ? now + period + period / 4 : next + period;
   }
   StepOnce(0);  // the final frame
-  {
-    std::lock_guard lock(fanout_mu_);
-    fanout_stop_ = true;
-  }
-  fanout_cv_.notify_all();
-  fanout_thread_.join();  // every frame handed over
+  StopFanOut();
   std::lock_guard lock(io_mu_);
   stopping_ = true;
   for (auto& [sink, attached] : sinks_) sink->Close(status);
@@ -172,6 +162,15 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
     fanout_queue_.push_back(std::move(snapshot));
   }
   fanout_cv_.notify_one();
+}
+
+void SceneRunner::StopFanOut() {
+  {
+    std::lock_guard lock(fanout_mu_);
+    fanout_stop_ = true;
+  }
+  fanout_cv_.notify_all();
+  fanout_thread_.join();  // every frame queued is handed over first
 }
 
 void SceneRunner::FanOut(int realtime_priority) {

@@ -97,6 +97,8 @@ class SceneRunner {
   // stepping thread: a stream's write can wait on gRPC's locks for
   // milliseconds, and a step must not.
   void FanOut(int realtime_priority);
+  // Lets FanOut hand over the frames queued, then joins it.
+  void StopFanOut();
   void StepOnce(int64_t start_lag_ns);
   EffectSet NeedsLocked() const;
   // Whether every attached device has a pose the last step did not apply.

@@ -128,8 +128,10 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
     // Given a depth where M is expected to be apart, past t1: the first
     // swept stretch below reaches it at once, and brings the pairs at t1.
     const bool hinted = c.depth_hint_m > t1 + 2 * c.tolerance_m;
-    double stretch = hinted ? c.depth_hint_m - t1 : 0;
-    if (!hinted) {
+    double stretch;
+    if (hinted) {
+      stretch = c.depth_hint_m - t1;
+    } else {
       // A pair that could extend the run past t* meets at t*, so one query
       // there usually settles it, and its pairs are those to locate.
       at_t_star.clear();

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 
 #include "common/collision/triangle_sat.h"
@@ -161,18 +162,30 @@ int PenetratingPairs(const Body& moving, const Body& fixed, const Vector3d& dire
   return count;
 }
 
+// Two non-convex tori, for the tests on random poses.
+struct Tori {
+  std::unique_ptr<Body> a = MakeBody(MakeTorus(1.0, 0.3, 16, 8));
+  std::unique_ptr<Body> b = MakeBody(MakeTorus(0.8, 0.25, 16, 8));
+
+  // Poses both at random near the origin and returns a random direction.
+  Vector3d PoseAtRandom(std::mt19937& rng) {
+    a->X_WO = RandomPose(rng, 0.4);
+    b->X_WO = RandomPose(rng, 0.4);
+    return RandomDirection(rng);
+  }
+};
+
 // On random poses of two non-convex tori, the depth equals the all-pairs
 // oracle's; moving back by the reversing vector (plus twice the tolerance)
 // separates the objects, and by 0.98 of it does not.
 TEST(SweepMethodTest, MatchesAllPairsOracleAndSeparates) {
-  const auto a = MakeBody(MakeTorus(1.0, 0.3, 16, 8));
-  const auto b = MakeBody(MakeTorus(0.8, 0.25, 16, 8));
+  Tori tori;
+  const auto& a = tori.a;
+  const auto& b = tori.b;
   std::mt19937 rng(41);
   int penetrating = 0;
   for (int i = 0; i < 30; ++i) {
-    a->X_WO = RandomPose(rng, 0.4);
-    b->X_WO = RandomPose(rng, 0.4);
-    const Vector3d D = RandomDirection(rng);
+    const Vector3d D = tori.PoseAtRandom(rng);
     const ContactSet set = Contact(*a, *b, D);
     if (!set.colliding) {
       EXPECT_EQ(PenetratingPairs(*a, *b, D, 0), 0) << "pose " << i;
@@ -196,14 +209,13 @@ TEST(SweepMethodTest, MatchesAllPairsOracleAndSeparates) {
 // short of, at and past the depth; a hint that is not finite, or negative,
 // is INVALID_ARGUMENT.
 TEST(SweepMethodTest, DepthHintNeverChangesTheAnswer) {
-  const auto a = MakeBody(MakeTorus(1.0, 0.3, 16, 8));
-  const auto b = MakeBody(MakeTorus(0.8, 0.25, 16, 8));
+  Tori tori;
+  const auto& a = tori.a;
+  const auto& b = tori.b;
   std::mt19937 rng(43);
   int compared = 0;
   for (int i = 0; i < 30; ++i) {
-    a->X_WO = RandomPose(rng, 0.4);
-    b->X_WO = RandomPose(rng, 0.4);
-    const Vector3d D = RandomDirection(rng);
+    const Vector3d D = tori.PoseAtRandom(rng);
     const ContactSet plain = Contact(*a, *b, D);
     if (!plain.penetrating) continue;
     for (const double scale : {0.5, 1.0, 2.0, 10.0}) {
@@ -238,13 +250,12 @@ TEST(SweepMethodTest, DepthHintNeverChangesTheAnswer) {
 // Moving the whole scene rigidly (far from the origin, turned) changes
 // neither depth nor features, and turns the vectors with it.
 TEST(SweepMethodTest, InvariantUnderRigidMotionOfTheScene) {
-  const auto a = MakeBody(MakeTorus(1.0, 0.3, 16, 8));
-  const auto b = MakeBody(MakeTorus(0.8, 0.25, 16, 8));
+  Tori tori;
+  const auto& a = tori.a;
+  const auto& b = tori.b;
   std::mt19937 rng(42);
   for (int i = 0; i < 15; ++i) {
-    a->X_WO = RandomPose(rng, 0.4);
-    b->X_WO = RandomPose(rng, 0.4);
-    const Vector3d D = RandomDirection(rng);
+    const Vector3d D = tori.PoseAtRandom(rng);
     const ContactSet here = Contact(*a, *b, D);
     Isometry3d T = Translation(1e5, -2e5, 3e4);
     T.rotate(Eigen::AngleAxisd(1.0, Vector3d(1, 2, 3).normalized()));
