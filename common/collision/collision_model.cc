@@ -39,8 +39,8 @@ std::vector<fcl::Vector3d> Vertices(const HapticObject& object) {
   return std::vector<fcl::Vector3d>(object.positions().begin(), object.positions().end());
 }
 
-std::vector<bool> DegenerateFaces(const HapticObject& object) {
-  std::vector<bool> degenerate(object.num_faces());
+std::vector<uint8_t> DegenerateFaces(const HapticObject& object) {
+  std::vector<uint8_t> degenerate(object.num_faces());
   for (FaceId f = 0; f < object.num_faces(); ++f) {
     const auto& v = object.face(f).vertices;
     degenerate[f] =

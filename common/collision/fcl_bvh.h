@@ -12,6 +12,7 @@
 #include <fcl/math/bv/RSS.h>
 #include <fcl/math/bv/kIOS.h>
 
+#include <cstdint>
 #include <memory>
 #include <variant>
 #include <vector>
@@ -36,8 +37,9 @@ struct CollisionModel::Impl {
   AnyBvh bvh;
   /// Per face: zero area, so skipped by the leaf test (a flat triangle has
   /// no normal and SAT cannot separate it reliably; in a closed mesh its
-  /// neighbours carry the contact).
-  std::vector<bool> degenerate;
+  /// neighbours carry the contact). Bytes, not bits: read per face in the
+  /// leaf buckets.
+  std::vector<uint8_t> degenerate;
   /// Faces in the order of the hierarchy's leaves: node n holds faces
   /// leaf_faces[n.first_primitive, n.first_primitive + n.num_primitives).
   std::vector<int> leaf_faces;

@@ -1,5 +1,9 @@
 #include "common/collision/triangle_pairs.h"
 
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -99,14 +103,24 @@ class VolumeTest {
   const Vector3d* sweep_A_;
 };
 
+// Nodes holding at most this many faces each are not split further: both
+// buckets are cut down to the faces whose boxes (in A's frame) meet the
+// overlap of the buckets' boxes, and those pairs go through a box test that
+// costs a tenth of an oriented-box test, then SAT. The last levels of the
+// hierarchies cost more volume tests than the face pairs they cull. Instructions
+// per query (callgrind, contact_bench cases #1-#4) at 1 (a plain leaf walk)
+// -> 32: 149k -> 125k, 324k -> 282k, 2.53M -> 2.45M, 11.0M -> 7.7M; 8, 16
+// and 64 were each worse on some case.
+constexpr int kBucketFaces = 32;
+
 // The faces of both objects in A's frame, for the leaf buckets.
 class BucketTest {
  public:
   template <typename BV>
   BucketTest(const CollisionModel::Impl& ia, const fcl::BVHModel<BV>& mb,
              const CollisionModel::Impl& ib, const Isometry3d& X_AB, const Vector3d* sweep_A,
-             double margin)
-      : ia_(ia), ib_(ib), sweep_A_(sweep_A), margin_(margin) {
+             double margin, std::span<const TrianglePair> skip)
+      : ia_(ia), ib_(ib), sweep_A_(sweep_A), margin_(margin), skip_(skip) {
     faces_b().Start(mb.vertices, mb.tri_indices, mb.num_tris, X_AB);
   }
 
@@ -144,9 +158,15 @@ class BucketTest {
     const PlacedFace overlap{{}, {}, lo, hi};
     Crop(list_a, overlap);
     Crop(list_b, overlap);
+    thread_local BucketBoxes boxes_b;
+    boxes_b.Set(list_b, margin_);
     for (const Entry& a : list_a) {
-      for (const Entry& b : list_b) {
-        if (FaceBoxesApart(*a.face, *b.face, margin_)) continue;
+      const std::span<const TrianglePair> skipped = Skipped(a.id);
+      for (uint32_t meets = boxes_b.Meeting(*a.face, margin_); meets != 0; meets &= meets - 1) {
+        const Entry& b = list_b[std::countr_zero(meets)];
+        if (!skipped.empty() && std::ranges::binary_search(skipped, TrianglePair{a.id, b.id})) {
+          continue;
+        }
         const bool hit = sweep_A_ ? SweptFacesMeet(*a.face, *b.face)
                                   : TrianglesIntersect(a.face->triangle, a.face->normal,
                                                        b.face->triangle, b.face->normal, margin_);
@@ -160,6 +180,38 @@ class BucketTest {
     int id;
     const PlacedFace* face;
   };
+
+  // A cut-down bucket's face boxes, coordinate by coordinate, for a scan
+  // without branches: which of them meet a face's box within the margin
+  // (the test of FaceBoxesApart, the same sums) is one bit mask.
+  struct BucketBoxes {
+    std::array<double, kBucketFaces> lo[3], hi_plus_margin[3];
+    int size = 0;
+
+    void Set(const std::vector<Entry>& list, double margin) {
+      size = static_cast<int>(list.size());
+      for (int k = 0; k < size; ++k) {
+        for (int d = 0; d < 3; ++d) {
+          lo[d][k] = list[k].face->lo[d];
+          hi_plus_margin[d][k] = list[k].face->hi[d] + margin;
+        }
+      }
+    }
+
+    // Bit k: whether entry k's box meets `face`'s within the margin.
+    uint32_t Meeting(const PlacedFace& face, double margin) const {
+      const double face_hi[3] = {face.hi[0] + margin, face.hi[1] + margin, face.hi[2] + margin};
+      uint32_t meets = 0;
+      for (int k = 0; k < size; ++k) {
+        const bool meet = (face.lo[0] <= hi_plus_margin[0][k]) & (lo[0][k] <= face_hi[0]) &
+                          (face.lo[1] <= hi_plus_margin[1][k]) & (lo[1][k] <= face_hi[1]) &
+                          (face.lo[2] <= hi_plus_margin[2][k]) & (lo[2][k] <= face_hi[2]);
+        meets |= uint32_t{meet} << k;
+      }
+      return meets;
+    }
+  };
+  static_assert(kBucketFaces <= 32, "one bit per face of a bucket");
 
   // Whether face a, moved by -t sweep for some t in [0, 1], meets face b.
   // The plane tests first: SweptIntersection builds every axis before its
@@ -176,6 +228,14 @@ class BucketTest {
                 .empty();
   }
 
+  // The pairs of `skip_` with A's face `a`.
+  std::span<const TrianglePair> Skipped(int a) const {
+    if (skip_.empty()) return {};
+    const auto [first, last] = std::ranges::equal_range(
+        skip_, a, std::less<>{}, [](const TrianglePair& p) { return static_cast<int>(p.a); });
+    return {first, last};
+  }
+
   static void StartList(std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {
     list.clear();
     lo.setConstant(std::numeric_limits<double>::infinity());
@@ -190,9 +250,18 @@ class BucketTest {
     hi = hi.cwiseMax(face->hi);
   }
 
-  // Keeps the entries whose boxes meet `region`.
-  void Crop(std::vector<Entry>& list, const PlacedFace& region) const {
-    std::erase_if(list, [&](const Entry& e) { return FaceBoxesApart(*e.face, region, 0); });
+  // Keeps the entries whose boxes meet `region`, without a branch per
+  // entry: which ones go is as good as random.
+  static void Crop(std::vector<Entry>& list, const PlacedFace& region) {
+    size_t kept = 0;
+    for (const Entry& e : list) {
+      const PlacedFace& f = *e.face;
+      list[kept] = e;
+      kept += (f.lo[0] <= region.hi[0]) & (region.lo[0] <= f.hi[0]) &  //
+              (f.lo[1] <= region.hi[1]) & (region.lo[1] <= f.hi[1]) &  //
+              (f.lo[2] <= region.hi[2]) & (region.lo[2] <= f.hi[2]);
+    }
+    list.resize(kept);
   }
 
   static PlacedFaces& faces_b() {
@@ -204,17 +273,8 @@ class BucketTest {
   const CollisionModel::Impl& ib_;
   const Vector3d* sweep_A_;
   const double margin_;
+  const std::span<const TrianglePair> skip_;
 };
-
-// Nodes holding at most this many faces each are not split further: both
-// buckets are cut down to the faces whose boxes (in A's frame) meet the
-// overlap of the buckets' boxes, and those pairs go through a box test that
-// costs a tenth of an oriented-box test, then SAT. The last levels of the
-// hierarchies cost more volume tests than the face pairs they cull. Instructions
-// per query (callgrind, contact_bench cases #1-#4) at 1 (a plain leaf walk)
-// -> 32: 149k -> 125k, 324k -> 282k, 2.53M -> 2.45M, 11.0M -> 7.7M; 8, 16
-// and 64 were each worse on some case.
-constexpr int kBucketFaces = 32;
 
 // FCL's traversal nodes dispatch every test through virtual calls and, for
 // AABB hierarchies, copy both models on each query; this loop walks the
@@ -227,11 +287,11 @@ template <typename BV>
 int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
                  const fcl::BVHModel<BV>& mb, const CollisionModel::Impl& ib,
                  const Isometry3d& X_AB, const Vector3d* sweep_A, double margin, bool first_only,
-                 std::vector<TrianglePair>& pairs) {
+                 std::span<const TrianglePair> skip, std::vector<TrianglePair>& pairs) {
   const Matrix3d R = X_AB.linear();
   const Vector3d T = X_AB.translation();
   const VolumeTest<BV> volumes(mb, R, T, sweep_A);
-  const BucketTest buckets(ia, mb, ib, X_AB, sweep_A, margin);
+  const BucketTest buckets(ia, mb, ib, X_AB, sweep_A, margin, skip);
   int64_t tests = 0;
   const size_t pairs_before = pairs.size();
   // Reused across calls so that a steady stream of queries does not allocate.
@@ -263,7 +323,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
 
 int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sweep_W,
              const CollisionModel& b, const Isometry3d& X_WB, double margin_m, bool first_only,
-             std::vector<TrianglePair>& pairs) {
+             std::span<const TrianglePair> skip, std::vector<TrianglePair>& pairs) {
   HS_CHECK(a.bv_type() == b.bv_type());
   HS_CHECK(margin_m <= a.margin_m() + b.margin_m());
   // The traversal works in its first object's frame, whose faces come ready
@@ -272,9 +332,14 @@ int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sw
   // meets A, so the sweep turns round, and so do the pairs found.
   if (b.impl().leaf_faces.size() > a.impl().leaf_faces.size()) {
     const Vector3d sweep_back = sweep_W ? Vector3d(-*sweep_W) : Vector3d();
+    // Once turned round, A is the larger: no second turn reuses this.
+    thread_local std::vector<TrianglePair> skip_back;
+    skip_back.clear();
+    for (const TrianglePair& p : skip) skip_back.push_back({p.b, p.a});
+    std::ranges::sort(skip_back);
     const size_t first = pairs.size();
-    const int64_t tests =
-        Find(b, X_WB, sweep_W ? &sweep_back : nullptr, a, X_WA, margin_m, first_only, pairs);
+    const int64_t tests = Find(b, X_WB, sweep_W ? &sweep_back : nullptr, a, X_WA, margin_m,
+                               first_only, skip_back, pairs);
     for (size_t i = first; i < pairs.size(); ++i) std::swap(pairs[i].a, pairs[i].b);
     return tests;
   }
@@ -287,7 +352,7 @@ int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sw
         using Model = typename std::decay_t<decltype(ma)>::element_type;
         const auto& mb = std::get<std::shared_ptr<Model>>(ib.bvh);
         return Traverse(*ma, ia, *mb, ib, X_AB, sweep_W ? &sweep_A : nullptr, margin_m, first_only,
-                        pairs);
+                        skip, pairs);
       },
       ia.bvh);
 }
@@ -296,15 +361,17 @@ int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sw
 
 int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
-                                  std::vector<TrianglePair>& pairs) {
-  return Find(a, X_WA, nullptr, b, X_WB, margin_m, /*first_only=*/false, pairs);
+                                  std::vector<TrianglePair>& pairs,
+                                  std::span<const TrianglePair> skip) {
+  return Find(a, X_WA, nullptr, b, X_WB, margin_m, /*first_only=*/false, skip, pairs);
 }
 
 int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,
                                const Isometry3d& X_WB, double margin_m,
-                               std::vector<TrianglePair>& pairs) {
-  return Find(a, X_WA, &sweep_W, b, X_WB, margin_m, /*first_only=*/false, pairs);
+                               std::vector<TrianglePair>& pairs,
+                               std::span<const TrianglePair> skip) {
+  return Find(a, X_WA, &sweep_W, b, X_WB, margin_m, /*first_only=*/false, skip, pairs);
 }
 
 bool AnyTrianglesMeet(const CollisionModel& a, const Isometry3d& X_WA,
@@ -312,7 +379,7 @@ bool AnyTrianglesMeet(const CollisionModel& a, const Isometry3d& X_WA,
                       const Isometry3d& X_WB, double margin_m) {
   thread_local std::vector<TrianglePair> pairs;
   pairs.clear();
-  Find(a, X_WA, sweep_W ? &*sweep_W : nullptr, b, X_WB, margin_m, /*first_only=*/true, pairs);
+  Find(a, X_WA, sweep_W ? &*sweep_W : nullptr, b, X_WB, margin_m, /*first_only=*/true, {}, pairs);
   return !pairs.empty();
 }
 

@@ -2,6 +2,7 @@
 // Narrow phase: every pair of faces of two objects that intersect.
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "common/collision/collision_model.h"
@@ -21,21 +22,25 @@ struct TrianglePair {
 /// X_WB (world frame, metres) that intersect or are closer than `margin_m`
 /// along every separating axis, in no particular order. Both models must
 /// share a bounding volume type, and `margin_m` must not exceed the sum of
-/// their margins (else pairs within it could be culled). Returns the number
-/// of bounding-volume tests made.
+/// their margins (else pairs within it could be culled). The pairs in
+/// `skip` (sorted), which the caller has decided already, are left out
+/// untested. Returns the number of bounding-volume tests made.
 int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
-                                  std::vector<TrianglePair>& pairs);
+                                  std::vector<TrianglePair>& pairs,
+                                  std::span<const TrianglePair> skip = {});
 
 /// Like FindIntersectingTriangles for a translating A: appends every face
 /// pair that intersects (within `margin_m`) at some instant while A moves in
 /// a straight line from X_WA translated by -sweep_W to X_WA (sweep_W: world
 /// frame, metres). Exact for the motion, so a thin object passed through in
-/// one step is found. Returns the number of bounding-volume tests made.
+/// one step is found. Leaves out the pairs in `skip` (sorted), untested.
+/// Returns the number of bounding-volume tests made.
 int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,
                                const Isometry3d& X_WB, double margin_m,
-                               std::vector<TrianglePair>& pairs);
+                               std::vector<TrianglePair>& pairs,
+                               std::span<const TrianglePair> skip = {});
 
 /// Whether FindIntersectingTriangles (no `sweep_W`) or FindSweptTrianglePairs
 /// would find any pair: the same test, stopped at the first pair found.

@@ -35,8 +35,9 @@ Extent ProjectThree(const Vector3d& axis, const Triangle3d& t) {
 // usable SAT axis of the pair; stops early and returns false when visit
 // returns false. `na` and `nb` are the face normals (TriangleNormal). An
 // axis normal to an edge sees both ends of that edge at one point, so one
-// of them is projected, not both (a quarter fewer dot products).
-template <typename Visit>
+// of them is projected, not both (a quarter fewer dot products). With
+// kFaceNormalsOnly, the face normals only.
+template <bool kFaceNormalsOnly = false, typename Visit>
 bool ForEachAxis(const Triangle3d& a, const Vector3d& na, const Triangle3d& b, const Vector3d& nb,
                  Visit&& visit) {
   const std::array<Vector3d, 3> ea = {a[1] - a[0], a[2] - a[1], a[0] - a[2]};
@@ -58,6 +59,7 @@ bool ForEachAxis(const Triangle3d& a, const Vector3d& na, const Triangle3d& b, c
     const double at = nb.dot(b[0]);
     if (!visit(nb, norm_sq, ProjectThree(nb, a), Extent{at, at})) return false;
   }
+  if constexpr (kFaceNormalsOnly) return true;
   // Edge i joins corners i and i + 1; corner i + 2 is off it.
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
@@ -120,16 +122,24 @@ bool BeyondPlane(const std::array<double, 3>& d, const Vector3d& n, double margi
   return SeparatedAlong(lo, hi, 0.0, 0.0, norm_sq, margin);
 }
 
-// Where `t` crosses the other triangle's plane, as an interval of the
-// parameter p.dot(line) along the planes' common line, given its corners'
+// Where a triangle crosses the other's plane, along the planes' common
+// line: an interval of p.dot(line), with the triangle's edge that gives
+// each end (as the corner it leaves from and the direction it runs).
+struct LineCrossing {
+  Extent on_line;
+  Vector3d lo_edge, hi_edge;
+};
+
+// Where `t` crosses the other triangle's plane, given its corners'
 // distances `d` from that plane; none when no corner stands clear of the
-// plane on each side (by more than `clear`).
-std::optional<Extent> CrossingOnLine(const Triangle3d& t, const std::array<double, 3>& d,
-                                     double clear, const Vector3d& line, const Vector3d& origin) {
+// plane on each side (by more than sqrt(`clear_sq`)).
+std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array<double, 3>& d,
+                                           double clear_sq, const Vector3d& line,
+                                           const Vector3d& origin) {
   // The corner alone on its side, and the other two.
   int lone = -1;
   for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) <= clear) return std::nullopt;
+    if (d[i] * d[i] <= clear_sq) return std::nullopt;
     const int j = (i + 1) % 3, k = (i + 2) % 3;
     if ((d[i] > 0) != (d[j] > 0) && (d[i] > 0) != (d[k] > 0)) lone = i;
   }
@@ -141,7 +151,9 @@ std::optional<Extent> CrossingOnLine(const Triangle3d& t, const std::array<doubl
     const double at_i = line.dot(t[i] - origin);
     ends[n - 1] = at_i + (at_lone - at_i) * d[i] / (d[i] - d[lone]);
   }
-  return Extent{std::min(ends[0], ends[1]), std::max(ends[0], ends[1])};
+  const Vector3d edge1 = t[(lone + 1) % 3] - t[lone], edge2 = t[(lone + 2) % 3] - t[lone];
+  if (ends[0] <= ends[1]) return LineCrossing{{ends[0], ends[1]}, edge1, edge2};
+  return LineCrossing{{ends[1], ends[0]}, edge2, edge1};
 }
 
 // Relative to the triangles' size, what rounding cannot reach: the fast
@@ -149,24 +161,86 @@ std::optional<Extent> CrossingOnLine(const Triangle3d& t, const std::array<doubl
 // clear of zero by this much, and leaves every other pair to the SAT.
 constexpr double kClearlyRelative = 1e-9;
 
-// A fast yes for triangles that cross each other (Moller's interval test):
-// each straddles the other's plane, and the two segments where they cut the
-// planes' common line overlap. Both segments lie on that line inside both
-// triangles, so an overlap is a common point. Only a clear yes counts.
-bool ClearlyCrossing(const Triangle3d& a, const Vector3d& na, const std::array<double, 3>& da,
-                     const Triangle3d& b, const Vector3d& nb, const std::array<double, 3>& db) {
-  const double size = (a[0] - b[0]).cwiseAbs().maxCoeff() + (a[1] - a[0]).cwiseAbs().maxCoeff() +
-                      (a[2] - a[0]).cwiseAbs().maxCoeff() + (b[1] - b[0]).cwiseAbs().maxCoeff() +
-                      (b[2] - b[0]).cwiseAbs().maxCoeff();
-  const double clear = kClearlyRelative * size;
+enum class Crossing { kYes, kApart, kUnknown };
+
+// A fast answer for triangles that straddle each other's planes (Moller's
+// interval test): the two segments where they cut the planes' common line
+// lie inside both triangles, so a clear overlap is a common point (kYes).
+// When the segments are apart, the edges that give their facing ends
+// usually cross into the separating axis: kApart when it separates the
+// triangles by more than `margin`. Anything else is left to the SAT.
+Crossing CrossingTest(const Triangle3d& a, const Vector3d& na, const std::array<double, 3>& da,
+                      const Triangle3d& b, const Vector3d& nb, const std::array<double, 3>& db,
+                      double margin) {
+  // The pair's size, squared: five times the sum of the squared lengths
+  // of the four edges from corner 0 and the gap between the corners 0,
+  // at least the square of the sum of those lengths. Squared thresholds
+  // throughout: no square root on the fast path.
+  const double size_sq =
+      5 * ((a[0] - b[0]).squaredNorm() + (a[1] - a[0]).squaredNorm() + (a[2] - a[0]).squaredNorm() +
+           (b[1] - b[0]).squaredNorm() + (b[2] - b[0]).squaredNorm());
+  const double clear_sq = kClearlyRelative * kClearlyRelative * size_sq;
   const Vector3d line = na.cross(nb);
-  const double line_norm = line.norm();
-  if (!(line_norm > 0)) return false;
-  const std::optional<Extent> on_a = CrossingOnLine(a, da, clear * nb.norm(), line, b[0]);
-  if (!on_a) return false;
-  const std::optional<Extent> on_b = CrossingOnLine(b, db, clear * na.norm(), line, b[0]);
-  if (!on_b) return false;
-  return std::min(on_a->hi, on_b->hi) - std::max(on_a->lo, on_b->lo) > clear * line_norm;
+  const double line_sq = line.squaredNorm();
+  if (!(line_sq > 0)) return Crossing::kUnknown;
+  const std::optional<LineCrossing> on_a =
+      CrossingOnLine(a, da, clear_sq * nb.squaredNorm(), line, b[0]);
+  if (!on_a) return Crossing::kUnknown;
+  const std::optional<LineCrossing> on_b =
+      CrossingOnLine(b, db, clear_sq * na.squaredNorm(), line, b[0]);
+  if (!on_b) return Crossing::kUnknown;
+  const double overlap =
+      std::min(on_a->on_line.hi, on_b->on_line.hi) - std::max(on_a->on_line.lo, on_b->on_line.lo);
+  if (overlap > 0 && overlap * overlap > clear_sq * line_sq) return Crossing::kYes;
+  if (overlap >= 0) return Crossing::kUnknown;
+  const bool a_first = on_a->on_line.hi < on_b->on_line.lo;
+  const Vector3d& edge_a = a_first ? on_a->hi_edge : on_a->lo_edge;
+  const Vector3d& edge_b = a_first ? on_b->lo_edge : on_b->hi_edge;
+  const Vector3d axis = edge_a.cross(edge_b);
+  const double axis_sq = axis.squaredNorm();
+  // Nearly parallel edges give a rounding artefact, as in ForEachAxis.
+  if (!(axis_sq >
+        kAxisRelativeFloor * kAxisRelativeFloor * edge_a.squaredNorm() * edge_b.squaredNorm())) {
+    return Crossing::kUnknown;
+  }
+  const Extent ea = ProjectThree(axis, a), eb = ProjectThree(axis, b);
+  return SeparatedAlong(ea.lo, ea.hi, eb.lo, eb.hi, axis_sq, margin) ? Crossing::kApart
+                                                                     : Crossing::kUnknown;
+}
+
+// Cuts each of `intervals` to the t for which `a` translated by -t *
+// `direction` meets `b` within the matching one of `margins`, in one pass
+// over the axes (the face normals only, with kFaceNormalsOnly). The margins
+// fall from first to last, so the first interval holds the others, and the
+// pass stops once it is empty.
+template <bool kFaceNormalsOnly, size_t N>
+void CutToSweep(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                const Vector3d& normal_b, const Vector3d& direction,
+                const std::array<double, N>& margins, std::array<Interval, N>& intervals) {
+  ForEachAxis<kFaceNormalsOnly>(
+      a, normal_a, b, normal_b,
+      [&](const Vector3d& axis, double norm_sq, const Extent& ea, const Extent& eb) {
+        // Along the axis, a(t) spans [ea.lo - t*s, ea.hi - t*s] with
+        // s = axis.D. They overlap while ea.lo - t*s <= eb.hi + slack
+        // and eb.lo <= ea.hi - t*s + slack.
+        const double s = axis.dot(direction);
+        const double inverse = s != 0 ? 1 / s : 0.0;
+        const double length = margins[0] != 0 ? std::sqrt(norm_sq) : 0.0;
+        for (size_t k = 0; k < N; ++k) {
+          Interval& result = intervals[k];
+          const double slack = margins[k] * length;
+          const double low_gap = ea.lo - eb.hi - slack;   // need t*s >= low_gap
+          const double high_gap = ea.hi - eb.lo + slack;  // need t*s <= high_gap
+          if (s == 0) {
+            if (low_gap > 0 || high_gap < 0) result = Interval{};
+          } else {
+            const double from_low = low_gap * inverse, from_high = high_gap * inverse;
+            result.lo = std::max(result.lo, s > 0 ? from_low : from_high);
+            result.hi = std::min(result.hi, s > 0 ? from_high : from_low);
+          }
+        }
+        return !intervals[0].empty();
+      });
 }
 
 }  // namespace
@@ -183,7 +257,8 @@ bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Tri
   if (BeyondPlane(db, normal_a, margin)) return false;
   const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
   if (BeyondPlane(da, normal_b, margin)) return false;
-  if (ClearlyCrossing(a, normal_a, da, b, normal_b, db)) return true;
+  const Crossing crossing = CrossingTest(a, normal_a, da, b, normal_b, db, margin);
+  if (crossing != Crossing::kUnknown) return crossing == Crossing::kYes;
   return ForEachAxis(a, normal_a, b, normal_b,
                      [&](const Vector3d&, double norm_sq, const Extent& ea, const Extent& eb) {
                        return !SeparatedAlong(ea.lo, ea.hi, eb.lo, eb.hi, norm_sq, margin);
@@ -198,27 +273,24 @@ Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vecto
 Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                            const Vector3d& normal_b, const Vector3d& direction, double margin,
                            Interval within) {
-  Interval result = within;
-  ForEachAxis(a, normal_a, b, normal_b,
-              [&](const Vector3d& axis, double norm_sq, const Extent& ea, const Extent& eb) {
-                const double slack = margin != 0 ? margin * std::sqrt(norm_sq) : 0.0;
-                // Along the axis, a(t) spans [ea.lo - t*s, ea.hi - t*s] with
-                // s = axis.D. They overlap while ea.lo - t*s <= eb.hi + slack
-                // and eb.lo <= ea.hi - t*s + slack.
-                const double s = axis.dot(direction);
-                const double low_gap = ea.lo - eb.hi - slack;   // need t*s >= low_gap
-                const double high_gap = ea.hi - eb.lo + slack;  // need t*s <= high_gap
-                if (s == 0) {
-                  if (low_gap > 0 || high_gap < 0) result = Interval{};
-                } else {
-                  const double inverse = 1 / s;
-                  const double from_low = low_gap * inverse, from_high = high_gap * inverse;
-                  result.lo = std::max(result.lo, s > 0 ? from_low : from_high);
-                  result.hi = std::min(result.hi, s > 0 ? from_high : from_low);
-                }
-                return !result.empty();
-              });
-  return result;
+  std::array<Interval, 1> result = {within};
+  CutToSweep<false>(a, normal_a, b, normal_b, direction, {margin}, result);
+  return result[0];
+}
+
+SweptIntervals SweptIntersections(const Triangle3d& a, const Triangle3d& b,
+                                  const Vector3d& direction, double margin, Interval within) {
+  // The wider interval first: the pass stops once it is empty.
+  std::array<Interval, 2> result = {within, within};
+  CutToSweep<false>(a, TriangleNormal(a), b, TriangleNormal(b), direction, {margin, 0.0}, result);
+  return {.exact = result[1], .within_margin = result[0]};
+}
+
+SweptIntervals SweptPlaneBounds(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
+                                double margin, Interval within) {
+  std::array<Interval, 2> result = {within, within};
+  CutToSweep<true>(a, TriangleNormal(a), b, TriangleNormal(b), direction, {margin, 0.0}, result);
+  return {.exact = result[1], .within_margin = result[0]};
 }
 
 }  // namespace hs

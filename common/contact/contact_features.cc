@@ -1,6 +1,10 @@
 #include "common/contact/contact_features.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+
+#include "absl/container/flat_hash_set.h"
 
 #include "common/contact/closest_points.h"
 #include "common/contact/side_contact.h"
@@ -66,14 +70,21 @@ class Locator {
     const PosedFace f{&c_.fixed, pair.b, c_.FixedTriangle(pair.b)};
     const double tol = c_.tolerance_m;
     // Cheap rejections first: most corners and edge pairs of a touching
-    // pair are nowhere near the other triangle.
+    // pair are nowhere near the other triangle. Signed distances of each
+    // face's corners from the other's plane (0 for a flat face: never off).
     const Vector3d n_m = UnitNormal(m.corners), n_f = UnitNormal(f.corners);
-    auto off_plane = [tol](const Vector3d& p, const Triangle3d& t, const Vector3d& n) {
-      return std::abs(n.dot(p - t[0])) > tol;  // n zero (flat face): never
-    };
+    std::array<double, 3> m_off, f_off;
+    for (int i = 0; i < 3; ++i) {
+      m_off[i] = n_f.dot(m.corners[i] - f.corners[0]);
+      f_off[i] = n_m.dot(f.corners[i] - m.corners[0]);
+    }
+    // A corner meets the other face alike from every face around it: each
+    // (corner, face) is located once.
     for (int i = 0; i < 3; ++i) {
       const Vector3d& p = m.corners[i];
-      if (off_plane(p, f.corners, n_f)) continue;
+      if (std::abs(m_off[i]) > tol || !located_.insert(CornerKey(0, m.vertex(i), f.id)).second) {
+        continue;
+      }
       const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
       if ((q - p).norm() <= tol) {
         Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol), n_f, n_f);
@@ -81,15 +92,25 @@ class Locator {
     }
     for (int j = 0; j < 3; ++j) {
       const Vector3d& p = f.corners[j];
-      if (off_plane(p, m.corners, n_m)) continue;
+      if (std::abs(f_off[j]) > tol || !located_.insert(CornerKey(1, f.vertex(j), m.id)).second) {
+        continue;
+      }
       const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
       if ((q - p).norm() <= tol) {
         Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)}, -n_m, -n_m);
       }
     }
+    // An edge whose ends lie beyond the tolerance on one side of the other
+    // face's plane is farther than it from every edge of that face.
+    auto beyond = [tol](const std::array<double, 3>& off, int i) {
+      const double a = off[i], b = off[(i + 1) % 3];
+      return (a > tol && b > tol) || (a < -tol && b < -tol);
+    };
     for (int i = 0; i < 3; ++i) {
+      if (beyond(m_off, i)) continue;
       const Vector3d &p1 = m.corners[i], &q1 = m.corners[(i + 1) % 3];
       for (int j = 0; j < 3; ++j) {
+        if (beyond(f_off, j)) continue;
         const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
         const Eigen::Array3d gap =
             (p1.cwiseMin(q1) - p2.cwiseMax(q2)).cwiseMax(p2.cwiseMin(q2) - p1.cwiseMax(q1)).array();
@@ -107,9 +128,9 @@ class Locator {
   }
 
   LocatedContacts Finish() {
-    // Every entry counts toward the normal, duplicates too: a vertex on an
-    // edge meets the faces on both sides of it, and keeping one of them
-    // would tilt the normal toward that face.
+    // Every entry counts toward the normal, those of one feature pair too:
+    // a vertex on an edge meets the faces on both sides of it (once each),
+    // and keeping one of them would tilt the normal toward that face.
     Vector3d normal_sum = Vector3d::Zero();
     for (const Entry& e : points_) normal_sum += e.normal;
     // One entry per feature pair, in feature order, the first one added kept.
@@ -188,9 +209,16 @@ class Locator {
     Vector3d normal;
   };
 
+  // A corner of one side (0: moving, 1: fixed) against a face of the other.
+  static uint64_t CornerKey(int side, VertexId corner, FaceId face) {
+    return (uint64_t{static_cast<uint32_t>(corner)} << 32 | static_cast<uint32_t>(face)) << 1 |
+           static_cast<uint64_t>(side);
+  }
+
   const ContactContext& c_;
   const Isometry3d X_FM_;
   std::vector<Entry> points_;
+  absl::flat_hash_set<uint64_t> located_;  // CornerKeys
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_features.h"
@@ -20,43 +21,87 @@ Isometry3d MovedBack(const ContactContext& c, double t) {
   return X;
 }
 
-// A face pair with its exact sweep interval along D over t >= 0 (units of
-// D, so metres), taken with M at t = 0: sweep intervals are
-// translation-invariant, whatever pose found the pair.
-struct KnownPair {
-  TrianglePair pair;
-  Interval exact;
-  bool operator<(const KnownPair& other) const { return pair < other.pair; }
-};
-
-// The pairs met so far, sorted, each with its interval computed once.
+// The face pairs met so far, sorted, each with its sweep intervals along D
+// over t >= 0 (units of D, so metres), with M at t = 0: sweep intervals are
+// translation-invariant, whatever pose found the pair. A pair's exact
+// intervals are computed once, and only when their cheap bounds
+// (SweptPlaneBounds) say they could matter: most pairs of a deep contact
+// leave the other object's plane well before the run ends.
 class KnownPairs {
  public:
   explicit KnownPairs(const ContactContext& c) : c_(c) {}
+
+  /// Every pair known, sorted: what later queries need not find again.
+  std::span<const TrianglePair> pairs() const { return pairs_; }
 
   // Adds the pairs not known yet.
   void Add(std::vector<TrianglePair> pairs) {
     std::sort(pairs.begin(), pairs.end());
     const size_t old_size = known_.size();
     for (const TrianglePair& pair : pairs) {
-      if (std::binary_search(known_.begin(), known_.begin() + old_size, KnownPair{pair, {}})) {
-        continue;
-      }
+      if (std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
       // Only t >= 0 can extend the run from t = 0.
-      known_.push_back({pair, SweptIntersection(c_.MovingTriangle(pair.a), c_.FixedTriangle(pair.b),
-                                                c_.direction_F, 0.0,
-                                                {0, std::numeric_limits<double>::infinity()})});
+      known_.push_back({pair, SweptPlaneBounds(c_.MovingTriangle(pair.a), c_.FixedTriangle(pair.b),
+                                               c_.direction_F, c_.tolerance_m, kAhead)});
     }
     std::inplace_merge(known_.begin(), known_.begin() + old_size, known_.end());
+    pairs_.clear();
+    for (const KnownPair& k : known_) pairs_.push_back(k.pair);
   }
 
   // Extends the run of exact intervals that covers t = 0 from `t_star`:
   // runs chain across gaps below the tolerance, which count as touching.
+  // A pair whose bound ends before the run as it stands cannot extend it,
+  // nor bridge a gap inside it: the pairs bound to reach furthest are
+  // computed first, in batches that double, until none of the rest can.
   double ExtendRun(double t_star) {
+    std::vector<KnownPair*>& reaching = reaching_;
+    for (size_t batch = 8;; batch *= 2) {
+      const double run = Chain(t_star);
+      reaching.clear();
+      for (KnownPair& k : known_) {
+        if (!k.computed && k.bounds.exact.hi > run) reaching.push_back(&k);
+      }
+      if (reaching.empty()) return run;
+      if (reaching.size() > batch) {
+        std::nth_element(reaching.begin(), reaching.begin() + batch, reaching.end(),
+                         [](const KnownPair* x, const KnownPair* y) {
+                           return x->bounds.exact.hi > y->bounds.exact.hi;
+                         });
+        reaching.resize(batch);
+      }
+      for (KnownPair* k : reaching) Compute(*k);
+    }
+  }
+
+  // The pairs within the tolerance of each other at `t`.
+  std::vector<TrianglePair> TouchingAt(double t) {
+    std::vector<TrianglePair> pairs;
+    for (KnownPair& k : known_) {
+      if (!k.bounds.within_margin.Contains(t)) continue;
+      Compute(k);
+      if (k.intervals.within_margin.Contains(t)) pairs.push_back(k.pair);
+    }
+    return pairs;
+  }
+
+ private:
+  static constexpr Interval kAhead{0, std::numeric_limits<double>::infinity()};
+
+  struct KnownPair {
+    TrianglePair pair;
+    SweptIntervals bounds;     // each holds its interval
+    bool computed = false;     // whether `intervals` are
+    SweptIntervals intervals;  // exact, and within the tolerance
+    bool operator<(const KnownPair& other) const { return pair < other.pair; }
+  };
+
+  // The run from `t_star` over the exact intervals computed so far.
+  double Chain(double t_star) {
     std::vector<Interval>& exact = scratch_;
     exact.clear();
     for (const KnownPair& k : known_) {
-      if (!k.exact.empty()) exact.push_back(k.exact);
+      if (k.computed && !k.intervals.exact.empty()) exact.push_back(k.intervals.exact);
     }
     std::sort(exact.begin(), exact.end(),
               [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
@@ -66,23 +111,18 @@ class KnownPairs {
     return t_star;
   }
 
-  // The pairs within the tolerance of each other at `t`.
-  std::vector<TrianglePair> TouchingAt(double t) const {
-    std::vector<TrianglePair> pairs;
-    for (const KnownPair& k : known_) {
-      if (!SweptIntersection(c_.MovingTriangle(k.pair.a), c_.FixedTriangle(k.pair.b),
-                             c_.direction_F, c_.tolerance_m, {t, t})
-               .empty()) {
-        pairs.push_back(k.pair);
-      }
-    }
-    return pairs;
+  void Compute(KnownPair& k) const {
+    if (k.computed) return;
+    k.intervals = SweptIntersections(c_.MovingTriangle(k.pair.a), c_.FixedTriangle(k.pair.b),
+                                     c_.direction_F, c_.tolerance_m, kAhead);
+    k.computed = true;
   }
 
- private:
   const ContactContext& c_;
   std::vector<KnownPair> known_;
+  std::vector<TrianglePair> pairs_;  // known_'s pairs, for pairs()
   std::vector<Interval> scratch_;
+  std::vector<KnownPair*> reaching_;
 };
 
 // Whether M and F overlap by more than the tolerance rather than touch.
@@ -133,11 +173,11 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
       stretch = c.depth_hint_m - t1;
     } else {
       // A pair that could extend the run past t* meets at t*, so one query
-      // there usually settles it, and its pairs are those to locate.
-      at_t_star.clear();
+      // there, for the pairs not known yet, usually settles it.
+      std::vector<TrianglePair> fresh;
       FindIntersectingTriangles(c.moving_model, MovedBack(c, t1), c.fixed_model,
-                                Isometry3d::Identity(), c.tolerance_m, at_t_star);
-      known.Add(at_t_star);
+                                Isometry3d::Identity(), c.tolerance_m, fresh, known.pairs());
+      known.Add(std::move(fresh));
       t_star = known.ExtendRun(t_star);
       settled = t_star == t1;
       // The first stretch is as long as the run grew at t1: a short sweep
@@ -155,14 +195,15 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
       const double reach = std::max(t_star + 2 * c.tolerance_m, covered + stretch);
       std::vector<TrianglePair> swept;
       FindSweptTrianglePairs(c.moving_model, MovedBack(c, covered), (reach - covered) * D,
-                             c.fixed_model, Isometry3d::Identity(), c.tolerance_m, swept);
+                             c.fixed_model, Isometry3d::Identity(), c.tolerance_m, swept,
+                             known.pairs());
       known.Add(std::move(swept));
       covered = reach;
       t_star = known.ExtendRun(t_star);
       settled = t_star + c.tolerance_m <= covered;
     }
     // The pairs touching at t*: all known, since [t1, covered] holds t*.
-    if (hinted || t_star != t1) at_t_star = known.TouchingAt(t_star);
+    at_t_star = known.TouchingAt(t_star);
   }
 
   ContactSet set;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <random>
+#include <span>
 
 #include "common/collision/triangle_sat.h"
 #include "common/model/procedural.h"
@@ -145,6 +146,55 @@ TEST_P(TrianglePairsTest, SweptQueryMatchesOracles) {
       }
     }
   }
+}
+
+// Pairs the caller has decided already are left out, and only they: every
+// other pair of the oracle is still found, whichever model is the larger
+// (the traversal turns round to lead with it), static or swept.
+TEST_P(TrianglePairsTest, SkippedPairsAreLeftOut) {
+  const HapticObject small = Torus(1.0, 0.3);
+  const HapticObject large = *HapticObject::Create("large", MakeTorus(0.8, 0.25, 40, 20));
+  const CollisionModel ms(small, GetParam(), 1e-9), ml(large, GetParam(), 1e-9);
+  std::mt19937 rng(24);
+  int checked = 0;
+  for (int i = 0; i < 20; ++i) {
+    const Isometry3d X_WA = RandomPose(rng, 0.5), X_WB = RandomPose(rng, 0.5);
+    const Vector3d sweep = 0.05 * RandomPose(rng, 1.0).translation();
+    for (const bool small_first : {true, false}) {
+      const CollisionModel& ma = small_first ? ms : ml;
+      const CollisionModel& mb = small_first ? ml : ms;
+      const FaceId last_a = (small_first ? small : large).num_faces() - 1;
+      const FaceId last_b = (small_first ? large : small).num_faces() - 1;
+      for (const bool swept : {false, true}) {
+        auto find = [&](std::span<const TrianglePair> skip) {
+          std::vector<TrianglePair> pairs;
+          if (swept) {
+            FindSweptTrianglePairs(ma, X_WA, sweep, mb, X_WB, 1e-9, pairs, skip);
+          } else {
+            FindIntersectingTriangles(ma, X_WA, mb, X_WB, 1e-9, pairs, skip);
+          }
+          std::sort(pairs.begin(), pairs.end());
+          return pairs;
+        };
+        const std::vector<TrianglePair> all = find({});
+        // Skip every other pair, and a pair that is not there at all.
+        std::vector<TrianglePair> skip, rest;
+        for (size_t k = 0; k < all.size(); ++k) (k % 2 == 0 ? skip : rest).push_back(all[k]);
+        skip.push_back({last_a, last_b});
+        std::sort(skip.begin(), skip.end());
+        skip.erase(std::unique(skip.begin(), skip.end()), skip.end());
+        rest.erase(std::remove_if(rest.begin(), rest.end(),
+                                  [&](const TrianglePair& p) {
+                                    return std::binary_search(skip.begin(), skip.end(), p);
+                                  }),
+                   rest.end());
+        ASSERT_EQ(find(skip), rest)
+            << "pose " << i << " small first " << small_first << " swept " << swept;
+        checked += !rest.empty();
+      }
+    }
+  }
+  EXPECT_GT(checked, 20);
 }
 
 // A small cube passing through a thin plate in one step: no pair at the

@@ -4,6 +4,7 @@
 #include <CGAL/intersections.h>
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 namespace hs {
@@ -71,6 +72,75 @@ TEST(TriangleSatTest, SweptIntervalMatchesStaticTests) {
     }
   }
   EXPECT_GT(nonempty, 500);
+}
+
+// A pair of unit-sized triangles with real-valued corners, the second
+// within about its size of the first: crossings, near misses and gaps,
+// none on a grid.
+std::pair<Triangle3d, Triangle3d> RandomNearbyPair(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto random = [&] { return Vector3d(u(rng), u(rng), u(rng)); };
+  const Vector3d offset = 0.8 * random();
+  Triangle3d a, b;
+  for (int i = 0; i < 3; ++i) {
+    a[i] = random();
+    b[i] = random() + offset;
+  }
+  return {a, b};
+}
+
+// TrianglesIntersect answers most pairs before its axis loop (the plane
+// tests, Moller's crossing, the edge pair facing across the common line).
+// Each fast answer must be the one the whole axis set gives: the swept
+// test at t = 0 runs every axis and nothing else.
+TEST(TriangleSatTest, FastAnswersAgreeWithEveryAxis) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int meeting = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const auto [a, b] = RandomNearbyPair(rng);
+    const Vector3d direction(u(rng), u(rng), u(rng));
+    for (double margin : {0.0, 1e-3, 0.05}) {
+      const bool every_axis = !SweptIntersection(a, b, direction, margin, {0, 0}).empty();
+      ASSERT_EQ(TrianglesIntersect(a, b, margin), every_axis)
+          << "pair " << i << " margin " << margin;
+      meeting += every_axis;
+    }
+  }
+  EXPECT_GT(meeting, 6000);
+  EXPECT_LT(meeting, 54000);
+}
+
+// SweptIntersections gives SweptIntersection at both margins in one pass,
+// and SweptPlaneBounds holds each.
+TEST(TriangleSatTest, IntervalsOfOnePassMatchSinglePasses) {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Interval ahead{0, std::numeric_limits<double>::infinity()};
+  int bounded = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const auto [a, b] = RandomNearbyPair(rng);
+    const Vector3d direction(u(rng), u(rng), u(rng));
+    const double margin = 0.01;
+    const SweptIntervals both = SweptIntersections(a, b, direction, margin, ahead);
+    const Interval exact = SweptIntersection(a, b, direction, 0.0, ahead);
+    const Interval near = SweptIntersection(a, b, direction, margin, ahead);
+    ASSERT_EQ(both.exact.empty(), exact.empty()) << i;
+    ASSERT_EQ(both.within_margin.empty(), near.empty()) << i;
+    if (!exact.empty()) EXPECT_TRUE(both.exact.lo == exact.lo && both.exact.hi == exact.hi) << i;
+    if (!near.empty()) {
+      EXPECT_TRUE(both.within_margin.lo == near.lo && both.within_margin.hi == near.hi) << i;
+    }
+    const SweptIntervals bounds = SweptPlaneBounds(a, b, direction, margin, ahead);
+    for (const auto& [interval, bound] :
+         {std::pair{exact, bounds.exact}, std::pair{near, bounds.within_margin}}) {
+      if (interval.empty()) continue;
+      ASSERT_FALSE(bound.empty()) << i;
+      EXPECT_TRUE(bound.lo <= interval.lo && interval.hi <= bound.hi) << i;
+      bounded += bound.hi > interval.hi;
+    }
+  }
+  EXPECT_GT(bounded, 100);  // the bound is looser than the interval, not a copy
 }
 
 // A margin makes triangles a small gap apart count, and only within it.
