@@ -22,16 +22,14 @@ namespace hs {
 /// A face in the query frame with its axis-aligned box.
 struct PlacedFace {
   Triangle3d triangle;
-  Vector3d normal;         // TriangleNormal(triangle)
-  Vector3d lo, hi;         // box corners
-  double normal_norm = 0;  // normal.norm()
+  Vector3d normal;  // TriangleNormal(triangle)
+  Vector3d lo, hi;  // box corners
 };
 
 inline PlacedFace PlaceFace(const Triangle3d& triangle) {
   PlacedFace placed{triangle, TriangleNormal(triangle), {}, {}};
   placed.lo = triangle[0].cwiseMin(triangle[1]).cwiseMin(triangle[2]);
   placed.hi = triangle[0].cwiseMax(triangle[1]).cwiseMax(triangle[2]);
-  placed.normal_norm = placed.normal.norm();
   return placed;
 }
 
@@ -45,7 +43,7 @@ inline bool BeyondFacePlane(const PlacedFace& face, const Triangle3d& t, double 
   const double d0 = face.normal.dot(t[0] - origin);
   const double d1 = face.normal.dot(t[1] - origin);
   const double d2 = face.normal.dot(t[2] - origin);
-  const double slack = margin * face.normal_norm;
+  const double slack = margin * face.normal.norm();
   const double lo = std::min(std::min(d0, d1), d2) + std::min(0.0, shift);
   const double hi = std::max(std::max(d0, d1), d2) + std::max(0.0, shift);
   return lo > slack || hi < -slack;

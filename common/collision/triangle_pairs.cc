@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <functional>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include "common/collision/fcl_bvh.h"
@@ -122,6 +122,12 @@ class BucketTest {
              double margin, std::span<const TrianglePair> skip)
       : ia_(ia), ib_(ib), sweep_A_(sweep_A), margin_(margin), skip_(skip) {
     faces_b().Start(mb.vertices, mb.tri_indices, mb.num_tris, X_AB);
+    if (!skip.empty()) {  // where each face of A starts in `skip`, sorted by A's face
+      std::vector<int>& begin = skip_begin();
+      begin.assign(ia.leaf_faces.size() + 1, 0);
+      for (const TrianglePair& p : skip) ++begin[p.a + 1];
+      std::partial_sum(begin.begin(), begin.end(), begin.begin());
+    }
   }
 
   /// Tests every face of A's node `na` against every face of B's node `nb`:
@@ -231,9 +237,13 @@ class BucketTest {
   // The pairs of `skip_` with A's face `a`.
   std::span<const TrianglePair> Skipped(int a) const {
     if (skip_.empty()) return {};
-    const auto [first, last] = std::ranges::equal_range(
-        skip_, a, std::less<>{}, [](const TrianglePair& p) { return static_cast<int>(p.a); });
-    return {first, last};
+    const std::vector<int>& begin = skip_begin();
+    return skip_.subspan(begin[a], begin[a + 1] - begin[a]);
+  }
+
+  static std::vector<int>& skip_begin() {
+    thread_local std::vector<int> begin;
+    return begin;
   }
 
   static void StartList(std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {

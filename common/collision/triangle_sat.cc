@@ -278,14 +278,6 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
   return result[0];
 }
 
-SweptIntervals SweptIntersections(const Triangle3d& a, const Triangle3d& b,
-                                  const Vector3d& direction, double margin, Interval within) {
-  // The wider interval first: the pass stops once it is empty.
-  std::array<Interval, 2> result = {within, within};
-  CutToSweep<false>(a, TriangleNormal(a), b, TriangleNormal(b), direction, {margin, 0.0}, result);
-  return {.exact = result[1], .within_margin = result[0]};
-}
-
 SweptIntervals SweptPlaneBounds(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
                                 double margin, Interval within) {
   std::array<Interval, 2> result = {within, within};

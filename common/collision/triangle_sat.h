@@ -59,17 +59,16 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
                            const Vector3d& normal_b, const Vector3d& direction, double margin,
                            Interval within);
 
-/// SweptIntersection at two margins in one pass over the axes.
+/// Sweep intervals of one pair at zero margin and at a margin.
 struct SweptIntervals {
   Interval exact;          // margin 0
   Interval within_margin;  // the margin given; holds `exact`
 };
-SweptIntervals SweptIntersections(const Triangle3d& a, const Triangle3d& b,
-                                  const Vector3d& direction, double margin, Interval within);
 
-/// Cheap intervals holding SweptIntersections(a, b, direction, margin,
-/// within): the same cuts along the two face normals alone, at a fifth of
-/// the axes. Where a bound misses some t, so does its interval.
+/// Cheap bounds of SweptIntersection(a, b, direction, m, within) at m = 0
+/// and m = `margin`, in one pass: the same cuts along the two face normals
+/// alone, at a fifth of the axes. Where a bound misses some t, so does its
+/// interval.
 SweptIntervals SweptPlaneBounds(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
                                 double margin, Interval within);
 

@@ -1,6 +1,8 @@
 #include "common/contact/side_contact.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <vector>
 
 namespace hs {
 namespace {
@@ -21,19 +23,24 @@ SideContact AggregateSide(const HapticObject& object, std::span<const VertexId> 
   SortUnique(side.vertices);
   side.edges.assign(touched_edges.begin(), touched_edges.end());
   side.faces.assign(touched_faces.begin(), touched_faces.end());
-  auto is_contact = [&](VertexId v) {
-    return std::binary_search(side.vertices.begin(), side.vertices.end(), v);
-  };
+  // One mark per vertex of the object, set for the contact vertices and
+  // cleared on the way out: a lookup per neighbour, whatever their number.
+  thread_local std::vector<uint8_t> is_contact;
+  if (is_contact.size() < static_cast<size_t>(object.num_vertices())) {
+    is_contact.resize(object.num_vertices(), 0);
+  }
+  for (VertexId v : side.vertices) is_contact[v] = 1;
   for (VertexId v : side.vertices) {
     for (EdgeId e : object.VertexEdges(v)) {
       const Edge& edge = object.edge(e);
-      if (is_contact(edge.vertices[0]) && is_contact(edge.vertices[1])) side.edges.push_back(e);
+      if (is_contact[edge.vertices[0]] && is_contact[edge.vertices[1]]) side.edges.push_back(e);
     }
     for (FaceId f : object.VertexFaces(v)) {
       const auto& c = object.face(f).vertices;
-      if (is_contact(c[0]) && is_contact(c[1]) && is_contact(c[2])) side.faces.push_back(f);
+      if (is_contact[c[0]] && is_contact[c[1]] && is_contact[c[2]]) side.faces.push_back(f);
     }
   }
+  for (VertexId v : side.vertices) is_contact[v] = 0;
   SortUnique(side.edges);
   SortUnique(side.faces);
   side.kind = !side.faces.empty()      ? FeatureKind::kFace

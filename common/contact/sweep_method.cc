@@ -23,10 +23,11 @@ Isometry3d MovedBack(const ContactContext& c, double t) {
 
 // The face pairs met so far, sorted, each with its sweep intervals along D
 // over t >= 0 (units of D, so metres), with M at t = 0: sweep intervals are
-// translation-invariant, whatever pose found the pair. A pair's exact
-// intervals are computed once, and only when their cheap bounds
-// (SweptPlaneBounds) say they could matter: most pairs of a deep contact
-// leave the other object's plane well before the run ends.
+// translation-invariant, whatever pose found the pair. Each pair has cheap
+// bounds (SweptPlaneBounds) of its exact interval and of its interval
+// within the tolerance; the exact one is computed once, and only when its
+// bound says it could extend the run: most pairs of a deep contact leave
+// the other object's plane well before the run ends.
 class KnownPairs {
  public:
   explicit KnownPairs(const ContactContext& c) : c_(c) {}
@@ -74,13 +75,13 @@ class KnownPairs {
     }
   }
 
-  // The pairs within the tolerance of each other at `t`.
-  std::vector<TrianglePair> TouchingAt(double t) {
+  // Every pair within the tolerance of each other at `t`, among others
+  // whose bound holds `t` only: locating contacts tests each pair itself,
+  // and one that does not touch adds nothing.
+  std::vector<TrianglePair> MayTouchAt(double t) const {
     std::vector<TrianglePair> pairs;
-    for (KnownPair& k : known_) {
-      if (!k.bounds.within_margin.Contains(t)) continue;
-      Compute(k);
-      if (k.intervals.within_margin.Contains(t)) pairs.push_back(k.pair);
+    for (const KnownPair& k : known_) {
+      if (k.bounds.within_margin.Contains(t)) pairs.push_back(k.pair);
     }
     return pairs;
   }
@@ -90,9 +91,9 @@ class KnownPairs {
 
   struct KnownPair {
     TrianglePair pair;
-    SweptIntervals bounds;     // each holds its interval
-    bool computed = false;     // whether `intervals` are
-    SweptIntervals intervals;  // exact, and within the tolerance
+    SweptIntervals bounds;  // each holds its interval
+    bool computed = false;  // whether `exact` is
+    Interval exact;
     bool operator<(const KnownPair& other) const { return pair < other.pair; }
   };
 
@@ -101,7 +102,7 @@ class KnownPairs {
     std::vector<Interval>& exact = scratch_;
     exact.clear();
     for (const KnownPair& k : known_) {
-      if (k.computed && !k.intervals.exact.empty()) exact.push_back(k.intervals.exact);
+      if (k.computed && !k.exact.empty()) exact.push_back(k.exact);
     }
     std::sort(exact.begin(), exact.end(),
               [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
@@ -112,9 +113,8 @@ class KnownPairs {
   }
 
   void Compute(KnownPair& k) const {
-    if (k.computed) return;
-    k.intervals = SweptIntersections(c_.MovingTriangle(k.pair.a), c_.FixedTriangle(k.pair.b),
-                                     c_.direction_F, c_.tolerance_m, kAhead);
+    k.exact = SweptIntersection(c_.MovingTriangle(k.pair.a), c_.FixedTriangle(k.pair.b),
+                                c_.direction_F, 0.0, kAhead);
     k.computed = true;
   }
 
@@ -203,7 +203,7 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
       settled = t_star + c.tolerance_m <= covered;
     }
     // The pairs touching at t*: all known, since [t1, covered] holds t*.
-    at_t_star = known.TouchingAt(t_star);
+    at_t_star = known.MayTouchAt(t_star);
   }
 
   ContactSet set;
