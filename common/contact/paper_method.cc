@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
@@ -80,35 +81,51 @@ struct Candidates {
   std::vector<Triangle3d> triangles;
 };
 
-template <typename T>
-void SortUnique(std::vector<T>& v) {
-  std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end()), v.end());
+// The distinct ids of `ids` (all below `count`), sorted: a mark per id
+// keeps the first of each, so only the distinct ones are sorted.
+template <typename Id>
+std::vector<Id> DistinctSorted(std::span<const Id> ids, int count) {
+  std::vector<uint8_t> seen(count, 0);
+  std::vector<Id> distinct;
+  for (Id id : ids) {
+    if (!seen[id]) {
+      seen[id] = 1;
+      distinct.push_back(id);
+    }
+  }
+  std::sort(distinct.begin(), distinct.end());
+  return distinct;
 }
 
 template <typename PositionOf>
-Candidates Gather(const HapticObject& object, std::vector<FaceId> faces, PositionOf position_of) {
-  SortUnique(faces);
-  std::vector<VertexId> vertices;
-  std::vector<EdgeId> edges;
-  Candidates c;
-  c.triangles.reserve(faces.size());
+Candidates Gather(const HapticObject& object, std::span<const FaceId> paired_faces,
+                  PositionOf position_of) {
+  const std::vector<FaceId> faces = DistinctSorted(paired_faces, object.num_faces());
+  std::vector<VertexId> corners;
+  std::vector<EdgeId> sides;
+  corners.reserve(3 * faces.size());
+  sides.reserve(3 * faces.size());
   for (FaceId f : faces) {
     const Face& face = object.face(f);
-    vertices.insert(vertices.end(), face.vertices.begin(), face.vertices.end());
-    edges.insert(edges.end(), face.edges.begin(), face.edges.end());
-    c.triangles.push_back(Triangle3d{position_of(face.vertices[0]), position_of(face.vertices[1]),
-                                     position_of(face.vertices[2])});
+    corners.insert(corners.end(), face.vertices.begin(), face.vertices.end());
+    sides.insert(sides.end(), face.edges.begin(), face.edges.end());
   }
-  SortUnique(vertices);
-  SortUnique(edges);
-  c.vertices.reserve(vertices.size());
-  for (VertexId v : vertices) c.vertices.push_back({v, position_of(v)});
-  c.edges.reserve(edges.size());
-  for (EdgeId e : edges) {
+  Candidates c;
+  // Each vertex placed once; the edges and triangles look their ends up.
+  std::vector<Vector3d> placed(object.num_vertices());
+  for (VertexId v : DistinctSorted<VertexId>(corners, object.num_vertices())) {
+    placed[v] = position_of(v);
+    c.vertices.push_back({v, placed[v]});
+  }
+  for (EdgeId e : DistinctSorted<EdgeId>(sides, object.num_edges())) {
     const Edge& edge = object.edge(e);
-    c.edges.push_back({e, edge.vertices[0], edge.vertices[1], position_of(edge.vertices[0]),
-                       position_of(edge.vertices[1])});
+    c.edges.push_back(
+        {e, edge.vertices[0], edge.vertices[1], placed[edge.vertices[0]], placed[edge.vertices[1]]});
+  }
+  c.triangles.reserve(faces.size());
+  for (FaceId f : faces) {
+    const auto& v = object.face(f).vertices;
+    c.triangles.push_back(Triangle3d{placed[v[0]], placed[v[1]], placed[v[2]]});
   }
   return c;
 }
@@ -348,10 +365,10 @@ ContactSet ReconstructByProjection(const ContactContext& context,
   const Vector3d anchor =
       fixed_faces.empty() ? Vector3d::Zero()
                           : context.fixed.position(context.fixed.face(fixed_faces[0]).vertices[0]);
-  const Candidates moving = Gather(context.moving, std::move(moving_faces), [&](VertexId v) {
+  const Candidates moving = Gather(context.moving, moving_faces, [&](VertexId v) {
     return Vector3d(context.X_FM * context.moving.position(v) - anchor);
   });
-  const Candidates fixed = Gather(context.fixed, std::move(fixed_faces), [&](VertexId v) {
+  const Candidates fixed = Gather(context.fixed, fixed_faces, [&](VertexId v) {
     return Vector3d(context.fixed.position(v) - anchor);
   });
 
