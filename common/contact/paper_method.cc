@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -119,8 +120,8 @@ Candidates Gather(const HapticObject& object, std::span<const FaceId> paired_fac
   }
   for (EdgeId e : DistinctSorted<EdgeId>(sides, object.num_edges())) {
     const Edge& edge = object.edge(e);
-    c.edges.push_back(
-        {e, edge.vertices[0], edge.vertices[1], placed[edge.vertices[0]], placed[edge.vertices[1]]});
+    c.edges.push_back({e, edge.vertices[0], edge.vertices[1], placed[edge.vertices[0]],
+                       placed[edge.vertices[1]]});
   }
   c.triangles.reserve(faces.size());
   for (FaceId f : faces) {
@@ -203,23 +204,26 @@ struct Hit {
 // One pass of one plane: the paper's loop of vertices of one object against
 // the edges of the other.
 struct PassResult {
+  /// Every crossing with d >= max(-tol, d_max - tol), and some below it:
+  /// only those can reach d_plane - tol, as d_plane >= d_max.
   std::vector<Hit> hits;
-  /// Largest d over the hits, clamped to >= 0 (touching is depth 0);
+  /// Largest d over all crossings, clamped to >= 0 (touching is depth 0);
   /// -inf when no vertex penetrates.
   double d_max = -kInf;
 };
 
 // Vertices of one side against edges of the other, the line through each
-// vertex along `u`: d_ij = (V - P_ij).u, kept when >= -tol.
+// vertex along `u`: d_ij = (V - P_ij).u, kept when >= -tol and within tol
+// of the deepest so far.
 PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, int plane,
-                   const Vector2d& u, double tol, PenetrationTest test) {
+                   const Vector2d& u, double tol, const ProjectionOptions& options) {
   std::vector<std::array<Vector2d, 2>> segments;
   segments.reserve(edge_side.edges.size());
   for (const CandidateEdge& e : edge_side.edges) {
     segments.push_back({Project(e.a, plane), Project(e.b, plane)});
   }
   std::vector<std::array<Vector2d, 3>> triangles;
-  if (test == PenetrationTest::kInsideTriangle) {
+  if (options.penetration == PenetrationTest::kInsideTriangle) {
     triangles.reserve(edge_side.triangles.size());
     for (const Triangle3d& t : edge_side.triangles) {
       triangles.push_back({Project(t[0], plane), Project(t[1], plane), Project(t[2], plane)});
@@ -245,8 +249,8 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     return std::clamp(static_cast<int>(std::floor((key - key_lo) / bucket_width)), 0,
                       num_buckets - 1);
   };
-  // Bucket b lists bucket_segment[bucket_start[b] .. bucket_start[b + 1]),
-  // filled in ascending segment order (a counting sort).
+  // Bucket b lists bucket_segment[bucket_start[b] .. bucket_start[b + 1])
+  // (a counting sort).
   std::vector<std::array<int, 2>> segment_buckets(segments.size(), {0, -1});
   std::vector<int> bucket_start(num_buckets + 1, 0);
   for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
@@ -258,28 +262,66 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) ++bucket_start[b + 1];
   }
   for (int b = 0; b < num_buckets; ++b) bucket_start[b + 1] += bucket_start[b];
+  // No point of segment j lies further back along u than its end `ahead[j]`
+  // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
+  // With the buckets filled by `ahead` and the deepest vertex first, a
+  // vertex stops at the first segment whose bound is below what can still
+  // matter (-tol, or tol under the deepest d so far): most vertices of a
+  // deep contact stop at once. Worth its sort only when the buckets the
+  // vertices meet hold more segments than the sort costs.
+  std::vector<double> ahead(segments.size());
+  std::vector<int> fill_order(segments.size());
+  for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
+    ahead[j] = std::min(segments[j][0].dot(u), segments[j][1].dot(u));
+    fill_order[j] = j;
+  }
+  int64_t meetings = 0;
+  for (const Vector2d& v : points) {
+    const int b = bucket_of(v.dot(w));
+    meetings += bucket_start[b + 1] - bucket_start[b];
+  }
+  const bool by_ahead =
+      meetings > static_cast<int64_t>(segments.size()) * std::bit_width(segments.size());
+  if (by_ahead) {
+    std::sort(fill_order.begin(), fill_order.end(),
+              [&](int x, int y) { return ahead[x] < ahead[y]; });
+  }
   std::vector<int> bucket_segment(bucket_start[num_buckets]);
   std::vector<int> cursor(bucket_start.begin(), bucket_start.end() - 1);
-  for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
+  for (int j : fill_order) {
     for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) {
       bucket_segment[cursor[b]++] = j;
     }
   }
+  std::vector<int> deepest_first(num_vertices);
+  for (int i = 0; i < num_vertices; ++i) deepest_first[i] = i;
+  if (num_vertices > 0) {
+    const auto deepest =
+        std::max_element(points.begin(), points.end(),
+                         [&](const Vector2d& x, const Vector2d& y) { return x.dot(u) < y.dot(u); });
+    std::swap(deepest_first[0], deepest_first[deepest - points.begin()]);
+  }
 
   PassResult result;
-  for (int i = 0; i < num_vertices; ++i) {
+  for (int i : deepest_first) {
     const Vector2d& v = points[i];
-    if (test == PenetrationTest::kInsideTriangle &&
+    if (options.penetration == PenetrationTest::kInsideTriangle &&
         std::none_of(triangles.begin(), triangles.end(),
                      [&](const auto& t) { return InsideTriangle(v, t, tol); })) {
       continue;
     }
+    const double at = v.dot(u);
     const int b = bucket_of(v.dot(w));
-    // Segments ascend within a bucket, so hits keep edge order per vertex.
     for (int k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
       const int j = bucket_segment[k];
+      // What can still matter; rounding may lift d a hair over its bound.
+      const double matters =
+          options.skip_shallow_crossings ? std::max(-tol, result.d_max - tol) : -tol;
+      if (by_ahead && at - ahead[j] + 1e-12 * (std::abs(at) + std::abs(ahead[j])) < matters) {
+        break;
+      }
       const std::optional<Crossing> c = CrossingDepth(v, u, segments[j][0], segments[j][1], tol);
-      if (!c || c->d < -tol) continue;
+      if (!c || c->d < matters) continue;
       result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
       result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
     }
@@ -313,8 +355,12 @@ PassContacts Contacts(const PassResult& pass, const Candidates& vertex_side, dou
   for (int h = 0; h < static_cast<int>(pass.hits.size()); ++h) {
     const Hit& hit = pass.hits[h];
     if (hit.d < d_plane - tol) continue;
-    // Edges come in id order, so a strict > keeps the lowest id on ties.
-    if (best[hit.vertex] < 0 || hit.d > pass.hits[best[hit.vertex]].d) best[hit.vertex] = h;
+    // The lowest edge (candidates are in id order) on ties.
+    const int b = best[hit.vertex];
+    if (b < 0 || hit.d > pass.hits[b].d ||
+        (hit.d == pass.hits[b].d && hit.edge < pass.hits[b].edge)) {
+      best[hit.vertex] = h;
+    }
   }
   PassContacts c;
   for (int i = 0; i < static_cast<int>(best.size()); ++i) {
@@ -389,8 +435,8 @@ ContactSet ReconstructByProjection(const ContactContext& context,
     const Vector2d u = D_p / norm;
     PlaneResult& r = planes[plane];
     r.projected_direction = norm;
-    r.moving = RunPass(moving, fixed, plane, u, tol, options.penetration);
-    r.fixed = RunPass(fixed, moving, plane, -u, tol, options.penetration);
+    r.moving = RunPass(moving, fixed, plane, u, tol, options);
+    r.fixed = RunPass(fixed, moving, plane, -u, tol, options);
     if (r.moving.hits.empty() && r.fixed.hits.empty()) continue;
     r.found = true;
     r.d_plane = std::max(r.moving.d_max, r.fixed.d_max);

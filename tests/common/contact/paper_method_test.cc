@@ -343,6 +343,61 @@ TEST(PaperMethodTest, WholeObjectCandidatesAlwaysSeparate) {
   }
 }
 
+// Skipping the crossings that cannot reach the deepest is a speed-up
+// only: on random deep poses of non-convex and convex pairs, every field
+// of the answer is what computing every crossing gives.
+TEST(PaperMethodTest, SkippingShallowCrossingsKeepsTheAnswer) {
+  const auto t1 = MakeBody(MakeTorus(1.0, 0.3, 24, 12)),
+             t2 = MakeBody(MakeTorus(0.8, 0.25, 24, 12));
+  const auto sphere = MakeBody(MakeIcosphere(0.6, 2));
+  const auto box = MakeBody(MakeBox(Vector3d(1.2, 0.8, 0.6)));
+  const auto big_box = MakeBody(BigBox());
+  const auto ring = MakeBody(Torus());
+  struct Scene {
+    const Body* m;
+    const Body* f;
+    Isometry3d X_FM;
+    Vector3d D;
+  };
+  // Fig. 8 (d) with D along and off an axis: many edges project onto one
+  // line, so crossings tie and the lowest edge must win either way.
+  std::vector<Scene> scenes = {
+      {ring.get(), big_box.get(), At({0.1, -0.2, kTop + 0.15 - kDelta}), {0, 0, -1}},
+      {ring.get(), big_box.get(), At({0.1, -0.2, kTop + 0.15 - kDelta}), {0.2, 0.1, -1}}};
+  std::mt19937 rng(42);
+  for (const auto& [m, f] : {std::pair{t1.get(), t2.get()}, std::pair{sphere.get(), box.get()}}) {
+    for (int i = 0; i < 40; ++i) {
+      const Isometry3d X_FM = RandomPose(rng, 0.5);
+      const Vector3d D = RandomDirection(rng);
+      if (Penetrate(*m, X_FM, *f, Isometry3d::Identity())) scenes.push_back({m, f, X_FM, D});
+    }
+  }
+  ASSERT_GT(scenes.size(), 60u);
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    const Scene& s = scenes[i];
+    const ContactSet fast = RunContext(*s.m, s.X_FM, *s.f, s.D);
+    const ContactSet every = RunContext(*s.m, s.X_FM, *s.f, s.D, /*whole_objects=*/false,
+                                        {.skip_shallow_crossings = false});
+    EXPECT_FALSE(fast.points.empty()) << i;
+    EXPECT_EQ(fast.depth_m, every.depth_m) << i;
+    EXPECT_EQ(fast.plane_depths_m, every.plane_depths_m) << i;
+    EXPECT_EQ(fast.singular_case, every.singular_case) << i;
+    for (const auto& [a, b] :
+         {std::pair{&fast.moving, &every.moving}, std::pair{&fast.fixed, &every.fixed}}) {
+      EXPECT_EQ(a->kind, b->kind) << i;
+      EXPECT_EQ(a->vertices, b->vertices) << i;
+      EXPECT_EQ(a->edges, b->edges) << i;
+      EXPECT_EQ(a->faces, b->faces) << i;
+    }
+    ASSERT_EQ(fast.points.size(), every.points.size()) << i;
+    for (size_t k = 0; k < fast.points.size(); ++k) {
+      EXPECT_EQ(fast.points[k].p_WC, every.points[k].p_WC) << i;
+      EXPECT_EQ(fast.points[k].moving, every.points[k].moving) << i;
+      EXPECT_EQ(fast.points[k].fixed, every.points[k].fixed) << i;
+    }
+  }
+}
+
 // Shallow contacts of convex pairs are never under-estimated and always separated.
 // Shallow: one step of 1 cm into objects ~1 m across, less than their faces
 // are wide, so every face holding a deepest point still crosses the other's
