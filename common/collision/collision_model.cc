@@ -1,5 +1,6 @@
 #include "common/collision/collision_model.h"
 
+#include <limits>
 #include <utility>
 
 #include "common/collision/fcl_bvh.h"
@@ -95,11 +96,24 @@ std::vector<int> LeafFaces(const AnyBvh& bvh) {
       bvh);
 }
 
-std::vector<PlacedFace> LeafOrderFaces(const CollisionModel::Impl& impl) {
-  std::vector<PlacedFace> faces;
-  faces.reserve(impl.leaf_faces.size());
-  for (const int f : impl.leaf_faces) faces.push_back(PlaceFace(impl.triangle(f)));
-  return faces;
+// Places the faces in leaf order (leaf_order_faces) with their boxes.
+void PlaceLeafOrderFaces(CollisionModel::Impl& impl) {
+  const size_t n = impl.leaf_faces.size();
+  impl.leaf_order_faces.clear();
+  impl.leaf_order_faces.reserve(n);
+  for (int d = 0; d < 3; ++d) {
+    impl.leaf_order_lo[d].assign(n, std::numeric_limits<double>::infinity());
+    impl.leaf_order_hi[d].assign(n, -std::numeric_limits<double>::infinity());
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const int f = impl.leaf_faces[i];
+    const PlacedFace& face = impl.leaf_order_faces.emplace_back(PlaceFace(impl.triangle(f)));
+    if (impl.degenerate[f]) continue;
+    for (int d = 0; d < 3; ++d) {
+      impl.leaf_order_lo[d][i] = face.lo[d];
+      impl.leaf_order_hi[d][i] = face.hi[d];
+    }
+  }
 }
 
 }  // namespace
@@ -127,7 +141,7 @@ CollisionModel::CollisionModel(const HapticObject& object, BvType type, double m
   impl_->bvh = BuildAny(object, type, margin_m);
   impl_->degenerate = DegenerateFaces(object);
   impl_->leaf_faces = LeafFaces(impl_->bvh);
-  impl_->leaf_order_faces = LeafOrderFaces(*impl_);
+  PlaceLeafOrderFaces(*impl_);
 }
 
 CollisionModel::~CollisionModel() = default;
@@ -153,7 +167,7 @@ bool CollisionModel::Sync(const HapticObject& object) {
       },
       impl_->bvh);
   impl_->degenerate = DegenerateFaces(object);
-  impl_->leaf_order_faces = LeafOrderFaces(*impl_);
+  PlaceLeafOrderFaces(*impl_);
   impl_->geometry_version = object.geometry_version();
   return true;
 }

@@ -12,6 +12,7 @@
 #include <fcl/math/bv/RSS.h>
 #include <fcl/math/bv/kIOS.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <variant>
@@ -45,6 +46,9 @@ struct CollisionModel::Impl {
   std::vector<int> leaf_faces;
   /// Face leaf_faces[i] in the object frame, placed for the leaf buckets.
   std::vector<PlacedFace> leaf_order_faces;
+  /// Their boxes coordinate by coordinate, for a bucket's branch-free scan:
+  /// lo[d][i], hi[d][i]; a degenerate face's box is empty, so never met.
+  std::array<std::vector<double>, 3> leaf_order_lo, leaf_order_hi;
 
   /// The hierarchy as FCL's generic geometry, for the broad phase.
   std::shared_ptr<fcl::CollisionGeometryd> geometry() const;

@@ -49,14 +49,6 @@ inline bool BeyondFacePlane(const PlacedFace& face, const Triangle3d& t, double 
   return lo > slack || hi < -slack;
 }
 
-/// True when the boxes of `a` and `b` are farther apart than `margin` along
-/// some axis of the query frame.
-inline bool FaceBoxesApart(const PlacedFace& a, const PlacedFace& b, double margin) {
-  return a.lo[0] > b.hi[0] + margin || b.lo[0] > a.hi[0] + margin ||  //
-         a.lo[1] > b.hi[1] + margin || b.lo[1] > a.hi[1] + margin ||  //
-         a.lo[2] > b.hi[2] + margin || b.lo[2] > a.hi[2] + margin;
-}
-
 /// The faces of the second object of a pair query, in the first one's frame.
 class PlacedFaces {
  public:

@@ -133,50 +133,72 @@ class BucketTest {
   /// Tests every face of A's node `na` against every face of B's node `nb`:
   /// first each bucket is cut down to the faces whose boxes meet the overlap
   /// of the two buckets' boxes, then the rest go through box and SAT tests.
+  /// A's faces are read in leaf order, their boxes from the model's arrays
+  /// (swept: grown by the sweep, which moves every face alike).
   template <typename Node>
   void Run(const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
-    thread_local std::vector<Entry> list_a, list_b;
-    thread_local std::vector<PlacedFace> swept_a;
-    Vector3d lo_a, hi_a, lo_b, hi_b;
-    StartList(list_a, lo_a, hi_a);
+    thread_local std::vector<Entry> list_b;
+    Vector3d lo_b, hi_b;
     StartList(list_b, lo_b, hi_b);
-    swept_a.clear();
-    swept_a.reserve(na.num_primitives);  // no reallocation: entries point into it
-    for (int i = na.first_primitive; i < na.first_primitive + na.num_primitives; ++i) {
-      const int f = ia_.leaf_faces[i];
-      if (ia_.degenerate[f]) continue;
-      const PlacedFace* face = &ia_.leaf_order_faces[i];
-      if (sweep_A_) {  // the box of the face's whole sweep
-        PlacedFace& swept = swept_a.emplace_back(*face);
-        swept.lo = swept.lo.cwiseMin(swept.lo - *sweep_A_);
-        swept.hi = swept.hi.cwiseMax(swept.hi - *sweep_A_);
-        face = &swept;
-      }
-      AddEntry(f, face, list_a, lo_a, hi_a);
-    }
     for (int i = nb.first_primitive; i < nb.first_primitive + nb.num_primitives; ++i) {
       const int f = ib_.leaf_faces[i];
       if (!ib_.degenerate[f]) AddEntry(f, &faces_b().Get(f), list_b, lo_b, hi_b);
     }
-    const Vector3d lo = lo_a.cwiseMax(lo_b).array() - margin_;
-    const Vector3d hi = hi_a.cwiseMin(hi_b).array() + margin_;
-    if ((lo.array() > hi.array()).any()) return;
-    const PlacedFace overlap{{}, {}, lo, hi};
-    Crop(list_a, overlap);
+    const int first = na.first_primitive, count = na.num_primitives;
+    double grow_lo[3] = {0, 0, 0}, grow_hi[3] = {0, 0, 0};
+    if (sweep_A_) {
+      for (int d = 0; d < 3; ++d) {
+        grow_lo[d] = std::min(0.0, -(*sweep_A_)[d]);
+        grow_hi[d] = std::max(0.0, -(*sweep_A_)[d]);
+      }
+    }
+    double lo[3], hi[3];  // the overlap of the two buckets' boxes, grown by the margin
+    for (int d = 0; d < 3; ++d) {
+      const double* a_lo = ia_.leaf_order_lo[d].data() + first;
+      const double* a_hi = ia_.leaf_order_hi[d].data() + first;
+      double lo_a = std::numeric_limits<double>::infinity(), hi_a = -lo_a;
+      for (int k = 0; k < count; ++k) {
+        lo_a = std::min(lo_a, a_lo[k]);
+        hi_a = std::max(hi_a, a_hi[k]);
+      }
+      lo[d] = std::max(lo_a + grow_lo[d], lo_b[d]) - margin_;
+      hi[d] = std::min(hi_a + grow_hi[d], hi_b[d]) + margin_;
+      if (lo[d] > hi[d]) return;
+    }
+    uint32_t faces_a = count == 32 ? ~uint32_t{0} : (uint32_t{1} << count) - 1;
+    for (int d = 0; d < 3; ++d) {
+      const double* a_lo = ia_.leaf_order_lo[d].data() + first;
+      const double* a_hi = ia_.leaf_order_hi[d].data() + first;
+      uint32_t meets = 0;
+      for (int k = 0; k < count; ++k) {
+        meets |= uint32_t{(a_lo[k] + grow_lo[d] <= hi[d]) & (lo[d] <= a_hi[k] + grow_hi[d])} << k;
+      }
+      faces_a &= meets;
+    }
+    const PlacedFace overlap{{}, {}, Vector3d(lo[0], lo[1], lo[2]), Vector3d(hi[0], hi[1], hi[2])};
     Crop(list_b, overlap);
     thread_local BucketBoxes boxes_b;
     boxes_b.Set(list_b, margin_);
-    for (const Entry& a : list_a) {
-      const std::span<const TrianglePair> skipped = Skipped(a.id);
-      for (uint32_t meets = boxes_b.Meeting(*a.face, margin_); meets != 0; meets &= meets - 1) {
+    for (; faces_a != 0; faces_a &= faces_a - 1) {
+      const int i = first + std::countr_zero(faces_a);
+      const int a = ia_.leaf_faces[i];
+      const PlacedFace& face_a = ia_.leaf_order_faces[i];
+      double box_lo[3], box_hi[3];
+      for (int d = 0; d < 3; ++d) {
+        box_lo[d] = ia_.leaf_order_lo[d][i] + grow_lo[d];
+        box_hi[d] = ia_.leaf_order_hi[d][i] + grow_hi[d];
+      }
+      const std::span<const TrianglePair> skipped = Skipped(a);
+      for (uint32_t meets = boxes_b.Meeting(box_lo, box_hi, margin_); meets != 0;
+           meets &= meets - 1) {
         const Entry& b = list_b[std::countr_zero(meets)];
-        if (!skipped.empty() && std::ranges::binary_search(skipped, TrianglePair{a.id, b.id})) {
+        if (!skipped.empty() && std::ranges::binary_search(skipped, TrianglePair{a, b.id})) {
           continue;
         }
-        const bool hit = sweep_A_ ? SweptFacesMeet(*a.face, *b.face)
-                                  : TrianglesIntersect(a.face->triangle, a.face->normal,
+        const bool hit = sweep_A_ ? SweptFacesMeet(face_a, *b.face)
+                                  : TrianglesIntersect(face_a.triangle, face_a.normal,
                                                        b.face->triangle, b.face->normal, margin_);
-        if (hit) pairs.push_back({a.id, b.id});
+        if (hit) pairs.push_back({a, b.id});
       }
     }
   }
@@ -188,8 +210,8 @@ class BucketTest {
   };
 
   // A cut-down bucket's face boxes, coordinate by coordinate, for a scan
-  // without branches: which of them meet a face's box within the margin
-  // (the test of FaceBoxesApart, the same sums) is one bit mask.
+  // without branches: which of them meet a box within the margin is one
+  // bit mask.
   struct BucketBoxes {
     std::array<double, kBucketFaces> lo[3], hi_plus_margin[3];
     int size = 0;
@@ -204,14 +226,14 @@ class BucketTest {
       }
     }
 
-    // Bit k: whether entry k's box meets `face`'s within the margin.
-    uint32_t Meeting(const PlacedFace& face, double margin) const {
-      const double face_hi[3] = {face.hi[0] + margin, face.hi[1] + margin, face.hi[2] + margin};
+    // Bit k: whether entry k's box meets the box [lo, hi] within the margin.
+    uint32_t Meeting(const double (&box_lo)[3], const double (&box_hi)[3], double margin) const {
+      const double hi_plus[3] = {box_hi[0] + margin, box_hi[1] + margin, box_hi[2] + margin};
       uint32_t meets = 0;
       for (int k = 0; k < size; ++k) {
-        const bool meet = (face.lo[0] <= hi_plus_margin[0][k]) & (lo[0][k] <= face_hi[0]) &
-                          (face.lo[1] <= hi_plus_margin[1][k]) & (lo[1][k] <= face_hi[1]) &
-                          (face.lo[2] <= hi_plus_margin[2][k]) & (lo[2][k] <= face_hi[2]);
+        const bool meet = (box_lo[0] <= hi_plus_margin[0][k]) & (lo[0][k] <= hi_plus[0]) &
+                          (box_lo[1] <= hi_plus_margin[1][k]) & (lo[1][k] <= hi_plus[1]) &
+                          (box_lo[2] <= hi_plus_margin[2][k]) & (lo[2][k] <= hi_plus[2]);
         meets |= uint32_t{meet} << k;
       }
       return meets;

@@ -136,24 +136,21 @@ struct LineCrossing {
 std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array<double, 3>& d,
                                            double clear_sq, const Vector3d& line,
                                            const Vector3d& origin) {
-  // The corner alone on its side, and the other two.
-  int lone = -1;
-  for (int i = 0; i < 3; ++i) {
-    if (d[i] * d[i] <= clear_sq) return std::nullopt;
-    const int j = (i + 1) % 3, k = (i + 2) % 3;
-    if ((d[i] > 0) != (d[j] > 0) && (d[i] > 0) != (d[k] > 0)) lone = i;
+  if (!((d[0] * d[0] > clear_sq) & (d[1] * d[1] > clear_sq) & (d[2] * d[2] > clear_sq))) {
+    return std::nullopt;
   }
-  if (lone < 0) return std::nullopt;
+  // The corner alone on its side, and the other two, in turn after it.
+  const bool above[3] = {d[0] > 0, d[1] > 0, d[2] > 0};
+  if (above[0] == above[1] && above[1] == above[2]) return std::nullopt;
+  const int lone = above[0] == above[1] ? 2 : above[0] == above[2] ? 1 : 0;
+  const int next = lone == 2 ? 0 : lone + 1, last = lone == 0 ? 2 : lone - 1;
   const double at_lone = line.dot(t[lone] - origin);
-  double ends[2];
-  for (int n = 1; n <= 2; ++n) {
-    const int i = (lone + n) % 3;
-    const double at_i = line.dot(t[i] - origin);
-    ends[n - 1] = at_i + (at_lone - at_i) * d[i] / (d[i] - d[lone]);
-  }
-  const Vector3d edge1 = t[(lone + 1) % 3] - t[lone], edge2 = t[(lone + 2) % 3] - t[lone];
-  if (ends[0] <= ends[1]) return LineCrossing{{ends[0], ends[1]}, edge1, edge2};
-  return LineCrossing{{ends[1], ends[0]}, edge2, edge1};
+  const double at_next = line.dot(t[next] - origin), at_last = line.dot(t[last] - origin);
+  const double end_next = at_next + (at_lone - at_next) * d[next] / (d[next] - d[lone]);
+  const double end_last = at_last + (at_lone - at_last) * d[last] / (d[last] - d[lone]);
+  const Vector3d edge_next = t[next] - t[lone], edge_last = t[last] - t[lone];
+  if (end_next <= end_last) return LineCrossing{{end_next, end_last}, edge_next, edge_last};
+  return LineCrossing{{end_last, end_next}, edge_last, edge_next};
 }
 
 // Relative to the triangles' size, what rounding cannot reach: the fast
