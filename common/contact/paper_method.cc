@@ -229,21 +229,78 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
       triangles.push_back({Project(t[0], plane), Project(t[1], plane), Project(t[2], plane)});
     }
   }
-  // A segment can meet the line through v along u only if its extent
-  // across the line, [lo, hi] along w = u turned by 90 degrees, holds v.w
+  // A segment can meet the line through v along u only if its band, its
+  // extent across the line along w = u turned by 90 degrees, holds v.w
   // within the tolerance (CrossingDepth's rule; the band is widened for
   // rounding). Buckets over v.w list the segments whose band meets them,
-  // so each vertex tests only the segments near its line instead of all.
+  // so each vertex tests only the segments near its line instead of all;
+  // a handful of vertices check every band instead.
   const Vector2d w(-u.y(), u.x());
   const int num_vertices = static_cast<int>(vertex_side.vertices.size());
+  const int num_segments = static_cast<int>(segments.size());
   std::vector<Vector2d> points(num_vertices);
+  std::vector<double> keys(num_vertices), backs(num_vertices);  // v.w, v.u
   double key_lo = kInf, key_hi = -kInf;
   for (int i = 0; i < num_vertices; ++i) {
     points[i] = Project(vertex_side.vertices[i].p, plane);
-    key_lo = std::min(key_lo, points[i].dot(w));
-    key_hi = std::max(key_hi, points[i].dot(w));
+    keys[i] = points[i].dot(w);
+    backs[i] = points[i].dot(u);
+    key_lo = std::min(key_lo, keys[i]);
+    key_hi = std::max(key_hi, keys[i]);
   }
-  const int num_buckets = std::max<int>(1, static_cast<int>(segments.size()));
+  std::vector<std::array<double, 2>> bands(num_segments);
+  // No point of segment j lies further back along u than its end `ahead[j]`
+  // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
+  std::vector<double> ahead(num_segments);
+  for (int j = 0; j < num_segments; ++j) {
+    const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
+    const double slack = 2 * tol + 1e-12 * (std::abs(ka) + std::abs(kb));
+    bands[j] = {std::min(ka, kb) - slack, std::max(ka, kb) + slack};
+    ahead[j] = std::min(segments[j][0].dot(u), segments[j][1].dot(u));
+  }
+  // The deepest vertex first: what can still matter rises at once.
+  std::vector<int> deepest_first(num_vertices);
+  for (int i = 0; i < num_vertices; ++i) deepest_first[i] = i;
+  if (num_vertices > 0) {
+    const auto deepest =
+        std::max_element(points.begin(), points.end(),
+                         [&](const Vector2d& x, const Vector2d& y) { return x.dot(u) < y.dot(u); });
+    std::swap(deepest_first[0], deepest_first[deepest - points.begin()]);
+  }
+
+  PassResult result;
+  // Tests vertex i against segment j; false when segment j, and any further
+  // back, cannot give a d that matters (-tol, or tol under the deepest d so
+  // far; rounding may lift d a hair over its bound).
+  auto test = [&](int i, int j) {
+    const Vector2d& v = points[i];
+    const double at = backs[i];
+    const double matters =
+        options.skip_shallow_crossings ? std::max(-tol, result.d_max - tol) : -tol;
+    if (at - ahead[j] + 1e-12 * (std::abs(at) + std::abs(ahead[j])) < matters) return false;
+    const std::optional<Crossing> c = CrossingDepth(v, u, segments[j][0], segments[j][1], tol);
+    if (c && c->d >= matters) {
+      result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
+      result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
+    }
+    return true;
+  };
+  auto penetration_test_passes = [&](int i) {
+    return options.penetration != PenetrationTest::kInsideTriangle ||
+           std::any_of(triangles.begin(), triangles.end(),
+                       [&](const auto& t) { return InsideTriangle(points[i], t, tol); });
+  };
+  constexpr int kFewVertices = 16;
+  if (num_vertices <= kFewVertices) {
+    for (int i : deepest_first) {
+      if (!penetration_test_passes(i)) continue;
+      for (int j = 0; j < num_segments; ++j) {
+        if (bands[j][0] <= keys[i] && keys[i] <= bands[j][1]) test(i, j);
+      }
+    }
+    return result;
+  }
+  const int num_buckets = std::max(1, num_segments);
   const double bucket_width = std::max((key_hi - key_lo) / num_buckets, 1e-300);
   auto bucket_of = [&](double key) {
     return std::clamp(static_cast<int>(std::floor((key - key_lo) / bucket_width)), 0,
@@ -251,37 +308,28 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   };
   // Bucket b lists bucket_segment[bucket_start[b] .. bucket_start[b + 1])
   // (a counting sort).
-  std::vector<std::array<int, 2>> segment_buckets(segments.size(), {0, -1});
+  std::vector<std::array<int, 2>> segment_buckets(num_segments, {0, -1});
   std::vector<int> bucket_start(num_buckets + 1, 0);
-  for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
-    const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
-    const double slack = 2 * tol + 1e-12 * (std::abs(ka) + std::abs(kb));
-    const double lo = std::min(ka, kb) - slack, hi = std::max(ka, kb) + slack;
-    if (hi < key_lo || lo > key_hi) continue;
-    segment_buckets[j] = {bucket_of(lo), bucket_of(hi)};
+  for (int j = 0; j < num_segments; ++j) {
+    if (bands[j][1] < key_lo || bands[j][0] > key_hi) continue;
+    segment_buckets[j] = {bucket_of(bands[j][0]), bucket_of(bands[j][1])};
     for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) ++bucket_start[b + 1];
   }
   for (int b = 0; b < num_buckets; ++b) bucket_start[b + 1] += bucket_start[b];
-  // No point of segment j lies further back along u than its end `ahead[j]`
-  // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
-  // With the buckets filled by `ahead` and the deepest vertex first, a
-  // vertex stops at the first segment whose bound is below what can still
-  // matter (-tol, or tol under the deepest d so far): most vertices of a
-  // deep contact stop at once. Worth its sort only when the buckets the
-  // vertices meet hold more segments than the sort costs.
-  std::vector<double> ahead(segments.size());
-  std::vector<int> fill_order(segments.size());
-  for (int j = 0; j < static_cast<int>(segments.size()); ++j) {
-    ahead[j] = std::min(segments[j][0].dot(u), segments[j][1].dot(u));
-    fill_order[j] = j;
-  }
+  // With each bucket listed by `ahead`, a vertex stops at the first segment
+  // whose bound cannot matter: most vertices of a deep contact stop at
+  // once. Worth its sort only when the buckets the vertices meet hold more
+  // segments than the sort costs.
   int64_t meetings = 0;
-  for (const Vector2d& v : points) {
-    const int b = bucket_of(v.dot(w));
+  for (double key : keys) {
+    const int b = bucket_of(key);
     meetings += bucket_start[b + 1] - bucket_start[b];
   }
   const bool by_ahead =
-      meetings > static_cast<int64_t>(segments.size()) * std::bit_width(segments.size());
+      options.skip_shallow_crossings &&
+      meetings > static_cast<int64_t>(num_segments) * std::bit_width(segments.size());
+  std::vector<int> fill_order(num_segments);
+  for (int j = 0; j < num_segments; ++j) fill_order[j] = j;
   if (by_ahead) {
     std::sort(fill_order.begin(), fill_order.end(),
               [&](int x, int y) { return ahead[x] < ahead[y]; });
@@ -293,37 +341,11 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
       bucket_segment[cursor[b]++] = j;
     }
   }
-  std::vector<int> deepest_first(num_vertices);
-  for (int i = 0; i < num_vertices; ++i) deepest_first[i] = i;
-  if (num_vertices > 0) {
-    const auto deepest =
-        std::max_element(points.begin(), points.end(),
-                         [&](const Vector2d& x, const Vector2d& y) { return x.dot(u) < y.dot(u); });
-    std::swap(deepest_first[0], deepest_first[deepest - points.begin()]);
-  }
-
-  PassResult result;
   for (int i : deepest_first) {
-    const Vector2d& v = points[i];
-    if (options.penetration == PenetrationTest::kInsideTriangle &&
-        std::none_of(triangles.begin(), triangles.end(),
-                     [&](const auto& t) { return InsideTriangle(v, t, tol); })) {
-      continue;
-    }
-    const double at = v.dot(u);
-    const int b = bucket_of(v.dot(w));
+    if (!penetration_test_passes(i)) continue;
+    const int b = bucket_of(keys[i]);
     for (int k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
-      const int j = bucket_segment[k];
-      // What can still matter; rounding may lift d a hair over its bound.
-      const double matters =
-          options.skip_shallow_crossings ? std::max(-tol, result.d_max - tol) : -tol;
-      if (by_ahead && at - ahead[j] + 1e-12 * (std::abs(at) + std::abs(ahead[j])) < matters) {
-        break;
-      }
-      const std::optional<Crossing> c = CrossingDepth(v, u, segments[j][0], segments[j][1], tol);
-      if (!c || c->d < matters) continue;
-      result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
-      result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
+      if (!test(i, bucket_segment[k]) && by_ahead) break;
     }
   }
   return result;
