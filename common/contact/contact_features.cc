@@ -38,6 +38,19 @@ struct PosedFace {
   }
 };
 
+// Whether the boxes of segments [p1, q1] and [p2, q2] are more than `tol`
+// apart along some axis.
+bool SegmentBoxesApart(const Vector3d& p1, const Vector3d& q1, const Vector3d& p2,
+                       const Vector3d& q2, double tol) {
+  for (int d = 0; d < 3; ++d) {
+    if (std::max(p1[d], q1[d]) + tol < std::min(p2[d], q2[d]) ||
+        std::max(p2[d], q2[d]) + tol < std::min(p1[d], q1[d])) {
+      return true;
+    }
+  }
+  return false;
+}
+
 Vector3d UnitNormal(const Triangle3d& t) {
   const Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
   return n.squaredNorm() > 0 ? n.normalized() : Vector3d::Zero();
@@ -112,9 +125,12 @@ class Locator {
       for (int j = 0; j < 3; ++j) {
         if (beyond(f_off, j)) continue;
         const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
-        const Eigen::Array3d gap =
-            (p1.cwiseMin(q1) - p2.cwiseMax(q2)).cwiseMax(p2.cwiseMin(q2) - p1.cwiseMax(q1)).array();
-        if ((gap > tol).any()) continue;  // boxes of the segments too far apart
+        if (SegmentBoxesApart(p1, q1, p2, q2, tol)) continue;
+        // The lines through the edges more than 2 tolerances apart (the
+        // segments are at least as far): no edge-edge contact.
+        const Vector3d across = (q1 - p1).cross(q2 - p2);
+        const double gap = across.dot(p2 - p1);
+        if (gap * gap > 4 * tol * tol * across.squaredNorm()) continue;
         const SegmentClosest s = ClosestPointsOfSegments(p1, q1, p2, q2);
         if ((s.on_first - s.on_second).norm() > tol) continue;
         // Ends within the tolerance are vertex contacts, found above.
