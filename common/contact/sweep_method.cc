@@ -39,11 +39,17 @@ class KnownPairs {
   void Add(std::vector<TrianglePair> pairs) {
     std::sort(pairs.begin(), pairs.end());
     const size_t old_size = known_.size();
+    Triangle3d moving;  // of the last pair's face of M: pairs sorted by it come in runs
+    FaceId moving_face = -1;
     for (const TrianglePair& pair : pairs) {
       if (std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
+      if (pair.a != moving_face) {
+        moving = c_.MovingTriangle(pair.a);
+        moving_face = pair.a;
+      }
       // Only t >= 0 can extend the run from t = 0.
-      known_.push_back({pair, SweptPlaneBounds(c_.MovingTriangle(pair.a), c_.FixedTriangle(pair.b),
-                                               c_.direction_F, c_.tolerance_m, kAhead)});
+      known_.push_back({pair, SweptPlaneBounds(moving, c_.FixedTriangle(pair.b), c_.direction_F,
+                                               c_.tolerance_m, kAhead)});
     }
     std::inplace_merge(known_.begin(), known_.begin() + old_size, known_.end());
     pairs_.clear();
