@@ -171,7 +171,8 @@ class BucketTest {
       const double* a_hi = ia_.leaf_order_hi[d].data() + first;
       uint32_t meets = 0;
       for (int k = 0; k < count; ++k) {
-        meets |= uint32_t{(a_lo[k] + grow_lo[d] <= hi[d]) & (lo[d] <= a_hi[k] + grow_hi[d])} << k;
+        const bool meet = (a_lo[k] + grow_lo[d] <= hi[d]) & (lo[d] <= a_hi[k] + grow_hi[d]);
+        meets |= uint32_t{meet} << k;
       }
       faces_a &= meets;
     }

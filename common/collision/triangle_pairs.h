@@ -23,8 +23,8 @@ struct TrianglePair {
 /// along every separating axis, in no particular order. Both models must
 /// share a bounding volume type, and `margin_m` must not exceed the sum of
 /// their margins (else pairs within it could be culled). The pairs in
-/// `skip` (sorted), which the caller has decided already, are left out
-/// untested. Returns the number of bounding-volume tests made.
+/// `skip` (sorted; faces of `a` and `b`), which the caller has decided
+/// already, are left out untested. Returns the number of bounding-volume tests made.
 int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
                                   std::vector<TrianglePair>& pairs,
@@ -34,7 +34,8 @@ int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_W
 /// pair that intersects (within `margin_m`) at some instant while A moves in
 /// a straight line from X_WA translated by -sweep_W to X_WA (sweep_W: world
 /// frame, metres). Exact for the motion, so a thin object passed through in
-/// one step is found. Leaves out the pairs in `skip` (sorted), untested.
+/// one step is found. Leaves out the pairs in `skip` (sorted; faces of `a`
+/// and `b`), untested.
 /// Returns the number of bounding-volume tests made.
 int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,

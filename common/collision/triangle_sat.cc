@@ -131,8 +131,9 @@ struct LineCrossing {
 };
 
 // Where `t` crosses the other triangle's plane, given its corners'
-// distances `d` from that plane; none when no corner stands clear of the
-// plane on each side (by more than sqrt(`clear_sq`)).
+// distances `d` from that plane; none unless every corner stands clear of
+// the plane (by more than sqrt(`clear_sq`)) and they are not all on one
+// side.
 std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array<double, 3>& d,
                                            double clear_sq, const Vector3d& line,
                                            const Vector3d& origin) {
@@ -165,7 +166,9 @@ enum class Crossing { kYes, kApart, kUnknown };
 // lie inside both triangles, so a clear overlap is a common point (kYes).
 // When the segments are apart, the edges that give their facing ends
 // usually cross into the separating axis: kApart when it separates the
-// triangles by more than `margin`. Anything else is left to the SAT.
+// triangles by more than `margin`. That axis is one of the SAT's nine edge
+// crosses (up to sign), projected the same way, so kApart is the SAT's own
+// answer. Anything else is left to the SAT.
 Crossing CrossingTest(const Triangle3d& a, const Vector3d& na, const std::array<double, 3>& da,
                       const Triangle3d& b, const Vector3d& nb, const std::array<double, 3>& db,
                       double margin) {
@@ -197,7 +200,7 @@ Crossing CrossingTest(const Triangle3d& a, const Vector3d& na, const std::array<
   const double axis_sq = axis.squaredNorm();
   // Nearly parallel edges give a rounding artefact, as in ForEachAxis.
   if (!(axis_sq >
-        kAxisRelativeFloor * kAxisRelativeFloor * edge_a.squaredNorm() * edge_b.squaredNorm())) {
+        kAxisRelativeFloor * kAxisRelativeFloor * (edge_a.squaredNorm() * edge_b.squaredNorm()))) {
     return Crossing::kUnknown;
   }
   const Extent ea = ProjectThree(axis, a), eb = ProjectThree(axis, b);

@@ -207,8 +207,8 @@ struct PassResult {
   /// Every crossing with d >= max(-tol, d_max - tol), and some below it:
   /// only those can reach d_plane - tol, as d_plane >= d_max.
   std::vector<Hit> hits;
-  /// Largest d over all crossings, clamped to >= 0 (touching is depth 0);
-  /// -inf when no vertex penetrates.
+  /// Largest d over the crossings with d >= -tol, clamped to >= 0
+  /// (touching is depth 0); -inf when no vertex penetrates.
   double d_max = -kInf;
 };
 
@@ -240,19 +240,22 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   const int num_segments = static_cast<int>(segments.size());
   std::vector<Vector2d> points(num_vertices);
   std::vector<double> keys(num_vertices), backs(num_vertices);  // v.w, v.u
+  std::vector<double> sizes(num_vertices);                      // |v|, L1
   double key_lo = kInf, key_hi = -kInf;
   for (int i = 0; i < num_vertices; ++i) {
     points[i] = Project(vertex_side.vertices[i].p, plane);
     keys[i] = points[i].dot(w);
     backs[i] = points[i].dot(u);
+    sizes[i] = points[i].cwiseAbs().sum();
     key_lo = std::min(key_lo, keys[i]);
     key_hi = std::max(key_hi, keys[i]);
   }
   std::vector<std::array<double, 2>> bands(num_segments);
   // No point of segment j lies further back along u than its end `ahead[j]`
   // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
-  std::vector<double> ahead(num_segments);
+  std::vector<double> ahead(num_segments), segment_sizes(num_segments);
   for (int j = 0; j < num_segments; ++j) {
+    segment_sizes[j] = segments[j][0].cwiseAbs().sum() + segments[j][1].cwiseAbs().sum();
     const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
     const double slack = 2 * tol + 1e-12 * (std::abs(ka) + std::abs(kb));
     bands[j] = {std::min(ka, kb) - slack, std::max(ka, kb) + slack};
@@ -271,13 +274,17 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   PassResult result;
   // Tests vertex i against segment j; false when segment j, and any further
   // back, cannot give a d that matters (-tol, or tol under the deepest d so
-  // far; rounding may lift d a hair over its bound).
+  // far; rounding, relative to the coordinates, may lift d a hair over its
+  // bound). Without skip_shallow_crossings, every crossing is computed.
   auto test = [&](int i, int j) {
     const Vector2d& v = points[i];
     const double at = backs[i];
     const double matters =
         options.skip_shallow_crossings ? std::max(-tol, result.d_max - tol) : -tol;
-    if (at - ahead[j] + 1e-12 * (std::abs(at) + std::abs(ahead[j])) < matters) return false;
+    if (options.skip_shallow_crossings &&
+        at - ahead[j] + 1e-12 * (sizes[i] + segment_sizes[j]) < matters) {
+      return false;
+    }
     const std::optional<Crossing> c = CrossingDepth(v, u, segments[j][0], segments[j][1], tol);
     if (c && c->d >= matters) {
       result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
@@ -327,7 +334,7 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   }
   const bool by_ahead =
       options.skip_shallow_crossings &&
-      meetings > static_cast<int64_t>(num_segments) * std::bit_width(segments.size());
+      meetings > int64_t{num_segments} * static_cast<int64_t>(std::bit_width(segments.size()));
   std::vector<int> fill_order(num_segments);
   for (int j = 0; j < num_segments; ++j) fill_order[j] = j;
   if (by_ahead) {

@@ -48,8 +48,11 @@ class KnownPairs {
         moving_face = pair.a;
       }
       // Only t >= 0 can extend the run from t = 0.
-      known_.push_back({pair, SweptPlaneBounds(moving, c_.FixedTriangle(pair.b), c_.direction_F,
-                                               c_.tolerance_m, kAhead)});
+      known_.push_back({.pair = pair,
+                        .bounds = SweptPlaneBounds(moving, c_.FixedTriangle(pair.b), c_.direction_F,
+                                                   c_.tolerance_m, kAhead),
+                        .computed = false,
+                        .exact = {}});
     }
     std::inplace_merge(known_.begin(), known_.begin() + old_size, known_.end());
     pairs_.clear();
@@ -174,16 +177,16 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
     // Given a depth where M is expected to be apart, past t1: the first
     // swept stretch below reaches it at once, and brings the pairs at t1.
     const bool hinted = c.depth_hint_m > t1 + 2 * c.tolerance_m;
+    std::vector<TrianglePair> found_at_t1;  // new pairs the query at t1 found
     double stretch;
     if (hinted) {
       stretch = c.depth_hint_m - t1;
     } else {
       // A pair that could extend the run past t* meets at t*, so one query
       // there, for the pairs not known yet, usually settles it.
-      std::vector<TrianglePair> fresh;
       FindIntersectingTriangles(c.moving_model, MovedBack(c, t1), c.fixed_model,
-                                Isometry3d::Identity(), c.tolerance_m, fresh, known.pairs());
-      known.Add(std::move(fresh));
+                                Isometry3d::Identity(), c.tolerance_m, found_at_t1, known.pairs());
+      known.Add(found_at_t1);
       t_star = known.ExtendRun(t_star);
       settled = t_star == t1;
       // The first stretch is as long as the run grew at t1: a short sweep
@@ -208,8 +211,15 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
       t_star = known.ExtendRun(t_star);
       settled = t_star + c.tolerance_m <= covered;
     }
-    // The pairs touching at t*: all known, since [t1, covered] holds t*.
+    // The pairs that may touch at t*: all known, since [t1, covered] holds
+    // t*; those the query at t1 found (t* = t1) stand whatever their
+    // bounds' rounding says.
     at_t_star = known.MayTouchAt(t_star);
+    if (t_star == t1 && !found_at_t1.empty()) {
+      at_t_star.insert(at_t_star.end(), found_at_t1.begin(), found_at_t1.end());
+      std::sort(at_t_star.begin(), at_t_star.end());
+      at_t_star.erase(std::unique(at_t_star.begin(), at_t_star.end()), at_t_star.end());
+    }
   }
 
   ContactSet set;
