@@ -178,8 +178,7 @@ class BucketTest {
       }
       faces_a &= meets;
     }
-    const PlacedFace overlap{{}, {}, Vector3d(lo[0], lo[1], lo[2]), Vector3d(hi[0], hi[1], hi[2])};
-    Crop(list_b, overlap);
+    Crop(list_b, lo, hi);
     thread_local BucketBoxes boxes_b;
     boxes_b.Set(list_b, margin_);
     for (; faces_a != 0; faces_a &= faces_a - 1) {
@@ -285,16 +284,16 @@ class BucketTest {
     hi = hi.cwiseMax(face->hi);
   }
 
-  // Keeps the entries whose boxes meet `region`, without a branch per
-  // entry: which ones go is as good as random.
-  static void Crop(std::vector<Entry>& list, const PlacedFace& region) {
+  // Keeps the entries whose boxes meet the box [lo, hi], without a branch
+  // per entry: which ones go is as good as random.
+  static void Crop(std::vector<Entry>& list, const double (&lo)[3], const double (&hi)[3]) {
     size_t kept = 0;
     for (const Entry& e : list) {
       const PlacedFace& f = *e.face;
       list[kept] = e;
-      kept += (f.lo[0] <= region.hi[0]) & (region.lo[0] <= f.hi[0]) &  //
-              (f.lo[1] <= region.hi[1]) & (region.lo[1] <= f.hi[1]) &  //
-              (f.lo[2] <= region.hi[2]) & (region.lo[2] <= f.hi[2]);
+      kept += (f.lo[0] <= hi[0]) & (lo[0] <= f.hi[0]) &  //
+              (f.lo[1] <= hi[1]) & (lo[1] <= f.hi[1]) &  //
+              (f.lo[2] <= hi[2]) & (lo[2] <= f.hi[2]);
     }
     list.resize(kept);
   }

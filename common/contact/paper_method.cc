@@ -265,10 +265,8 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   std::vector<int> deepest_first(num_vertices);
   for (int i = 0; i < num_vertices; ++i) deepest_first[i] = i;
   if (num_vertices > 0) {
-    const auto deepest =
-        std::max_element(points.begin(), points.end(),
-                         [&](const Vector2d& x, const Vector2d& y) { return x.dot(u) < y.dot(u); });
-    std::swap(deepest_first[0], deepest_first[deepest - points.begin()]);
+    std::swap(deepest_first[0],
+              deepest_first[std::max_element(backs.begin(), backs.end()) - backs.begin()]);
   }
 
   PassResult result;
@@ -327,9 +325,10 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   // whose bound cannot matter: most vertices of a deep contact stop at
   // once. Worth its sort only when the buckets the vertices meet hold more
   // segments than the sort costs.
+  std::vector<int> vertex_bucket(num_vertices);
   int64_t meetings = 0;
-  for (double key : keys) {
-    const int b = bucket_of(key);
+  for (int i = 0; i < num_vertices; ++i) {
+    const int b = vertex_bucket[i] = bucket_of(keys[i]);
     meetings += bucket_start[b + 1] - bucket_start[b];
   }
   const bool by_ahead =
@@ -350,7 +349,7 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   }
   for (int i : deepest_first) {
     if (!penetration_test_passes(i)) continue;
-    const int b = bucket_of(keys[i]);
+    const int b = vertex_bucket[i];
     for (int k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
       if (!test(i, bucket_segment[k]) && by_ahead) break;
     }
