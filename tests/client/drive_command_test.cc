@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "client/exit_codes.h"
+#include "tests/common/scratch_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::cli {
@@ -52,7 +53,7 @@ TEST_F(DriveCommandTest, PressMotionTouches) {
 // A JSON-lines path with times plays every pose; a bad line fails before
 // anything is sent.
 TEST_F(DriveCommandTest, JsonLinesPath) {
-  const std::string path = ::testing::TempDir() + "/drive_path.jsonl";
+  const std::string path = (ScratchDir("drive") / "path.jsonl").string();
   std::ofstream(path) << "{\"t_s\": 0, \"pose\": [0, 0, 0.05, 0, 0, 0]}\n"
                       << "{\"t_s\": 0.01, \"pose\": [0, 0, 0.04, 0, 0, 0]}\n"
                       << "{\"t_s\": 0.02, \"pose\": [0, 0, 0.03, 0, 0, 0]}\n";

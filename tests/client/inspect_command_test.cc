@@ -8,16 +8,14 @@
 #include <sstream>
 
 #include "client/exit_codes.h"
+#include "tests/common/scratch_dir.h"
 
 namespace hs::cli {
 namespace {
 
-// Writes a closed tetrahedron as OBJ into the temp folder, named after the
-// running test: ctest runs the tests of this file in parallel processes.
+// Writes a closed tetrahedron as OBJ into a scratch folder of this process.
 std::string WriteTetrahedron() {
-  const auto path =
-      std::filesystem::path(testing::TempDir()) /
-      (std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_tetra.obj");
+  const std::filesystem::path path = ScratchDir("inspect") / "tetra.obj";
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
                          "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
   return path.string();

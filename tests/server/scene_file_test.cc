@@ -5,6 +5,8 @@
 
 #include <filesystem>
 
+#include "tests/common/scratch_dir.h"
+
 namespace hs {
 namespace {
 
@@ -38,8 +40,7 @@ TEST(SceneFileTest, BundledDemoSceneLoads) {
 // Model files are found relative to the scene file, with unit scale and
 // material overrides by face group.
 TEST(SceneFileTest, ModelFileWithMaterialOverride) {
-  const auto dir = std::filesystem::path(testing::TempDir()) / "scene_file_test";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = ScratchDir("scene_file_test");
   std::filesystem::copy_file(std::string(HS_TEST_DATA_DIR) + "/cube.iv", dir / "cube.iv",
                              std::filesystem::copy_options::overwrite_existing);
   const auto spec = Parse(R"(

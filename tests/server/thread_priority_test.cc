@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "server/scene_registry.h"
+#include "tests/common/scratch_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs {
@@ -74,9 +75,7 @@ TEST(ThreadPriorityTest, SceneThreadsRunRealtime) {
   limits.threads_per_scene = 2;
   limits.realtime_priority = 7;
   Metrics metrics;
-  const std::string dir = ::testing::TempDir() + "/thread_priority_test_models";
-  std::filesystem::create_directories(dir);
-  SceneRegistry registry(limits, dir, metrics);
+  SceneRegistry registry(limits, ScratchDir("models").string(), metrics);
   ASSERT_TRUE(registry.Create(testing::SmallScene("rt"), "").ok());
   // The threads take their scheduling as they start: wait for all, 2 s at most.
   std::vector<std::string> found;

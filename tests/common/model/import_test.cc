@@ -16,6 +16,7 @@
 #include "common/hds/mesh_report.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/common/scratch_dir.h"
 
 namespace hs {
 namespace {
@@ -24,16 +25,6 @@ using ::testing::ElementsAreArray;
 using ::testing::HasSubstr;
 
 std::string DataPath(const std::string& name) { return std::string(HS_TEST_DATA_DIR) + "/" + name; }
-
-// A fresh directory under the test temp dir, for files a test writes; one
-// per process, so that test runs side by side do not meet.
-std::filesystem::path ScratchDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
-                                    ("hs_import_test_" + std::to_string(getpid())) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 Vector3d FaceNormal(const HapticObject& object, FaceId f) {
   const auto& v = object.face(f).vertices;
