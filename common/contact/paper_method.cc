@@ -82,43 +82,49 @@ struct Candidates {
   std::vector<Triangle3d> triangles;
 };
 
-// The distinct ids of `ids` (all below `count`), sorted: a mark per id
-// keeps the first of each, so only the distinct ones are sorted.
-template <typename Id>
-std::vector<Id> DistinctSorted(std::span<const Id> ids, int count) {
-  std::vector<uint8_t> seen(count, 0);
-  std::vector<Id> distinct;
-  for (Id id : ids) {
-    if (!seen[id]) {
-      seen[id] = 1;
-      distinct.push_back(id);
+// A set of ids below a count, as one bit each: marking is a store, and the
+// ids come out in increasing order by a scan of the words, with no sort.
+class IdMarks {
+ public:
+  explicit IdMarks(int count) : words_((count + 63) / 64, 0) {}
+
+  void Mark(int id) { words_[id >> 6] |= uint64_t{1} << (id & 63); }
+
+  template <typename Id>
+  std::vector<Id> Sorted() const {
+    std::vector<Id> ids;
+    for (size_t w = 0; w < words_.size(); ++w) {
+      for (uint64_t bits = words_[w]; bits != 0; bits &= bits - 1) {
+        ids.push_back(static_cast<Id>(64 * w + std::countr_zero(bits)));
+      }
     }
+    return ids;
   }
-  std::sort(distinct.begin(), distinct.end());
-  return distinct;
-}
+
+ private:
+  std::vector<uint64_t> words_;
+};
 
 template <typename PositionOf>
 Candidates Gather(const HapticObject& object, std::span<const FaceId> paired_faces,
                   PositionOf position_of) {
-  const std::vector<FaceId> faces = DistinctSorted(paired_faces, object.num_faces());
-  std::vector<VertexId> corners;
-  std::vector<EdgeId> sides;
-  corners.reserve(3 * faces.size());
-  sides.reserve(3 * faces.size());
+  IdMarks face_marks(object.num_faces());
+  for (FaceId f : paired_faces) face_marks.Mark(f);
+  const std::vector<FaceId> faces = face_marks.Sorted<FaceId>();
+  IdMarks corner_marks(object.num_vertices()), side_marks(object.num_edges());
   for (FaceId f : faces) {
     const Face& face = object.face(f);
-    corners.insert(corners.end(), face.vertices.begin(), face.vertices.end());
-    sides.insert(sides.end(), face.edges.begin(), face.edges.end());
+    for (VertexId v : face.vertices) corner_marks.Mark(v);
+    for (EdgeId e : face.edges) side_marks.Mark(e);
   }
   Candidates c;
   // Each vertex placed once; the edges and triangles look their ends up.
   std::vector<Vector3d> placed(object.num_vertices());
-  for (VertexId v : DistinctSorted<VertexId>(corners, object.num_vertices())) {
+  for (VertexId v : corner_marks.Sorted<VertexId>()) {
     placed[v] = position_of(v);
     c.vertices.push_back({v, placed[v]});
   }
-  for (EdgeId e : DistinctSorted<EdgeId>(sides, object.num_edges())) {
+  for (EdgeId e : side_marks.Sorted<EdgeId>()) {
     const Edge& edge = object.edge(e);
     c.edges.push_back({e, edge.vertices[0], edge.vertices[1], placed[edge.vertices[0]],
                        placed[edge.vertices[1]]});
@@ -148,7 +154,7 @@ struct Crossing {
 // when the neighbouring edges that would cover those endpoints are not
 // candidates. Nothing when the line misses the segment.
 std::optional<Crossing> CrossingDepth(const Vector2d& v, const Vector2d& u, const Vector2d& a,
-                                      const Vector2d& b, double tol) {
+                                      const Vector2d& b, double length, double tol) {
   const Vector2d va = a - v, vb = b - v;
   // Signed distances of the endpoints from the line, and their positions
   // behind v along it; no division, so no blow-up near parallel.
@@ -164,7 +170,6 @@ std::optional<Crossing> CrossingDepth(const Vector2d& v, const Vector2d& u, cons
     if (g > best) best = g, r_best = r;
   }
   if (best == -kInf) return std::nullopt;
-  const double length = (b - a).norm();
   return Crossing{best, r_best * length <= tol, (1 - r_best) * length <= tol};
 }
 
@@ -253,9 +258,12 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   std::vector<std::array<double, 2>> bands(num_segments);
   // No point of segment j lies further back along u than its end `ahead[j]`
   // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
-  std::vector<double> ahead(num_segments), segment_sizes(num_segments);
+  std::vector<double> ahead(num_segments), lengths(num_segments);
+  double largest_segment = 0;  // |a| + |b|, L1
   for (int j = 0; j < num_segments; ++j) {
-    segment_sizes[j] = segments[j][0].cwiseAbs().sum() + segments[j][1].cwiseAbs().sum();
+    largest_segment = std::max(largest_segment,
+                               segments[j][0].cwiseAbs().sum() + segments[j][1].cwiseAbs().sum());
+    lengths[j] = (segments[j][1] - segments[j][0]).norm();
     const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
     const double slack = 2 * tol + 1e-12 * (std::abs(ka) + std::abs(kb));
     bands[j] = {std::min(ka, kb) - slack, std::max(ka, kb) + slack};
@@ -270,25 +278,26 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   }
 
   PassResult result;
-  // Tests vertex i against segment j; false when segment j, and any further
-  // back, cannot give a d that matters (-tol, or tol under the deepest d so
-  // far; rounding, relative to the coordinates, may lift d a hair over its
-  // bound). Without skip_shallow_crossings, every crossing is computed.
-  auto test = [&](int i, int j) {
-    const Vector2d& v = points[i];
-    const double at = backs[i];
-    const double matters =
-        options.skip_shallow_crossings ? std::max(-tol, result.d_max - tol) : -tol;
-    if (options.skip_shallow_crossings &&
-        at - ahead[j] + 1e-12 * (sizes[i] + segment_sizes[j]) < matters) {
-      return false;
-    }
-    const std::optional<Crossing> c = CrossingDepth(v, u, segments[j][0], segments[j][1], tol);
-    if (c && c->d >= matters) {
+  // The least d that still matters: -tol, or tol under the deepest d so far
+  // (without skip_shallow_crossings, -tol: every crossing is computed).
+  auto matters = [&] {
+    return options.skip_shallow_crossings ? std::max(-tol, result.d_max - tol) : -tol;
+  };
+  // Whether segment j, with no point a line through vertex i meets further
+  // back along u than `behind`, cannot give a d that matters; rounding,
+  // relative to the coordinates, may lift d a hair over its bound.
+  auto out_of_reach = [&](int i, double behind) {
+    return options.skip_shallow_crossings &&
+           backs[i] - behind + 1e-12 * (sizes[i] + largest_segment) < matters();
+  };
+  // Vertex i against segment j: keeps the crossing if it matters.
+  auto cross = [&](int i, int j) {
+    const std::optional<Crossing> c =
+        CrossingDepth(points[i], u, segments[j][0], segments[j][1], lengths[j], tol);
+    if (c && c->d >= matters()) {
       result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
       result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
     }
-    return true;
   };
   auto penetration_test_passes = [&](int i) {
     return options.penetration != PenetrationTest::kInsideTriangle ||
@@ -300,19 +309,31 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     for (int i : deepest_first) {
       if (!penetration_test_passes(i)) continue;
       for (int j = 0; j < num_segments; ++j) {
-        if (bands[j][0] <= keys[i] && keys[i] <= bands[j][1]) test(i, j);
+        if (bands[j][0] <= keys[i] && keys[i] <= bands[j][1] && !out_of_reach(i, ahead[j])) {
+          cross(i, j);
+        }
       }
     }
     return result;
   }
-  const int num_buckets = std::max(1, num_segments);
-  const double bucket_width = std::max((key_hi - key_lo) / num_buckets, 1e-300);
+  // Buckets about as wide as a band: narrower ones list each segment many
+  // times over (the listing then costs more than the tests it saves),
+  // wider ones hold more segments that miss the line.
+  double band_sum = 0;
+  for (const auto& band : bands) band_sum += band[1] - band[0];
+  const double bucket_width = std::max({(key_hi - key_lo) / std::max(1, num_segments),
+                                        band_sum / std::max(1, num_segments), 1e-300});
+  const int num_buckets = std::clamp(static_cast<int>((key_hi - key_lo) / bucket_width) + 1, 1,
+                                     std::max(1, num_segments));
+  // Clamped before the cast, which then floors (the value is >= 0).
   auto bucket_of = [&](double key) {
-    return std::clamp(static_cast<int>(std::floor((key - key_lo) / bucket_width)), 0,
-                      num_buckets - 1);
+    return static_cast<int>(
+        std::clamp((key - key_lo) / bucket_width, 0.0, static_cast<double>(num_buckets - 1)));
   };
-  // Bucket b lists bucket_segment[bucket_start[b] .. bucket_start[b + 1])
-  // (a counting sort).
+  // Bucket b lists entries[bucket_start[b] .. bucket_start[b + 1]) (a
+  // counting sort): the segments whose band meets it, each with the least
+  // u over its part that the lines through the bucket's vertices can meet
+  // (with the band's slack), a bound on their d tighter than `ahead`.
   std::vector<std::array<int, 2>> segment_buckets(num_segments, {0, -1});
   std::vector<int> bucket_start(num_buckets + 1, 0);
   for (int j = 0; j < num_segments; ++j) {
@@ -321,37 +342,48 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) ++bucket_start[b + 1];
   }
   for (int b = 0; b < num_buckets; ++b) bucket_start[b + 1] += bucket_start[b];
-  // With each bucket listed by `ahead`, a vertex stops at the first segment
-  // whose bound cannot matter: most vertices of a deep contact stop at
-  // once. Worth its sort only when the buckets the vertices meet hold more
-  // segments than the sort costs.
-  std::vector<int> vertex_bucket(num_vertices);
-  int64_t meetings = 0;
-  for (int i = 0; i < num_vertices; ++i) {
-    const int b = vertex_bucket[i] = bucket_of(keys[i]);
-    meetings += bucket_start[b + 1] - bucket_start[b];
-  }
-  const bool by_ahead =
-      options.skip_shallow_crossings &&
-      meetings > int64_t{num_segments} * static_cast<int64_t>(std::bit_width(segments.size()));
-  std::vector<int> fill_order(num_segments);
-  for (int j = 0; j < num_segments; ++j) fill_order[j] = j;
-  if (by_ahead) {
-    std::sort(fill_order.begin(), fill_order.end(),
-              [&](int x, int y) { return ahead[x] < ahead[y]; });
-  }
-  std::vector<int> bucket_segment(bucket_start[num_buckets]);
+  struct Entry {
+    double behind;
+    int segment;
+  };
+  std::vector<Entry> entries(bucket_start[num_buckets]);
   std::vector<int> cursor(bucket_start.begin(), bucket_start.end() - 1);
-  for (int j : fill_order) {
+  for (int j = 0; j < num_segments; ++j) {
+    const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
+    const double ua = segments[j][0].dot(u), ub = segments[j][1].dot(u);
+    // The band's slack, and the rounding of the bucket's edges.
+    const double slack = (bands[j][1] - bands[j][0] - std::abs(kb - ka)) / 2 +
+                         1e-12 * (std::abs(key_lo) + std::abs(key_hi));
     for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) {
-      bucket_segment[cursor[b]++] = j;
+      // The bucket's keys, the lowest and highest buckets open-ended.
+      const double k0 = b == 0 ? -kInf : key_lo + b * bucket_width - slack;
+      const double k1 = b == num_buckets - 1 ? kInf : key_lo + (b + 1) * bucket_width + slack;
+      double behind = std::min(ua, ub);
+      if (kb != ka) {  // u is linear along the segment: least at an end of its part
+        const double t0 = std::clamp((k0 - ka) / (kb - ka), 0.0, 1.0);
+        const double t1 = std::clamp((k1 - ka) / (kb - ka), 0.0, 1.0);
+        behind = std::max(behind, std::min(ua + t0 * (ub - ua), ua + t1 * (ub - ua)));
+      }
+      entries[cursor[b]++] = {behind, j};
+    }
+  }
+  // Each bucket by `behind`: a vertex stops at the first segment whose
+  // bound cannot matter, and most vertices of a deep contact stop early.
+  if (options.skip_shallow_crossings) {
+    for (int b = 0; b < num_buckets; ++b) {
+      std::sort(entries.begin() + bucket_start[b], entries.begin() + bucket_start[b + 1],
+                [](const Entry& x, const Entry& y) { return x.behind < y.behind; });
     }
   }
   for (int i : deepest_first) {
     if (!penetration_test_passes(i)) continue;
-    const int b = vertex_bucket[i];
+    const int b = bucket_of(keys[i]);
     for (int k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
-      if (!test(i, bucket_segment[k]) && by_ahead) break;
+      const Entry& e = entries[k];
+      if (out_of_reach(i, e.behind)) break;  // and so is the rest of the bucket
+      const std::array<double, 2>& band = bands[e.segment];
+      if (keys[i] < band[0] || band[1] < keys[i]) continue;  // misses the line
+      cross(i, e.segment);
     }
   }
   return result;
