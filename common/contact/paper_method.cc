@@ -215,13 +215,17 @@ struct PassResult {
   /// Largest d over the crossings with d >= -tol, clamped to >= 0
   /// (touching is depth 0); -inf when no vertex penetrates.
   double d_max = -kInf;
+  /// The pass stopped once d_max reached its `stop_at`: d_max is then only
+  /// a lower bound of the pass's largest d.
+  bool cut_short = false;
 };
 
 // Vertices of one side against edges of the other, the line through each
 // vertex along `u`: d_ij = (V - P_ij).u, kept when >= -tol and within tol
-// of the deepest so far.
+// of the deepest so far; stops once d_max reaches `stop_at`.
 PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, int plane,
-                   const Vector2d& u, double tol, const ProjectionOptions& options) {
+                   const Vector2d& u, double tol, const ProjectionOptions& options,
+                   double stop_at) {
   std::vector<std::array<Vector2d, 2>> segments;
   segments.reserve(edge_side.edges.size());
   for (const CandidateEdge& e : edge_side.edges) {
@@ -297,6 +301,7 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     if (c && c->d >= matters()) {
       result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
       result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
+      result.cut_short = result.d_max >= stop_at;
     }
   };
   auto penetration_test_passes = [&](int i) {
@@ -311,6 +316,7 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
       for (int j = 0; j < num_segments; ++j) {
         if (bands[j][0] <= keys[i] && keys[i] <= bands[j][1] && !out_of_reach(i, ahead[j])) {
           cross(i, j);
+          if (result.cut_short) return result;
         }
       }
     }
@@ -384,6 +390,7 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
       const std::array<double, 2>& band = bands[e.segment];
       if (keys[i] < band[0] || band[1] < keys[i]) continue;  // misses the line
       cross(i, e.segment);
+      if (result.cut_short) return result;
     }
   }
   return result;
@@ -399,6 +406,8 @@ struct PlaneResult {
   double t = kInf;
   PassResult moving;  // M's vertices against F's edges, along u_p
   PassResult fixed;   // F's vertices against M's edges, along -u_p (fig. 6)
+  /// A pass stopped early: t is only a lower bound of the plane's depth.
+  bool cut_short = false;
 };
 
 // The contact vertices of one pass: those whose d_i reaches d_plane within
@@ -487,26 +496,55 @@ ContactSet ReconstructByProjection(const ContactContext& context,
   // direction it pushes M out of F, so it stands in for one.
   set.normal_W = -D;
 
+  // The planes in order of preference: where D projects longest first (its
+  // t divides by the largest |D_p|, so it is the best conditioned), then
+  // the lowest index.
+  std::array<double, 3> norms;
+  for (int plane = 0; plane < 3; ++plane) norms[plane] = Project(D, plane).norm();
+  std::array<int, 3> order = {0, 1, 2};
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return norms[x] > norms[y]; });
   std::array<PlaneResult, 3> planes;
-  for (int plane = 0; plane < 3; ++plane) {
-    const Vector2d D_p = Project(D, plane);
-    const double norm = D_p.norm();
-    if (!(norm >= kMinProjectedDirection)) continue;
-    const Vector2d u = D_p / norm;
+  // Both passes of a plane, stopping once its depth reaches `stop_t`.
+  auto run = [&](int plane, double stop_t) {
     PlaneResult& r = planes[plane];
+    const double norm = norms[plane];
+    const Vector2d u = Project(D, plane) / norm;
+    r = PlaneResult{};
     r.projected_direction = norm;
-    r.moving = RunPass(moving, fixed, plane, u, tol, options);
-    r.fixed = RunPass(fixed, moving, plane, -u, tol, options);
-    if (r.moving.hits.empty() && r.fixed.hits.empty()) continue;
-    r.found = true;
+    r.moving = RunPass(moving, fixed, plane, u, tol, options, stop_t * norm);
+    if (!r.moving.cut_short)
+      r.fixed = RunPass(fixed, moving, plane, -u, tol, options, stop_t * norm);
+    r.cut_short = r.moving.cut_short || r.fixed.cut_short;
+    r.found = !(r.moving.hits.empty() && r.fixed.hits.empty());
     r.d_plane = std::max(r.moving.d_max, r.fixed.d_max);
-    r.t = r.d_plane / norm;
-    set.plane_depths_m[plane] = r.t;
+    r.t = r.found ? r.d_plane / norm : kInf;
+  };
+  // The first plane in that order to find anything, the reference, is run
+  // in full. Each later one stops once its depth reaches the reference's
+  // less the tolerance: from there it can neither undercut the reference
+  // by more than the tolerance nor be preferred to it, so the choice below
+  // is the reference whatever the rest of that plane. A later plane that
+  // ends below that undercuts it, and then every plane is run in full.
+  int reference = -1;
+  bool undercut = false;
+  for (int plane : order) {
+    if (!(norms[plane] >= kMinProjectedDirection)) continue;
+    const bool full = reference < 0 || options.exact_plane_depths;
+    run(plane, full ? kInf : planes[reference].t - tol);
+    const PlaneResult& r = planes[plane];
+    if (reference < 0) {
+      if (r.found) reference = plane;
+    } else if (r.found && !r.cut_short && r.t < planes[reference].t - tol) {
+      undercut = true;
+    }
+  }
+  for (int plane = 0; plane < 3; ++plane) {
+    if (undercut && planes[plane].cut_short) run(plane, kInf);
+    if (planes[plane].found) set.plane_depths_m[plane] = planes[plane].t;
   }
 
   // t_paper = min over the planes that found something. Among planes within
-  // tol of it, the one where D projects longest wins: its t divides by the
-  // largest |D_p|, so it is the best conditioned; then the lowest index.
+  // tol of it, the first in the order of preference wins.
   int chosen = -1;
   double t_min = kInf;
   for (const PlaneResult& r : planes) {

@@ -30,6 +30,10 @@ struct ProjectionOptions {
   /// deepest (a speed-up with the same answer; tests compare it with false,
   /// which computes every crossing).
   bool skip_shallow_crossings = true;
+  /// Run every plane in full. Otherwise a plane that cannot change the
+  /// answer stops early, and ContactSet::plane_depths_m holds for it a
+  /// lower bound of its depth (a speed-up with the same answer).
+  bool exact_plane_depths = false;
 };
 
 /// ReconstructByProjection (paper_method.h) with explicit options; the result
