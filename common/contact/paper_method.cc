@@ -398,8 +398,6 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
 
 struct PlaneResult {
   bool found = false;
-  /// |D_p|.
-  double projected_direction = 0;
   /// d_plane = max(d_maxm, d_maxf), plane metres.
   double d_plane = 0;
   /// t_plane = d_plane / |D_p|, metres along D.
@@ -510,7 +508,6 @@ ContactSet ReconstructByProjection(const ContactContext& context,
     const double norm = norms[plane];
     const Vector2d u = Project(D, plane) / norm;
     r = PlaneResult{};
-    r.projected_direction = norm;
     r.moving = RunPass(moving, fixed, plane, u, tol, options, stop_t * norm);
     if (!r.moving.cut_short)
       r.fixed = RunPass(fixed, moving, plane, -u, tol, options, stop_t * norm);
@@ -543,17 +540,22 @@ ContactSet ReconstructByProjection(const ContactContext& context,
     if (planes[plane].found) set.plane_depths_m[plane] = planes[plane].t;
   }
 
-  // t_paper = min over the planes that found something. Among planes within
-  // tol of it, the first in the order of preference wins.
-  int chosen = -1;
-  double t_min = kInf;
-  for (const PlaneResult& r : planes) {
-    if (r.found) t_min = std::min(t_min, r.t);
-  }
-  for (int plane = 0; plane < 3; ++plane) {
-    const PlaneResult& r = planes[plane];
-    if (!r.found || r.t > t_min + tol) continue;
-    if (chosen < 0 || r.projected_direction > planes[chosen].projected_direction) chosen = plane;
+  // t_paper = min over the planes that found something; among planes within
+  // tol of it, the first in the order of preference wins. Without an
+  // undercut that is the reference, as above (taken as such: a bound one
+  // rounding under the reference's less tol must not unseat it).
+  int chosen = reference;
+  if (undercut) {
+    double t_min = kInf;
+    for (const PlaneResult& r : planes) {
+      if (r.found) t_min = std::min(t_min, r.t);
+    }
+    for (int plane : order) {
+      if (planes[plane].found && planes[plane].t <= t_min + tol) {
+        chosen = plane;
+        break;
+      }
+    }
   }
   if (chosen < 0) {
     // No plane saw a crossing: the pairs only graze each other.
