@@ -89,7 +89,7 @@ struct ContactSet {
   /// Paper method: the reversing distance found in each projection plane
   /// (xy, yz, xz), metres; +inf where the plane was unusable or found none.
   /// Exact for the plane that gave depth_m. A plane that cannot change the
-  /// answer (its distance is at least depth_m less the tolerance) stops
+  /// answer (its distance plus the tolerance is at least depth_m) stops
   /// once that shows, and holds the distance it had reached: a lower bound
   /// of its own, at least depth_m less the tolerance.
   std::array<double, 3> plane_depths_m = {std::numeric_limits<double>::infinity(),

@@ -215,17 +215,19 @@ struct PassResult {
   /// Largest d over the crossings with d >= -tol, clamped to >= 0
   /// (touching is depth 0); -inf when no vertex penetrates.
   double d_max = -kInf;
-  /// The pass stopped once d_max reached its `stop_at`: d_max is then only
-  /// a lower bound of the pass's largest d.
+  /// The pass stopped once its depth reached `stop_t` less the tolerance:
+  /// d_max is then only a lower bound of the pass's largest d.
   bool cut_short = false;
 };
 
 // Vertices of one side against edges of the other, the line through each
 // vertex along `u`: d_ij = (V - P_ij).u, kept when >= -tol and within tol
-// of the deepest so far; stops once d_max reaches `stop_at`.
+// of the deepest so far. Stops once d_max / `norm` (|D_p|: the depth along
+// D) + tol >= `stop_t`, the very expression the choice between planes
+// compares, so that a plane stopped is one that choice would pass over.
 PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, int plane,
-                   const Vector2d& u, double tol, const ProjectionOptions& options,
-                   double stop_at) {
+                   const Vector2d& u, double tol, const ProjectionOptions& options, double norm,
+                   double stop_t) {
   std::vector<std::array<Vector2d, 2>> segments;
   segments.reserve(edge_side.edges.size());
   for (const CandidateEdge& e : edge_side.edges) {
@@ -301,7 +303,7 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     if (c && c->d >= matters()) {
       result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
       result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
-      result.cut_short = result.d_max >= stop_at;
+      result.cut_short = result.d_max / norm + tol >= stop_t;
     }
   };
   auto penetration_test_passes = [&](int i) {
@@ -502,36 +504,38 @@ ContactSet ReconstructByProjection(const ContactContext& context,
   std::array<int, 3> order = {0, 1, 2};
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return norms[x] > norms[y]; });
   std::array<PlaneResult, 3> planes;
-  // Both passes of a plane, stopping once its depth reaches `stop_t`.
+  // Both passes of a plane, stopping once its depth plus tol reaches `stop_t`.
   auto run = [&](int plane, double stop_t) {
     PlaneResult& r = planes[plane];
     const double norm = norms[plane];
     const Vector2d u = Project(D, plane) / norm;
     r = PlaneResult{};
-    r.moving = RunPass(moving, fixed, plane, u, tol, options, stop_t * norm);
+    r.moving = RunPass(moving, fixed, plane, u, tol, options, norm, stop_t);
     if (!r.moving.cut_short)
-      r.fixed = RunPass(fixed, moving, plane, -u, tol, options, stop_t * norm);
+      r.fixed = RunPass(fixed, moving, plane, -u, tol, options, norm, stop_t);
     r.cut_short = r.moving.cut_short || r.fixed.cut_short;
     r.found = !(r.moving.hits.empty() && r.fixed.hits.empty());
     r.d_plane = std::max(r.moving.d_max, r.fixed.d_max);
     r.t = r.found ? r.d_plane / norm : kInf;
   };
   // The first plane in that order to find anything, the reference, is run
-  // in full. Each later one stops once its depth reaches the reference's
-  // less the tolerance: from there it can neither undercut the reference
-  // by more than the tolerance nor be preferred to it, so the choice below
-  // is the reference whatever the rest of that plane. A later plane that
-  // ends below that undercuts it, and then every plane is run in full.
+  // in full. Each later one stops once its depth t satisfies t_ref <= t +
+  // tol (rounded as the choice below rounds it; its depth only grows from
+  // there): then it neither undercuts the reference by more than the
+  // tolerance nor is preferred to it, and the choice is the reference
+  // whatever the rest of that plane. A later plane that ends without
+  // satisfying it undercuts the reference, and then every plane runs in
+  // full.
   int reference = -1;
   bool undercut = false;
   for (int plane : order) {
     if (!(norms[plane] >= kMinProjectedDirection)) continue;
     const bool full = reference < 0 || options.exact_plane_depths;
-    run(plane, full ? kInf : planes[reference].t - tol);
+    run(plane, full ? kInf : planes[reference].t);
     const PlaneResult& r = planes[plane];
     if (reference < 0) {
       if (r.found) reference = plane;
-    } else if (r.found && !r.cut_short && r.t < planes[reference].t - tol) {
+    } else if (r.found && !r.cut_short && !(planes[reference].t <= r.t + tol)) {
       undercut = true;
     }
   }
@@ -542,8 +546,8 @@ ContactSet ReconstructByProjection(const ContactContext& context,
 
   // t_paper = min over the planes that found something; among planes within
   // tol of it, the first in the order of preference wins. Without an
-  // undercut that is the reference, as above (taken as such: a bound one
-  // rounding under the reference's less tol must not unseat it).
+  // undercut that is the reference: t_ref <= t + tol held for every plane,
+  // so for the least t too.
   int chosen = reference;
   if (undercut) {
     double t_min = kInf;

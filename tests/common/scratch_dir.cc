@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <string>
 #include <system_error>
 
@@ -22,6 +23,10 @@ struct ProcessScratch {
 }  // namespace
 
 std::filesystem::path ScratchDir(std::string_view name) {
+  // One plain name: an absolute path or ".." would put the directory, and
+  // what remove_all then deletes, outside the scratch tree.
+  const std::filesystem::path relative(name);
+  if (name.empty() || relative.filename() != relative || name == "." || name == "..") std::abort();
   static ProcessScratch scratch;
   const std::filesystem::path dir = scratch.root / name;
   std::filesystem::remove_all(dir);
