@@ -261,6 +261,12 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     key_lo = std::min(key_lo, keys[i]);
     key_hi = std::max(key_hi, keys[i]);
   }
+  // Each segment's ends across the line (key, along w) and along it (back,
+  // along u), and the slack of its band for the tolerance and rounding.
+  struct Ends {
+    double key_a, key_b, back_a, back_b, slack;
+  };
+  std::vector<Ends> ends(num_segments);
   std::vector<std::array<double, 2>> bands(num_segments);
   // No point of segment j lies further back along u than its end `ahead[j]`
   // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
@@ -270,10 +276,12 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
     largest_segment = std::max(largest_segment,
                                segments[j][0].cwiseAbs().sum() + segments[j][1].cwiseAbs().sum());
     lengths[j] = (segments[j][1] - segments[j][0]).norm();
-    const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
-    const double slack = 2 * tol + 1e-12 * (std::abs(ka) + std::abs(kb));
-    bands[j] = {std::min(ka, kb) - slack, std::max(ka, kb) + slack};
-    ahead[j] = std::min(segments[j][0].dot(u), segments[j][1].dot(u));
+    Ends& e = ends[j];
+    e.key_a = segments[j][0].dot(w), e.key_b = segments[j][1].dot(w);
+    e.back_a = segments[j][0].dot(u), e.back_b = segments[j][1].dot(u);
+    e.slack = 2 * tol + 1e-12 * (std::abs(e.key_a) + std::abs(e.key_b));
+    bands[j] = {std::min(e.key_a, e.key_b) - e.slack, std::max(e.key_a, e.key_b) + e.slack};
+    ahead[j] = std::min(e.back_a, e.back_b);
   }
   // The deepest vertex first: what can still matter rises at once.
   std::vector<int> deepest_first(num_vertices);
@@ -357,11 +365,10 @@ PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, i
   std::vector<Entry> entries(bucket_start[num_buckets]);
   std::vector<int> cursor(bucket_start.begin(), bucket_start.end() - 1);
   for (int j = 0; j < num_segments; ++j) {
-    const double ka = segments[j][0].dot(w), kb = segments[j][1].dot(w);
-    const double ua = segments[j][0].dot(u), ub = segments[j][1].dot(u);
+    const double ka = ends[j].key_a, kb = ends[j].key_b;
+    const double ua = ends[j].back_a, ub = ends[j].back_b;
     // The band's slack, and the rounding of the bucket's edges.
-    const double slack = (bands[j][1] - bands[j][0] - std::abs(kb - ka)) / 2 +
-                         1e-12 * (std::abs(key_lo) + std::abs(key_hi));
+    const double slack = ends[j].slack + 1e-12 * (std::abs(key_lo) + std::abs(key_hi));
     for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) {
       // The bucket's keys, the lowest and highest buckets open-ended.
       const double k0 = b == 0 ? -kInf : key_lo + b * bucket_width - slack;

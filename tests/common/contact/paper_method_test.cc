@@ -137,17 +137,22 @@ double PairTolerance(const Body& m, const Body& f) {
 
 // The method on a context built by hand, F at the origin (world = F's
 // frame): the BVH's pairs, or with `whole_objects` every face pair, which
-// makes every vertex and edge of both objects a candidate.
+// makes every vertex and edge of both objects a candidate. The pairs are
+// found at the pair's default tolerance; `tolerance`, when given, is the
+// one the method reconstructs at.
 ContactSet RunContext(const Body& m, const Isometry3d& X_FM, const Body& f, const Vector3d& D,
-                      bool whole_objects = false, const ProjectionOptions& options = {}) {
-  const double tol = PairTolerance(m, f);
+                      bool whole_objects = false, const ProjectionOptions& options = {},
+                      std::optional<double> tolerance = std::nullopt) {
+  const double pair_tol = PairTolerance(m, f);
+  const double tol = tolerance.value_or(pair_tol);
   ContactContext context{m.object, m.model, f.object, f.model, X_FM, D.normalized(), tol, {}};
   if (whole_objects) {
     for (FaceId a = 0; a < m.object.num_faces(); ++a) {
       for (FaceId b = 0; b < f.object.num_faces(); ++b) context.pairs.push_back({a, b});
     }
   } else {
-    FindIntersectingTriangles(m.model, X_FM, f.model, Isometry3d::Identity(), tol, context.pairs);
+    FindIntersectingTriangles(m.model, X_FM, f.model, Isometry3d::Identity(), pair_tol,
+                              context.pairs);
   }
   EXPECT_FALSE(context.pairs.empty());
   ContactSet set = ReconstructByProjection(context, options);
@@ -441,13 +446,9 @@ TEST(PaperMethodTest, PlanesStoppedEarlyKeepTheAnswerAtAnyTolerance) {
   const auto t1 = MakeBody(MakeTorus(1.0, 0.3, 24, 12)),
              t2 = MakeBody(MakeTorus(0.8, 0.25, 24, 12));
   const ProjectionOptions exact{.skip_shallow_crossings = false, .exact_plane_depths = true};
-  // The BVH's pairs at the default tolerance, reconstructed at `tol`.
   auto run = [&](const Isometry3d& X_FM, const Vector3d& D, double tol,
                  const ProjectionOptions& options) {
-    ContactContext context{t1->object, t1->model, t2->object, t2->model, X_FM, D, tol, {}};
-    FindIntersectingTriangles(t1->model, X_FM, t2->model, Isometry3d::Identity(),
-                              PairTolerance(*t1, *t2), context.pairs);
-    return ReconstructByProjection(context, options);
+    return RunContext(*t1, X_FM, *t2, D, /*whole_objects=*/false, options, tol);
   };
   std::mt19937 rng(7);
   int compared = 0;
