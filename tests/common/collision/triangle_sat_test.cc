@@ -111,6 +111,47 @@ TEST(TriangleSatTest, FastAnswersAgreeWithEveryAxis) {
   EXPECT_LT(meeting, 54000);
 }
 
+// A resting contact's faces: one triangle touches the other's plane at a
+// corner (put on the plane, so within a rounding of it), the rest of it to
+// one side, the corner inside or outside the other triangle. Here the
+// crossing test cannot answer (a corner is on the plane) and the plane
+// tests can, wrongly, if they round unlike the axes: the answer must be the
+// whole axis set's, both ways round, for touching pairs that meet and ones
+// that do not. Not at zero margin: there the corner's rounding off the
+// plane decides, differently along differently rounded axes
+// (AgreesWithCgalExactPredicate covers exact touching).
+TEST(TriangleSatTest, TouchingCornerAnswersAgreeWithEveryAxis) {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int meeting = 0, apart = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Triangle3d b = {Vector3d(u(rng), u(rng), 0.3 * u(rng)),
+                          Vector3d(u(rng), u(rng), 0.3 * u(rng)),
+                          Vector3d(u(rng), u(rng), 0.3 * u(rng))};
+    const Vector3d n = TriangleNormal(b);
+    // A point of b's plane, inside b or around it.
+    std::uniform_real_distribution<double> w(-0.5, 1.5);
+    const Vector3d corner = b[0] + w(rng) * (b[1] - b[0]) + w(rng) * (b[2] - b[0]);
+    const double side = u(rng) < 0 ? -1 : 1;
+    auto off_plane = [&]() -> Vector3d {
+      return corner + Vector3d(u(rng), u(rng), u(rng)) + side * (0.05 + std::abs(u(rng))) * n;
+    };
+    const Triangle3d a = {corner, off_plane(), off_plane()};
+    const Vector3d direction(u(rng), u(rng), u(rng));
+    for (double margin : {1e-9, 1e-3}) {
+      const bool every_axis = !SweptIntersection(a, b, direction, margin, {0, 0}).empty();
+      ASSERT_EQ(TrianglesIntersect(a, b, margin), every_axis)
+          << "pair " << i << " margin " << margin;
+      ASSERT_EQ(TrianglesIntersect(b, a, margin), every_axis)
+          << "pair " << i << " margin " << margin;
+      meeting += every_axis;
+      apart += !every_axis;
+    }
+  }
+  EXPECT_GT(meeting, 2000);
+  EXPECT_GT(apart, 2000);
+}
+
 // SweptPlaneBounds holds SweptIntersection at zero margin and at the
 // margin, and is looser than it.
 TEST(TriangleSatTest, PlaneBoundsHoldTheIntervals) {
