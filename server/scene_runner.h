@@ -23,6 +23,7 @@
 #include "absl/status/statusor.h"
 #include "haptics/v1/scene.pb.h"
 #include "server/metrics.h"
+#include "server/priority_inheriting_mutex.h"
 #include "server/scene_file.h"
 #include "server/step_snapshot.h"
 
@@ -108,7 +109,7 @@ class SceneRunner {
   const double step_s_;
 
   // The simulation; only the runner's thread steps it, Replace swaps it.
-  mutable std::mutex scene_mu_;
+  mutable PriorityInheritingMutex scene_mu_;
   haptics::v1::SceneSpec spec_;
   LoadedScene loaded_;
   std::shared_ptr<const std::vector<std::string>> names_;
@@ -118,14 +119,14 @@ class SceneRunner {
   std::map<std::string, PendingPose> applied_;  // by tool name
 
   // What the streams send and need.
-  mutable std::mutex io_mu_;
+  mutable PriorityInheritingMutex io_mu_;
   std::map<FrameSink*, Attached> sinks_;
   std::map<std::string, PendingPose> pending_;  // by tool name
   bool stopping_ = false;
 
   // Taken after io_mu_ when both are held.
-  std::mutex stop_mu_;
-  std::condition_variable stop_cv_;  // stop_ or devices_fresh_ set
+  PriorityInheritingMutex stop_mu_;
+  std::condition_variable_any stop_cv_;  // stop_ or devices_fresh_ set
   bool stop_ = false;
   bool devices_fresh_ = false;  // DevicesFreshLocked() held at the last pose
   absl::Status stop_status_;
@@ -136,8 +137,8 @@ class SceneRunner {
   // kMaxQueuedFrames (the hand-over stalled for that many steps) the
   // oldest is dropped and counted in the metrics.
   static constexpr size_t kMaxQueuedFrames = 64;
-  std::mutex fanout_mu_;
-  std::condition_variable fanout_cv_;
+  PriorityInheritingMutex fanout_mu_;
+  std::condition_variable_any fanout_cv_;
   std::deque<std::shared_ptr<const StepSnapshot>> fanout_queue_;
   bool fanout_stop_ = false;
   std::thread fanout_thread_;
@@ -145,7 +146,7 @@ class SceneRunner {
   // the sink is out of sinks_: so io_mu_, which the stepping thread needs,
   // is never held across a stream's write. Taken before io_mu_ when both
   // are held.
-  std::mutex offer_mu_;
+  PriorityInheritingMutex offer_mu_;
   std::vector<FrameSink*> offer_to_;  // scene-frames only
 };
 

@@ -1,0 +1,31 @@
+#include "server/priority_inheriting_mutex.h"
+
+#include <cerrno>
+
+#include "common/core/check.h"
+
+namespace hs {
+
+PriorityInheritingMutex::PriorityInheritingMutex() {
+  pthread_mutexattr_t attributes;
+  HS_CHECK(pthread_mutexattr_init(&attributes) == 0);
+  HS_CHECK(pthread_mutexattr_setprotocol(&attributes, PTHREAD_PRIO_INHERIT) == 0);
+  HS_CHECK(pthread_mutex_init(&mutex_, &attributes) == 0);
+  pthread_mutexattr_destroy(&attributes);
+}
+
+PriorityInheritingMutex::~PriorityInheritingMutex() { pthread_mutex_destroy(&mutex_); }
+
+// Errors here (EDEADLK, EPERM, EINVAL) are misuse by this project, not
+// conditions to report.
+void PriorityInheritingMutex::lock() { HS_CHECK(pthread_mutex_lock(&mutex_) == 0); }
+
+bool PriorityInheritingMutex::try_lock() {
+  const int error = pthread_mutex_trylock(&mutex_);
+  HS_CHECK(error == 0 || error == EBUSY);
+  return error == 0;
+}
+
+void PriorityInheritingMutex::unlock() { HS_CHECK(pthread_mutex_unlock(&mutex_) == 0); }
+
+}  // namespace hs
