@@ -106,11 +106,13 @@ class FrameCounts {
       first_step_ = frame.step();
       first_dropped_ = static_cast<int64_t>(frame.dropped_frames());
       first_missed_ = frame.missed_steps();
+      first_missed_off_cpu_ = frame.missed_steps_off_cpu();
     }
     ++frames_;
     last_step_ = frame.step();
     last_dropped_ = static_cast<int64_t>(frame.dropped_frames());
     last_missed_ = frame.missed_steps();
+    last_missed_off_cpu_ = frame.missed_steps_off_cpu();
   }
   void Fill(StreamReport& report, double window_s) const {
     report.frames = frames_;
@@ -118,6 +120,7 @@ class FrameCounts {
     report.last_step = last_step_;
     report.dropped_frames = last_dropped_ - first_dropped_;
     report.missed_steps = last_missed_ - first_missed_;
+    report.missed_steps_off_cpu = last_missed_off_cpu_ - first_missed_off_cpu_;
     report.frames_per_s = static_cast<double>(frames_) / window_s;
   }
   int64_t frames() const { return frames_; }
@@ -127,6 +130,7 @@ class FrameCounts {
   int64_t first_step_ = 0, last_step_ = 0;
   int64_t first_dropped_ = 0, last_dropped_ = 0;
   int64_t first_missed_ = 0, last_missed_ = 0;
+  int64_t first_missed_off_cpu_ = 0, last_missed_off_cpu_ = 0;
 };
 
 // One device: an Interact stream driving one tool with a press motion.
@@ -323,6 +327,7 @@ StreamReport Pool(const std::vector<StreamReport>& each, std::vector<double>& po
     total.frames += r.frames;
     total.dropped_frames += r.dropped_frames;
     total.missed_steps = std::max(total.missed_steps, r.missed_steps);
+    total.missed_steps_off_cpu = std::max(total.missed_steps_off_cpu, r.missed_steps_off_cpu);
   }
   if (!each.empty()) {
     total.first_step = each.front().first_step;
@@ -678,6 +683,7 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   report.step_ms = Summarize(devices.front()->step_ms());
   report.steps = each.front().frames > 0 ? each.front().last_step - each.front().first_step + 1 : 0;
   report.missed_steps = each.front().missed_steps;
+  report.missed_steps_off_cpu = each.front().missed_steps_off_cpu;
   report.missed_fraction =
       static_cast<double>(report.missed_steps) /
       static_cast<double>(std::max<int64_t>(1, report.steps + report.missed_steps));

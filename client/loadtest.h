@@ -70,8 +70,10 @@ struct StreamReport {
   int64_t last_step = 0;
   /// Frames the server dropped for this stream (from the frames' counters).
   int64_t dropped_frames = 0;
-  /// Steps the scene missed, from the frames' counters.
+  /// Steps the scene missed, and those of them with its stepping thread
+  /// off the CPU (not computing), from the frames' counters.
   int64_t missed_steps = 0;
+  int64_t missed_steps_off_cpu = 0;
   double frames_per_s = 0;
 };
 
@@ -104,6 +106,8 @@ struct LoadReport {
   /// Steps the scene ran and missed in the window (device 0's view).
   int64_t steps = 0;
   int64_t missed_steps = 0;
+  /// Of missed_steps, those with the stepping thread off the CPU.
+  int64_t missed_steps_off_cpu = 0;
   /// missed / (run + missed).
   double missed_fraction = 0;
   /// devices.rtt_ms.p99 / echo.rtt_ms.p99 (0 without echo).

@@ -25,7 +25,8 @@ nlohmann::ordered_json StreamJson(const StreamReport& r) {
           {"first_step", r.first_step},
           {"last_step", r.last_step},
           {"dropped_frames", r.dropped_frames},
-          {"missed_steps", r.missed_steps}};
+          {"missed_steps", r.missed_steps},
+          {"missed_steps_off_cpu", r.missed_steps_off_cpu}};
 }
 
 void PrintRow(const std::string& name, const StreamReport& r, std::ostream& out) {
@@ -51,7 +52,8 @@ void PrintReport(const LoadReport& r, std::ostream& out) {
       << " answered; frames: " << r.devices.frames << " to devices, " << r.viewers_total.frames
       << " to viewers (" << r.viewers_total.dropped_frames << " dropped)\n";
   out << "scene: " << r.steps << " steps, " << r.missed_steps << " missed ("
-      << 100 * r.missed_fraction << "%); step time ms p50 " << r.step_ms.p50 << ", p99 "
+      << 100 * r.missed_fraction << "%; " << r.missed_steps_off_cpu
+      << " with the stepping thread off the CPU); step time ms p50 " << r.step_ms.p50 << ", p99 "
       << r.step_ms.p99 << ", max " << r.step_ms.max << "\n";
   if (r.echo_run) {
     out << "echo (turns with the devices): " << r.echo_request_bytes << " B requests, "
@@ -91,6 +93,7 @@ std::string LoadReportJson(const LoadReport& r) {
                                  {"step_ms", PercentilesJson(r.step_ms)},
                                  {"steps", r.steps},
                                  {"missed_steps", r.missed_steps},
+                                 {"missed_steps_off_cpu", r.missed_steps_off_cpu},
                                  {"missed_fraction", r.missed_fraction},
                                  {"p99_ratio", r.p99_ratio},
                                  {"p99_budget_ms", r.p99_budget_ms},

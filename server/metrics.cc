@@ -38,6 +38,14 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
                        .Help("Steps started more than one step late")
                        .Register(*registry_)
                        .Add({});
+  missed_steps_off_cpu_ =
+      &BuildCounter()
+           .Name("hs_missed_steps_off_cpu_total")
+           .Help(
+               "Missed steps after which the stepping thread had run for less than a step's "
+               "time since the step before (kept off the CPU, not computing)")
+           .Register(*registry_)
+           .Add({});
   auto& clients = BuildGauge().Name("hs_clients").Help("Open streams by kind").Register(*registry_);
   devices_ = &clients.Add({{"kind", "device"}});
   viewers_ = &clients.Add({{"kind", "viewer"}});
@@ -78,7 +86,10 @@ void Metrics::ObserveStep(double step_s, const StageStatsTable& stats_delta) {
   }
 }
 
-void Metrics::AddMissedSteps(int64_t n) { missed_steps_->Increment(static_cast<double>(n)); }
+void Metrics::AddMissedSteps(int64_t n, bool off_cpu) {
+  missed_steps_->Increment(static_cast<double>(n));
+  if (off_cpu) missed_steps_off_cpu_->Increment(static_cast<double>(n));
+}
 
 void Metrics::AddClients(bool device, int delta) {
   (device ? devices_ : viewers_)->Increment(delta);

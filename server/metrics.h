@@ -35,7 +35,9 @@ class Metrics {
   /// One step took `step_s` seconds (wall time); `stats_delta` is what each
   /// stage added to its counters during it.
   void ObserveStep(double step_s, const StageStatsTable& stats_delta);
-  void AddMissedSteps(int64_t n);
+  /// `n` steps missed, `off_cpu` of them with the stepping thread off the
+  /// CPU (see StepSnapshot).
+  void AddMissedSteps(int64_t n, bool off_cpu);
   /// A device (Interact) or viewer (Watch) stream opened (+1) or closed (-1).
   void AddClients(bool device, int delta);
   void AddFramesSent(int64_t n);
@@ -53,6 +55,7 @@ class Metrics {
   std::array<prometheus::Counter*, kNumEffects> effect_seconds_;
   std::array<prometheus::Counter*, kNumEffects> effect_runs_;
   prometheus::Counter* missed_steps_;
+  prometheus::Counter* missed_steps_off_cpu_;
   prometheus::Gauge* devices_;
   prometheus::Gauge* viewers_;
   prometheus::Counter* frames_sent_;

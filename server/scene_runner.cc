@@ -3,6 +3,7 @@
 #include <pthread.h>
 
 #include <chrono>
+#include <ctime>
 
 #include "absl/strings/str_cat.h"
 #include "server/thread_priority.h"
@@ -11,6 +12,13 @@ namespace hs {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// CPU time the calling thread has used, nanoseconds.
+int64_t ThreadCpuNanoseconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return int64_t{t.tv_sec} * 1'000'000'000 + t.tv_nsec;
+}
 
 int64_t Nanoseconds(Clock::duration d) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(d).count();
@@ -67,6 +75,7 @@ void SceneRunner::Run(int realtime_priority) {
   // A device faster than the scene's rate speeds it up by 4/3 at most.
   const Clock::duration shortest = period * 3 / 4;
   Clock::time_point last = Clock::now();
+  int64_t cpu_at_last = ThreadCpuNanoseconds();
   Clock::time_point next = last + period;  // the deadline of the next step
   absl::Status status;
   while (true) {
@@ -84,16 +93,23 @@ void SceneRunner::Run(int realtime_priority) {
       early = devices_fresh_;
     }
     const Clock::time_point now = Clock::now();
+    const int64_t cpu_now = ThreadCpuNanoseconds();
     const Clock::duration lag = now - next;  // negative when the devices came first
     if (lag > period) {
       // Too late to catch up: skip the missed steps rather than run a burst.
       const int64_t missed = lag / period;
+      // Having run for less than a period since the last step began, this
+      // thread spent the rest of the time it lost off the CPU: the lag is
+      // not its own computing.
+      const bool off_cpu = cpu_now - cpu_at_last < Nanoseconds(period);
       missed_steps_ += missed;
-      metrics_.AddMissedSteps(missed);
+      if (off_cpu) missed_steps_off_cpu_ += missed;
+      metrics_.AddMissedSteps(missed, off_cpu);
       next += missed * period;
     }
     StepOnce(std::max<int64_t>(Nanoseconds(lag), 0));
     last = now;
+    cpu_at_last = cpu_now;
     // Devices that came first set the phase from now on, and their next
     // poses are due one period later: the deadline falls a quarter period
     // after that, so that a pose a little late joins its step instead of
@@ -153,6 +169,7 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
   }
   snapshot->start_lag_ns = start_lag_ns;
   snapshot->missed_steps = missed_steps_;
+  snapshot->missed_steps_off_cpu = missed_steps_off_cpu_;
   {
     std::lock_guard lock(fanout_mu_);
     if (fanout_queue_.size() >= kMaxQueuedFrames) {

@@ -131,7 +131,8 @@ class SceneRunner {
   bool devices_fresh_ = false;  // DevicesFreshLocked() held at the last pose
   absl::Status stop_status_;
   std::thread thread_;
-  int64_t missed_steps_ = 0;  // runner thread only
+  int64_t missed_steps_ = 0;          // runner thread only
+  int64_t missed_steps_off_cpu_ = 0;  // runner thread only
 
   // Frames stepped and not yet handed to the streams, oldest first. Past
   // kMaxQueuedFrames (the hand-over stalled for that many steps) the

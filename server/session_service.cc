@@ -142,6 +142,7 @@ class FrameStream : public Base, public FrameSink {
     timings->set_sent_unix_ns(UnixNanoseconds());
     frame_.set_dropped_frames(dropped);
     frame_.set_missed_steps(s.missed_steps);
+    frame_.set_missed_steps_off_cpu(s.missed_steps_off_cpu);
   }
 
   FrameOutbox outbox_;

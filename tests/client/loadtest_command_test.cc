@@ -70,6 +70,8 @@ TEST(LoadtestCommandTest, SmallRunAddsUp) {
   ExpectOrdered(r.step_ms, "step");
   EXPECT_GE(r.missed_fraction, 0);
   EXPECT_LE(r.missed_fraction, 1);
+  EXPECT_GE(r.missed_steps_off_cpu, 0);
+  EXPECT_LE(r.missed_steps_off_cpu, r.missed_steps);
   // The in-process server is found by its port: this process.
   EXPECT_GE(r.server_cpu_percent, 0);
   // /proc/stat is there on Linux: the hypervisor's share is known (maybe 0).
@@ -81,6 +83,7 @@ TEST(LoadtestCommandTest, SmallRunAddsUp) {
   EXPECT_EQ(json["devices"]["sent"].get<int64_t>(), sent);
   EXPECT_EQ(json["per_device"].size(), 2u);
   EXPECT_EQ(json["needs"], "force friction");
+  EXPECT_EQ(json["missed_steps_off_cpu"].get<int64_t>(), r.missed_steps_off_cpu);
 }
 
 // Options past the bounds and a remote server are usage errors; a scene

@@ -21,7 +21,8 @@ TEST(MetricsTest, CountsAppearInExposition) {
   metrics.AddClients(false, -1);
   metrics.AddFramesSent(5);
   metrics.AddFramesDropped(2);
-  metrics.AddMissedSteps(3);
+  metrics.AddMissedSteps(3, /*off_cpu=*/false);
+  metrics.AddMissedSteps(2, /*off_cpu=*/true);
   metrics.AddRejected("GetScene", "NOT_FOUND");
   metrics.AddRejected("GetScene", "NOT_FOUND");
   const std::string text = metrics.Text();
@@ -33,7 +34,8 @@ TEST(MetricsTest, CountsAppearInExposition) {
   EXPECT_TRUE(Has(text, "hs_clients{kind=\"viewer\"} 0"));
   EXPECT_TRUE(Has(text, "hs_frames_sent_total 5"));
   EXPECT_TRUE(Has(text, "hs_frames_dropped_total 2"));
-  EXPECT_TRUE(Has(text, "hs_missed_steps_total 3"));
+  EXPECT_TRUE(Has(text, "hs_missed_steps_total 5"));
+  EXPECT_TRUE(Has(text, "hs_missed_steps_off_cpu_total 2"));
   EXPECT_TRUE(Has(text, "hs_rejected_requests_total{code=\"NOT_FOUND\",method=\"GetScene\"} 2"));
 }
 

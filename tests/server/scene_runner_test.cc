@@ -1,12 +1,16 @@
 #include "server/scene_runner.h"
 
 #include <gtest/gtest.h>
+#include <pthread.h>
+#include <sched.h>
 
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
+#include <vector>
 
+#include "server/thread_priority.h"
 #include "tests/server/test_server.h"
 
 namespace hs {
@@ -168,6 +172,67 @@ TEST(SceneRunnerTest, DevicesClockTheSteps) {
   ASSERT_EQ(late->applied.size(), 2u);
   EXPECT_EQ(late->applied[0].sequence, 3u);
   EXPECT_EQ(late->applied[1].sequence, 2u);
+}
+
+}  // namespace
+}  // namespace hs
+
+namespace hs {
+namespace {
+
+// A runner stepping `spec` with a viewer attached, for the missed-step tests.
+struct ViewedRunner {
+  explicit ViewedRunner(haptics::v1::SceneSpec spec) {
+    absl::StatusOr<LoadedScene> loaded = BuildScene(spec, "");
+    EXPECT_TRUE(loaded.ok());
+    runner = std::make_unique<SceneRunner>(spec, std::move(loaded).value(), metrics);
+    EXPECT_TRUE(runner->AttachViewer(&viewer, EffectSet()).ok());
+  }
+  Metrics metrics;
+  RecordingSink viewer;  // outlives the runner, which offers its last frame
+  std::unique_ptr<SceneRunner> runner;
+};
+
+// A scene whose step outlasts its period (1 us here) misses steps while its
+// thread computes: none of them counts as off the CPU, whatever else runs.
+TEST(SceneRunnerTest, StepsMissedComputingAreNotOffCpu) {
+  haptics::v1::SceneSpec spec = testing::SmallScene("r");
+  spec.set_step_s(1e-6);
+  ViewedRunner viewed(spec);
+  const std::shared_ptr<const StepSnapshot> s = viewed.viewer.WaitForOffers(200);
+  EXPECT_GT(s->missed_steps, 0);
+  EXPECT_EQ(s->missed_steps_off_cpu, 0);
+}
+
+// Real-time threads spinning on every CPU for 50 ms keep a scene thread at
+// the default scheduler off the CPU: the 1 kHz scene misses about 50 steps,
+// all of them off the CPU. Needs real-time scheduling (root or
+// CAP_SYS_NICE); bounded by the spin, far below Linux's throttling.
+TEST(SceneRunnerTest, StepsMissedWaitingForACpuAreOffCpu) {
+  if (!CheckRealtimePriority(50).ok()) GTEST_SKIP() << "no real-time scheduling here";
+  ViewedRunner viewed(testing::SmallScene("r"));
+  viewed.viewer.WaitForOffers(5);
+  const int cpus = static_cast<int>(std::thread::hardware_concurrency());
+  std::vector<std::thread> spinners;
+  for (int cpu = 0; cpu < cpus; ++cpu) {
+    spinners.emplace_back([cpu] {
+      cpu_set_t set;
+      CPU_ZERO(&set);
+      CPU_SET(cpu, &set);
+      if (!SetRealtimePriority(50).ok() ||
+          pthread_setaffinity_np(pthread_self(), sizeof set, &set) != 0) {
+        return;
+      }
+      const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+      while (std::chrono::steady_clock::now() < end) {
+      }
+    });
+  }
+  for (std::thread& t : spinners) t.join();
+  const std::shared_ptr<const StepSnapshot> s =
+      viewed.viewer.WaitForOffers(viewed.viewer.offers() + 5);
+  EXPECT_GE(s->missed_steps_off_cpu, 30);
+  EXPECT_LE(s->missed_steps_off_cpu, s->missed_steps);
 }
 
 }  // namespace
