@@ -35,8 +35,8 @@ class Metrics {
   /// One step took `step_s` seconds (wall time); `stats_delta` is what each
   /// stage added to its counters during it.
   void ObserveStep(double step_s, const StageStatsTable& stats_delta);
-  /// `n` steps missed, `off_cpu` of them with the stepping thread off the
-  /// CPU (see StepSnapshot).
+  /// `n` steps missed, with the stepping thread off the CPU if `off_cpu`
+  /// (see StepSnapshot).
   void AddMissedSteps(int64_t n, bool off_cpu);
   /// A device (Interact) or viewer (Watch) stream opened (+1) or closed (-1).
   void AddClients(bool device, int delta);

@@ -14,10 +14,13 @@ PriorityInheritingMutex::PriorityInheritingMutex() {
   pthread_mutexattr_destroy(&attributes);
 }
 
-PriorityInheritingMutex::~PriorityInheritingMutex() { pthread_mutex_destroy(&mutex_); }
+// Destroying a locked mutex (EBUSY) is a bug in this project.
+PriorityInheritingMutex::~PriorityInheritingMutex() {
+  HS_CHECK(pthread_mutex_destroy(&mutex_) == 0);
+}
 
-// Errors here (EDEADLK, EPERM, EINVAL) are misuse by this project, not
-// conditions to report.
+// Errors here (EPERM: unlocking a mutex another thread holds; EINVAL) are
+// misuse by this project, not conditions to report.
 void PriorityInheritingMutex::lock() { HS_CHECK(pthread_mutex_lock(&mutex_) == 0); }
 
 bool PriorityInheritingMutex::try_lock() {

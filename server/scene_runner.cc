@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "absl/strings/str_cat.h"
+#include "common/core/check.h"
 #include "server/thread_priority.h"
 
 namespace hs {
@@ -16,7 +17,7 @@ using Clock = std::chrono::steady_clock;
 // CPU time the calling thread has used, nanoseconds.
 int64_t ThreadCpuNanoseconds() {
   timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  HS_CHECK(clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) == 0);
   return int64_t{t.tv_sec} * 1'000'000'000 + t.tv_nsec;
 }
 
@@ -76,6 +77,7 @@ void SceneRunner::Run(int realtime_priority) {
   const Clock::duration shortest = period * 3 / 4;
   Clock::time_point last = Clock::now();
   int64_t cpu_at_last = ThreadCpuNanoseconds();
+  int64_t last_step_ns = 0;
   Clock::time_point next = last + period;  // the deadline of the next step
   absl::Status status;
   while (true) {
@@ -98,16 +100,18 @@ void SceneRunner::Run(int realtime_priority) {
     if (lag > period) {
       // Too late to catch up: skip the missed steps rather than run a burst.
       const int64_t missed = lag / period;
-      // Having run for less than a period since the last step began, this
-      // thread spent the rest of the time it lost off the CPU: the lag is
-      // not its own computing.
-      const bool off_cpu = cpu_now - cpu_at_last < Nanoseconds(period);
+      // Having run for less than a period since the last step began, after
+      // a step shorter than a period (wall time, so its workers' share
+      // too), this thread lost the time waiting (for a core, a lock or its
+      // wake-up), not stepping. All of one late wake-up's misses count alike.
+      const int64_t period_ns = Nanoseconds(period);
+      const bool off_cpu = cpu_now - cpu_at_last < period_ns && last_step_ns < period_ns;
       missed_steps_ += missed;
       if (off_cpu) missed_steps_off_cpu_ += missed;
       metrics_.AddMissedSteps(missed, off_cpu);
       next += missed * period;
     }
-    StepOnce(std::max<int64_t>(Nanoseconds(lag), 0));
+    last_step_ns = StepOnce(std::max<int64_t>(Nanoseconds(lag), 0));
     last = now;
     cpu_at_last = cpu_now;
     // Devices that came first set the phase from now on, and their next
@@ -123,7 +127,7 @@ void SceneRunner::Run(int realtime_priority) {
   for (auto& [sink, attached] : sinks_) sink->Close(status);
 }
 
-void SceneRunner::StepOnce(int64_t start_lag_ns) {
+int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   std::vector<std::pair<std::string, PendingPose>> fresh;
   EffectSet needs;
   {
@@ -138,6 +142,7 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
     devices_fresh_ = false;
   }
   auto snapshot = std::make_shared<StepSnapshot>();
+  int64_t step_ns = 0;
   {
     std::lock_guard lock(scene_mu_);
     Scene& scene = *loaded_.scene;
@@ -150,7 +155,8 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
     scene.SetNeeded(needs);
     const Clock::time_point start = Clock::now();
     const StepFrame& frame = scene.Step();
-    snapshot->step_ns = Nanoseconds(Clock::now() - start);
+    step_ns = Nanoseconds(Clock::now() - start);
+    snapshot->step_ns = step_ns;
     snapshot->step = ++step_;
     snapshot->time_s = static_cast<double>(step_) * step_s_;
     snapshot->frame = frame;
@@ -179,6 +185,7 @@ void SceneRunner::StepOnce(int64_t start_lag_ns) {
     fanout_queue_.push_back(std::move(snapshot));
   }
   fanout_cv_.notify_one();
+  return step_ns;
 }
 
 void SceneRunner::StopFanOut() {

@@ -100,7 +100,8 @@ class SceneRunner {
   void FanOut(int realtime_priority);
   // Lets FanOut hand over the frames queued, then joins it.
   void StopFanOut();
-  void StepOnce(int64_t start_lag_ns);
+  // Returns the step's wall time, nanoseconds (workers included).
+  int64_t StepOnce(int64_t start_lag_ns);
   EffectSet NeedsLocked() const;
   // Whether every attached device has a pose the last step did not apply.
   bool DevicesFreshLocked() const;

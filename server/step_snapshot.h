@@ -37,7 +37,8 @@ struct StepSnapshot {
   int64_t start_lag_ns = 0;
   /// Steps started late by more than one step, since the runner began,
   /// and those of them missed while the stepping thread was off the CPU
-  /// (it had run for less than a period since the step before).
+  /// (it had run for less than a period since the step before, which took
+  /// less than a period: see SceneRunner::Run).
   int64_t missed_steps = 0;
   int64_t missed_steps_off_cpu = 0;
 };

@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/core/check.h"
 #include "server/thread_priority.h"
 #include "tests/server/test_server.h"
 
@@ -174,27 +175,22 @@ TEST(SceneRunnerTest, DevicesClockTheSteps) {
   EXPECT_EQ(late->applied[1].sequence, 2u);
 }
 
-}  // namespace
-}  // namespace hs
-
-namespace hs {
-namespace {
-
 // A runner stepping `spec` with a viewer attached, for the missed-step tests.
 struct ViewedRunner {
-  explicit ViewedRunner(haptics::v1::SceneSpec spec) {
+  explicit ViewedRunner(const haptics::v1::SceneSpec& spec) {
     absl::StatusOr<LoadedScene> loaded = BuildScene(spec, "");
-    EXPECT_TRUE(loaded.ok());
+    HS_CHECK(loaded.ok());
     runner = std::make_unique<SceneRunner>(spec, std::move(loaded).value(), metrics);
-    EXPECT_TRUE(runner->AttachViewer(&viewer, EffectSet()).ok());
+    HS_CHECK(runner->AttachViewer(&viewer, EffectSet()).ok());
   }
   Metrics metrics;
   RecordingSink viewer;  // outlives the runner, which offers its last frame
   std::unique_ptr<SceneRunner> runner;
 };
 
-// A scene whose step outlasts its period (1 us here) misses steps while its
-// thread computes: none of them counts as off the CPU, whatever else runs.
+// A scene whose step outlasts its period (1 us here) misses steps while it
+// steps: none of them counts as off the CPU, whatever else runs. (It
+// guards the direction of the test, the comparison itself is the next.)
 TEST(SceneRunnerTest, StepsMissedComputingAreNotOffCpu) {
   haptics::v1::SceneSpec spec = testing::SmallScene("r");
   spec.set_step_s(1e-6);
@@ -204,31 +200,60 @@ TEST(SceneRunnerTest, StepsMissedComputingAreNotOffCpu) {
   EXPECT_EQ(s->missed_steps_off_cpu, 0);
 }
 
-// Real-time threads spinning on every CPU for 50 ms keep a scene thread at
-// the default scheduler off the CPU: the 1 kHz scene misses about 50 steps,
-// all of them off the CPU. Needs real-time scheduling (root or
-// CAP_SYS_NICE); bounded by the spin, far below Linux's throttling.
+// Real-time threads spinning on every CPU this process may use, all at
+// once, keep a scene thread at the default scheduler off the CPU for
+// 50 ms: the 1 kHz scene misses about 50 steps, off the CPU unless the
+// spin began mid-step (its ~0.03 ms of each 1 ms; then they count as
+// stepping). Twice, so that at least one spell counts. Needs real-time
+// scheduling (root or CAP_SYS_NICE); bounded by the spins, far below
+// Linux's throttling.
 TEST(SceneRunnerTest, StepsMissedWaitingForACpuAreOffCpu) {
   if (!CheckRealtimePriority(50).ok()) GTEST_SKIP() << "no real-time scheduling here";
+  cpu_set_t allowed;
+  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
+  std::vector<int> cpus;
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
+    if (CPU_ISSET(cpu, &allowed)) cpus.push_back(cpu);
+  }
   ViewedRunner viewed(testing::SmallScene("r"));
   viewed.viewer.WaitForOffers(5);
-  const int cpus = static_cast<int>(std::thread::hardware_concurrency());
-  std::vector<std::thread> spinners;
-  for (int cpu = 0; cpu < cpus; ++cpu) {
-    spinners.emplace_back([cpu] {
-      cpu_set_t set;
-      CPU_ZERO(&set);
-      CPU_SET(cpu, &set);
-      if (!SetRealtimePriority(50).ok() ||
-          pthread_setaffinity_np(pthread_self(), sizeof set, &set) != 0) {
-        return;
-      }
-      const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
-      while (std::chrono::steady_clock::now() < end) {
-      }
-    });
+  for (int spell = 0; spell < 2; ++spell) {
+    // Each spinner is ready (real-time, on its CPU) before any spins: a
+    // spinner started late would leave the scene a CPU meanwhile.
+    std::mutex mu;
+    std::condition_variable cv;
+    int ready = 0, refused = 0;
+    bool go = false;
+    std::vector<std::thread> spinners;
+    for (int cpu : cpus) {
+      spinners.emplace_back([&, cpu] {
+        cpu_set_t set;
+        CPU_ZERO(&set);
+        CPU_SET(cpu, &set);
+        const bool ok = SetRealtimePriority(50).ok() &&
+                        pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+        {
+          std::unique_lock lock(mu);
+          ++ready;
+          refused += !ok;
+          cv.notify_all();
+          cv.wait(lock, [&] { return go; });
+        }
+        if (!ok) return;
+        const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+        while (std::chrono::steady_clock::now() < end) {
+        }
+      });
+    }
+    {
+      std::unique_lock lock(mu);
+      cv.wait(lock, [&] { return ready == static_cast<int>(cpus.size()); });
+      go = true;
+      cv.notify_all();
+    }
+    for (std::thread& t : spinners) t.join();
+    ASSERT_EQ(refused, 0) << "a spinner could not take its CPU";
   }
-  for (std::thread& t : spinners) t.join();
   const std::shared_ptr<const StepSnapshot> s =
       viewed.viewer.WaitForOffers(viewed.viewer.offers() + 5);
   EXPECT_GE(s->missed_steps_off_cpu, 30);

@@ -4,6 +4,7 @@
 #include <CGAL/intersections.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -128,13 +129,16 @@ TEST(TriangleSatTest, TouchingCornerAnswersAgreeWithEveryAxis) {
     const Triangle3d b = {Vector3d(u(rng), u(rng), 0.3 * u(rng)),
                           Vector3d(u(rng), u(rng), 0.3 * u(rng)),
                           Vector3d(u(rng), u(rng), 0.3 * u(rng))};
-    const Vector3d n = TriangleNormal(b);
+    const Vector3d n = TriangleNormal(b).normalized();
     // A point of b's plane, inside b or around it.
     std::uniform_real_distribution<double> w(-0.5, 1.5);
     const Vector3d corner = b[0] + w(rng) * (b[1] - b[0]) + w(rng) * (b[2] - b[0]);
     const double side = u(rng) < 0 ? -1 : 1;
+    // Off the plane on the chosen side: a random offset along it, then away.
     auto off_plane = [&]() -> Vector3d {
-      return corner + Vector3d(u(rng), u(rng), u(rng)) + side * (0.05 + std::abs(u(rng))) * n;
+      Vector3d along(u(rng), u(rng), u(rng));
+      along -= along.dot(n) * n;
+      return corner + along + side * (0.05 + std::abs(u(rng))) * n;
     };
     const Triangle3d a = {corner, off_plane(), off_plane()};
     const Vector3d direction(u(rng), u(rng), u(rng));
