@@ -102,35 +102,36 @@ void SendPaced(RoundTrips& trips, const SendSchedule& schedule, Write write, Don
 class FrameCounts {
  public:
   void Add(const pb::Frame& frame) {
-    if (frames_ == 0) {
-      first_step_ = frame.step();
-      first_dropped_ = static_cast<int64_t>(frame.dropped_frames());
-      first_missed_ = frame.missed_steps();
-      first_missed_off_cpu_ = frame.missed_steps_off_cpu();
-    }
+    const bool first = frames_ == 0;
     ++frames_;
-    last_step_ = frame.step();
-    last_dropped_ = static_cast<int64_t>(frame.dropped_frames());
-    last_missed_ = frame.missed_steps();
-    last_missed_off_cpu_ = frame.missed_steps_off_cpu();
+    step_.See(frame.step(), first);
+    dropped_.See(static_cast<int64_t>(frame.dropped_frames()), first);
+    missed_.See(frame.missed_steps(), first);
+    missed_off_cpu_.See(frame.missed_steps_off_cpu(), first);
   }
   void Fill(StreamReport& report, double window_s) const {
     report.frames = frames_;
-    report.first_step = first_step_;
-    report.last_step = last_step_;
-    report.dropped_frames = last_dropped_ - first_dropped_;
-    report.missed_steps = last_missed_ - first_missed_;
-    report.missed_steps_off_cpu = last_missed_off_cpu_ - first_missed_off_cpu_;
+    report.first_step = step_.first;
+    report.last_step = step_.last;
+    report.dropped_frames = dropped_.Grown();
+    report.missed_steps = missed_.Grown();
+    report.missed_steps_off_cpu = missed_off_cpu_.Grown();
     report.frames_per_s = static_cast<double>(frames_) / window_s;
   }
   int64_t frames() const { return frames_; }
 
  private:
+  // A value of the frames at the window's first frame and at its latest.
+  struct Span {
+    int64_t first = 0, last = 0;
+    void See(int64_t value, bool first_frame) {
+      if (first_frame) first = value;
+      last = value;
+    }
+    int64_t Grown() const { return last - first; }
+  };
   int64_t frames_ = 0;
-  int64_t first_step_ = 0, last_step_ = 0;
-  int64_t first_dropped_ = 0, last_dropped_ = 0;
-  int64_t first_missed_ = 0, last_missed_ = 0;
-  int64_t first_missed_off_cpu_ = 0, last_missed_off_cpu_ = 0;
+  Span step_, dropped_, missed_, missed_off_cpu_;
 };
 
 // One device: an Interact stream driving one tool with a press motion.
