@@ -1,15 +1,15 @@
 #include "server/priority_inheriting_mutex.h"
 
 #include <gtest/gtest.h>
-#include <pthread.h>
-#include <sched.h>
 
 #include <atomic>
 #include <chrono>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 #include "server/thread_priority.h"
+#include "tests/server/realtime_on_cpu.h"
 
 namespace hs {
 namespace {
@@ -42,17 +42,6 @@ TEST(PriorityInheritingMutexTest, ExcludesLikeAMutex) {
   EXPECT_TRUE(taken_meanwhile);
 }
 
-// Puts the calling thread under SCHED_FIFO at `priority`, then on `cpu`
-// (in that order: under the default scheduler it would wait there behind
-// the real-time threads until their throttling lets it run).
-bool RunOnCpuAt(int cpu, int priority) {
-  cpu_set_t cpus;
-  CPU_ZERO(&cpus);
-  CPU_SET(cpu, &cpus);
-  return SetRealtimePriority(priority).ok() &&
-         pthread_setaffinity_np(pthread_self(), sizeof cpus, &cpus) == 0;
-}
-
 // The classic inversion, on one CPU: a low-priority thread holds the mutex,
 // a middle one spins for 300 ms, a high one wants the mutex. With
 // inheritance the holder runs above the spinner and lets go at once: the
@@ -68,7 +57,7 @@ Inversion RunInversion(int cpu) {
   std::atomic<bool> held = false, spinning = false, refused = false;
   Inversion result;
   std::thread low([&] {
-    if (!RunOnCpuAt(cpu, 1)) refused = true;
+    if (!testing::RunOnCpuAt(cpu, 1)) refused = true;
     std::lock_guard lock(mutex);
     held = true;
     // Lets go only once it has run after the spinner started.
@@ -77,7 +66,7 @@ Inversion RunInversion(int cpu) {
   });
   while (!held && !refused) std::this_thread::yield();
   std::thread middle([&] {
-    if (!RunOnCpuAt(cpu, 5)) refused = true;
+    if (!testing::RunOnCpuAt(cpu, 5)) refused = true;
     spinning = true;
     const Clock::time_point end = Clock::now() + std::chrono::milliseconds(300);
     while (Clock::now() < end) {
@@ -86,7 +75,7 @@ Inversion RunInversion(int cpu) {
   });
   while (!spinning && !refused) std::this_thread::yield();
   std::thread high([&] {
-    if (!RunOnCpuAt(cpu, 10)) {
+    if (!testing::RunOnCpuAt(cpu, 10)) {
       refused = true;
       return;
     }
@@ -103,11 +92,9 @@ Inversion RunInversion(int cpu) {
 TEST(PriorityInheritingMutexTest, HolderRunsAtTheWaitersPriority) {
   if (!CheckRealtimePriority(10).ok()) GTEST_SKIP() << "no real-time scheduling here";
   // One CPU for the three threads, another for this one, which starts them.
-  cpu_set_t allowed;
-  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
-  if (CPU_COUNT(&allowed) < 2) GTEST_SKIP() << "needs a second CPU";
-  int cpu = 0;
-  while (!CPU_ISSET(cpu, &allowed)) ++cpu;
+  const std::vector<int> cpus = testing::AllowedCpus();
+  if (cpus.size() < 2) GTEST_SKIP() << "needs a second CPU";
+  const int cpu = cpus.front();
   // A plain mutex shows the inversion the test is built to catch.
   const Inversion plain = RunInversion<std::mutex>(cpu);
   const Inversion inheriting = RunInversion<PriorityInheritingMutex>(cpu);

@@ -1,8 +1,6 @@
 #include "server/scene_runner.h"
 
 #include <gtest/gtest.h>
-#include <pthread.h>
-#include <sched.h>
 
 #include <chrono>
 #include <condition_variable>
@@ -12,6 +10,7 @@
 
 #include "common/core/check.h"
 #include "server/thread_priority.h"
+#include "tests/server/realtime_on_cpu.h"
 #include "tests/server/test_server.h"
 
 namespace hs {
@@ -209,12 +208,8 @@ TEST(SceneRunnerTest, StepsMissedComputingAreNotOffCpu) {
 // Linux's throttling.
 TEST(SceneRunnerTest, StepsMissedWaitingForACpuAreOffCpu) {
   if (!CheckRealtimePriority(50).ok()) GTEST_SKIP() << "no real-time scheduling here";
-  cpu_set_t allowed;
-  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
-  std::vector<int> cpus;
-  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
-    if (CPU_ISSET(cpu, &allowed)) cpus.push_back(cpu);
-  }
+  const std::vector<int> cpus = testing::AllowedCpus();
+  ASSERT_FALSE(cpus.empty());
   ViewedRunner viewed(testing::SmallScene("r"));
   viewed.viewer.WaitForOffers(5);
   for (int spell = 0; spell < 2; ++spell) {
@@ -227,11 +222,7 @@ TEST(SceneRunnerTest, StepsMissedWaitingForACpuAreOffCpu) {
     std::vector<std::thread> spinners;
     for (int cpu : cpus) {
       spinners.emplace_back([&, cpu] {
-        cpu_set_t set;
-        CPU_ZERO(&set);
-        CPU_SET(cpu, &set);
-        const bool ok = SetRealtimePriority(50).ok() &&
-                        pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+        const bool ok = testing::RunOnCpuAt(cpu, 50);
         {
           std::unique_lock lock(mu);
           ++ready;
