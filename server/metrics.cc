@@ -43,7 +43,8 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
            .Name("hs_missed_steps_off_cpu_total")
            .Help(
                "Missed steps after which the stepping thread had run for less than a step's "
-               "time since the step before (kept off the CPU, not computing)")
+               "time since the step before, which took less than one (kept off the CPU, not "
+               "stepping)")
            .Register(*registry_)
            .Add({});
   auto& clients = BuildGauge().Name("hs_clients").Help("Open streams by kind").Register(*registry_);

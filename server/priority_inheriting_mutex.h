@@ -11,9 +11,10 @@ namespace hs {
 /// gRPC threads under the default scheduler; with a plain mutex, a gRPC
 /// thread preempted while holding one keeps the step waiting behind every
 /// other runnable thread (a priority inversion: up to 0.33 ms for the
-/// frame queue's lock at 8 devices x 1 kHz). Written by hand because neither the standard library,
-/// Abseil nor gRPC has one; it only sets the POSIX attribute. Meets Lockable, for std::lock_guard,
-/// std::unique_lock and std::condition_variable_any.
+/// frame queue's lock at 8 devices x 1 kHz). Written by hand because
+/// neither the standard library, Abseil nor gRPC has one; it only sets the
+/// POSIX attribute. Meets Lockable, for std::lock_guard, std::unique_lock
+/// and std::condition_variable_any.
 class PriorityInheritingMutex {
  public:
   PriorityInheritingMutex();

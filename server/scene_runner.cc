@@ -73,6 +73,7 @@ void SceneRunner::Run(int realtime_priority) {
   if (realtime_priority != 0) (void)SetRealtimePriority(realtime_priority);
   const auto period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(step_s_));
+  const int64_t period_ns = Nanoseconds(period);
   // A device faster than the scene's rate speeds it up by 4/3 at most.
   const Clock::duration shortest = period * 3 / 4;
   Clock::time_point last = Clock::now();
@@ -104,7 +105,6 @@ void SceneRunner::Run(int realtime_priority) {
       // a step shorter than a period (wall time, so its workers' share
       // too), this thread lost the time waiting (for a core, a lock or its
       // wake-up), not stepping. All of one late wake-up's misses count alike.
-      const int64_t period_ns = Nanoseconds(period);
       const bool off_cpu = cpu_now - cpu_at_last < period_ns && last_step_ns < period_ns;
       missed_steps_ += missed;
       if (off_cpu) missed_steps_off_cpu_ += missed;
