@@ -11,9 +11,9 @@
 #include "client/exit_codes.h"
 #include "client/frame_format.h"
 #include "client/needs_args.h"
+#include "common/api/proto_convert.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
-#include "server/proto_convert.h"
 
 namespace hs::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include "client/exit_codes.h"
 #include "client/health_command.h"
 #include "client/inspect_command.h"
-#include "client/loadtest_command.h"
+#include "client/loadtest/loadtest_command.h"
 #include "client/objects_command.h"
 #include "client/scenes_command.h"
 #include "client/simulate_command.h"

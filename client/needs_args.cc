@@ -1,6 +1,6 @@
 #include "client/needs_args.h"
 
-#include "server/proto_convert.h"
+#include "common/api/proto_convert.h"
 
 namespace hs::cli {
 

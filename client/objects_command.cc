@@ -12,8 +12,8 @@
 #include "client/exit_codes.h"
 #include "client/pose_args.h"
 #include "client/scenes_command.h"
+#include "common/api/proto_convert.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
-#include "server/proto_convert.h"
 
 namespace hs::cli {
 namespace {

@@ -3,8 +3,8 @@
 #include <iostream>
 
 #include "client/exit_codes.h"
+#include "common/api/scene_file.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
-#include "server/scene_file.h"
 
 namespace hs::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include "client/exit_codes.h"
 #include "client/needs_args.h"
 #include "client/tool_path.h"
-#include "server/scene_file.h"
+#include "common/api/scene_file.h"
 
 namespace hs::cli {
 namespace {

@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "common/api/scene_file.h"
 #include "haptics/v1/scene.pb.h"
 #include "server/metrics.h"
 #include "server/priority_inheriting_mutex.h"
-#include "server/scene_file.h"
 #include "server/step_snapshot.h"
 
 namespace hs {

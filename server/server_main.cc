@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "CLI/CLI.hpp"
+#include "common/api/scene_file.h"
 #include "server/haptic_server.h"
-#include "server/scene_file.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"haptic-server: the haptic simulation service"};

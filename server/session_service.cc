@@ -4,9 +4,9 @@
 #include <mutex>
 
 #include "absl/strings/str_cat.h"
+#include "common/api/proto_convert.h"
 #include "server/frame_outbox.h"
 #include "server/grpc_status.h"
-#include "server/proto_convert.h"
 
 namespace hs {
 namespace {

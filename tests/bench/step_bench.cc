@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "client/pose_args.h"
-#include "server/scene_file.h"
+#include "common/api/scene_file.h"
 #include "tests/common/allocation_counter.h"
 
 namespace hs {

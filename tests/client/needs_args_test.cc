@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "server/proto_convert.h"
+#include "common/api/proto_convert.h"
 
 namespace hs::cli {
 namespace {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "client/tool_path.h"
-#include "server/proto_convert.h"
-#include "server/scene_file.h"
+#include "common/api/proto_convert.h"
+#include "common/api/scene_file.h"
 #include "tests/server/test_server.h"
 
 namespace hs::testing {

@@ -1,12 +1,12 @@
-#include "client/loadtest_command.h"
+#include "client/loadtest/loadtest_command.h"
 
 #include <iomanip>
 #include <iostream>
 
 #include "client/exit_codes.h"
 #include "client/needs_args.h"
+#include "common/api/scene_file.h"
 #include "nlohmann/json.hpp"
-#include "server/scene_file.h"
 
 namespace hs::cli {
 namespace {

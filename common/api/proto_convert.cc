@@ -1,4 +1,4 @@
-#include "server/proto_convert.h"
+#include "common/api/proto_convert.h"
 
 #include <cmath>
 

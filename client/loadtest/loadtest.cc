@@ -1,4 +1,4 @@
-#include "client/loadtest.h"
+#include "client/loadtest/loadtest.h"
 
 #include <grpcpp/grpcpp.h>
 #include <sys/resource.h>
@@ -16,14 +16,14 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "client/device_path.h"
-#include "client/echo_server.h"
+#include "client/loadtest/echo_baseline.h"
+#include "client/loadtest/process_cpu.h"
+#include "client/loadtest/send_schedule.h"
 #include "client/needs_args.h"
-#include "client/process_cpu.h"
-#include "client/send_schedule.h"
+#include "common/api/proto_convert.h"
 #include "haptics/v1/echo_service.grpc.pb.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
-#include "server/proto_convert.h"
 
 namespace hs::cli {
 namespace {
@@ -601,13 +601,13 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
 
   // The echo baseline: as many streams as devices, in-process, taking turns
   // with the devices.
-  std::unique_ptr<EchoServer> echo_server;
+  std::unique_ptr<EchoBaselineServer> echo_baseline;
   std::vector<std::unique_ptr<EchoStream>> echoes;
   if (options.echo) {
-    absl::StatusOr<std::unique_ptr<EchoServer>> started = EchoServer::Start();
+    absl::StatusOr<std::unique_ptr<EchoBaselineServer>> started = EchoBaselineServer::Start();
     if (!started.ok()) return started.status();
-    echo_server = *std::move(started);
-    auto echo_stub = pb::EchoService::NewStub(MakeChannel(echo_server->address()));
+    echo_baseline = *std::move(started);
+    auto echo_stub = pb::EchoService::NewStub(MakeChannel(echo_baseline->address()));
     // A pose message's size depends on the pose: the mean over the path.
     constexpr uint64_t kSamples = 16;
     int64_t sampled = 0;

@@ -11,19 +11,19 @@
 
 namespace hs::cli {
 
-class EchoServer {
+class EchoBaselineServer {
  public:
   /// Starts serving on 127.0.0.1 at a free port. UNAVAILABLE when it
   /// cannot listen.
-  static absl::StatusOr<std::unique_ptr<EchoServer>> Start();
+  static absl::StatusOr<std::unique_ptr<EchoBaselineServer>> Start();
   /// Shuts down (streams still open are cancelled).
-  ~EchoServer();
+  ~EchoBaselineServer();
 
   /// "127.0.0.1:PORT".
   std::string address() const;
 
  private:
-  EchoServer() = default;
+  EchoBaselineServer() = default;
   int port_ = 0;
   std::unique_ptr<grpc::Service> service_;
   std::unique_ptr<grpc::Server> server_;

@@ -1,4 +1,4 @@
-#include "client/echo_server.h"
+#include "client/loadtest/echo_baseline.h"
 
 #include <grpcpp/grpcpp.h>
 
@@ -50,8 +50,8 @@ class EchoService final : public pb::EchoService::CallbackService {
 
 }  // namespace
 
-absl::StatusOr<std::unique_ptr<EchoServer>> EchoServer::Start() {
-  std::unique_ptr<EchoServer> echo(new EchoServer());
+absl::StatusOr<std::unique_ptr<EchoBaselineServer>> EchoBaselineServer::Start() {
+  std::unique_ptr<EchoBaselineServer> echo(new EchoBaselineServer());
   echo->service_ = std::make_unique<EchoService>();
   grpc::ServerBuilder builder;
   builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &echo->port_);
@@ -63,10 +63,10 @@ absl::StatusOr<std::unique_ptr<EchoServer>> EchoServer::Start() {
   return echo;
 }
 
-EchoServer::~EchoServer() {
+EchoBaselineServer::~EchoBaselineServer() {
   server_->Shutdown(std::chrono::system_clock::now() + std::chrono::milliseconds(200));
 }
 
-std::string EchoServer::address() const { return "127.0.0.1:" + std::to_string(port_); }
+std::string EchoBaselineServer::address() const { return "127.0.0.1:" + std::to_string(port_); }
 
 }  // namespace hs::cli

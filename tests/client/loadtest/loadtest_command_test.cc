@@ -1,4 +1,4 @@
-#include "client/loadtest_command.h"
+#include "client/loadtest/loadtest_command.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "server/scene_file.h"
+#include "common/api/scene_file.h"
 
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "client/send_schedule.h"
+#include "client/loadtest/send_schedule.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "server/scene_file.h"
+#include "common/api/scene_file.h"
 
 #include <google/protobuf/io/tokenizer.h>
 #include <google/protobuf/text_format.h>
@@ -11,10 +11,10 @@
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
+#include "common/api/proto_convert.h"
 #include "common/core/status_macros.h"
 #include "common/model/import.h"
 #include "common/model/procedural.h"
-#include "server/proto_convert.h"
 
 namespace hs {
 namespace {

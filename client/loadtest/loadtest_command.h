@@ -7,7 +7,7 @@
 #include <string>
 
 #include "CLI/CLI.hpp"
-#include "client/loadtest.h"
+#include "client/loadtest/loadtest.h"
 
 namespace hs::cli {
 

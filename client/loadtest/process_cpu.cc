@@ -1,4 +1,4 @@
-#include "client/process_cpu.h"
+#include "client/loadtest/process_cpu.h"
 
 #include <unistd.h>
 
