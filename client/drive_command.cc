@@ -118,7 +118,7 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<DriveArgs>();
   CLI::App* cmd = app.add_subcommand(
       "drive", "Act as an input device: play a tool path or a motion into a scene on a server");
-  AddServerOptions(*cmd, args->server);
+  AddConnectionOptions(*cmd, args->server);
   cmd->add_option("--scene", args->scene, "Scene name")->required();
   cmd->add_option("--tool", args->tool, "Tool object to drive")->required();
   CLI::Option* path = cmd->add_option(

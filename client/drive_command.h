@@ -14,7 +14,7 @@
 namespace hs::cli {
 
 struct DriveArgs {
-  ServerOptions server;
+  ConnectionOptions server;
   std::string scene;
   /// The tool object to drive.
   std::string tool;

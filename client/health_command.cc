@@ -52,7 +52,7 @@ int RunHealth(const HealthArgs& args, std::ostream& out, std::ostream& err) {
 void AddHealthCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<HealthArgs>();
   CLI::App* cmd = app.add_subcommand("health", "Is the server serving? (grpc.health.v1)");
-  AddServerOptions(*cmd, args->server);
+  AddConnectionOptions(*cmd, args->server);
   cmd->add_option("--service", args->service,
                   "A service's full name, e.g. haptics.v1.SceneService (default: the server)");
   cmd->callback([args, &exit_code] { exit_code = RunHealth(*args, std::cout, std::cerr); });

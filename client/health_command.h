@@ -11,7 +11,7 @@
 namespace hs::cli {
 
 struct HealthArgs {
-  ServerOptions server;
+  ConnectionOptions server;
   /// A service name ("haptics.v1.SceneService", ...); empty: the server.
   std::string service;
 };

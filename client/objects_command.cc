@@ -139,7 +139,7 @@ void AddObjectsCommand(CLI::App& app, int& exit_code) {
   CLI::App* objects = app.add_subcommand("objects", "Add, change and remove a scene's objects");
   objects->require_subcommand(1);
   auto action = [&exit_code, args](CLI::App* cmd, const std::string& name) {
-    AddServerOptions(*cmd, args->server);
+    AddConnectionOptions(*cmd, args->server);
     cmd->add_option("SCENE", args->scene, "Scene name")->required();
     cmd->add_option("OBJECT", args->object, "Object name")->required();
     cmd->add_flag("--json", args->json, "The scene's new haptics.v1.SceneInfo as JSON");

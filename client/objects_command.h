@@ -12,7 +12,7 @@
 namespace hs::cli {
 
 struct ObjectsArgs {
-  ServerOptions server;
+  ConnectionOptions server;
   /// "add", "update" or "remove".
   std::string action;
   std::string scene;

@@ -82,7 +82,7 @@ void AddScenesCommand(CLI::App& app, int& exit_code) {
       app.add_subcommand("scenes", "List, create, show and delete a server's scenes");
   scenes->require_subcommand(1);
   auto action = [&exit_code, args](CLI::App* cmd, const std::string& name) {
-    AddServerOptions(*cmd, args->server);
+    AddConnectionOptions(*cmd, args->server);
     cmd->add_flag("--json", args->json, "haptics.v1.SceneInfo as JSON, one line each");
     cmd->callback([&exit_code, args, name] {
       args->action = name;

@@ -12,7 +12,7 @@
 namespace hs::cli {
 
 struct ScenesArgs {
-  ServerOptions server;
+  ConnectionOptions server;
   /// "list", "create", "show" or "delete".
   std::string action;
   /// create: a scene file (haptics.v1.SceneSpec, text format or JSON).

@@ -9,7 +9,7 @@
 
 namespace hs::cli {
 
-void AddServerOptions(CLI::App& cmd, ServerOptions& options) {
+void AddConnectionOptions(CLI::App& cmd, ConnectionOptions& options) {
   cmd.add_option("--server", options.address, "haptic-server address, host:port")
       ->capture_default_str();
   cmd.add_option("--timeout", options.timeout_s, "Deadline of each request, seconds")

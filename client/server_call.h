@@ -17,7 +17,7 @@
 namespace hs::cli {
 
 /// Where the server is and how long a unary call may take.
-struct ServerOptions {
+struct ConnectionOptions {
   /// host:port of haptic-server.
   std::string address = "127.0.0.1:50051";
   /// Deadline of each unary call, seconds.
@@ -25,7 +25,7 @@ struct ServerOptions {
 };
 
 /// Adds --server and --timeout to `cmd`, filling `options`.
-void AddServerOptions(CLI::App& cmd, ServerOptions& options);
+void AddConnectionOptions(CLI::App& cmd, ConnectionOptions& options);
 
 /// An insecure channel to `address` (host:port).
 std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address);

@@ -72,7 +72,7 @@ void AddUploadCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<UploadArgs>();
   CLI::App* cmd = app.add_subcommand(
       "upload", "Upload a model file; prints its model id (ModelSource.uploaded_model_id)");
-  AddServerOptions(*cmd, args->server);
+  AddConnectionOptions(*cmd, args->server);
   cmd->add_option("FILE", args->file, "Model file (obj, stl, ply, off, ...)")->required();
   cmd->add_option("--name", args->name, "Model name on the server (default: the file's stem)");
   cmd->add_option("--chunk-bytes", args->chunk_bytes, "Bytes per message")

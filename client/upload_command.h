@@ -12,7 +12,7 @@
 namespace hs::cli {
 
 struct UploadArgs {
-  ServerOptions server;
+  ConnectionOptions server;
   std::string file;
   /// The model's name on the server; default: the file name without its
   /// extension, characters outside [A-Za-z0-9_.-] replaced by '_'.

@@ -149,7 +149,7 @@ void AddWatchCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<WatchArgs>();
   CLI::App* cmd =
       app.add_subcommand("watch", "Watch a scene as a viewer: every frame or a per-second summary");
-  AddServerOptions(*cmd, args->server);
+  AddConnectionOptions(*cmd, args->server);
   cmd->add_option("SCENE", args->scene, "Scene name")->required();
   cmd->add_option("--parts", args->parts, "poses, contacts, forces (default: all)")
       ->delimiter(',')

@@ -28,7 +28,7 @@ inline constexpr double kMaxLoadSeconds = 60;
 inline constexpr double kMaxLoadRateHz = 5000;
 
 struct LoadtestOptions {
-  ServerOptions server;
+  ConnectionOptions server;
   /// Device streams, each driving its own tool.
   int clients = 8;
   /// Poses per second per device.

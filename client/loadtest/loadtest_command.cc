@@ -144,7 +144,7 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "loadtest",
       "N device streams into one scene at a rate, beside a bare gRPC echo of the same sizes");
-  AddServerOptions(*cmd, o.server);
+  AddConnectionOptions(*cmd, o.server);
   cmd->add_option("--clients", o.clients, "Device streams, each its own tool (1..64)")
       ->capture_default_str();
   cmd->add_option("--rate", o.rate_hz, "Poses per second per device (1..5000)")
