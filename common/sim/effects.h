@@ -46,9 +46,9 @@ class EffectSet {
   uint32_t bits_ = 0;
 };
 
-/// `needed` plus every effect those need to have run first: force needs the
-/// reversing vector, which needs the contact set, which needs collision;
-/// friction needs force; continuous collision needs collision.
+/// `needed` plus every effect those need to have run first: friction needs
+/// force, which needs the reversing vector (the proxy, which reads no other
+/// stage); the contact set and continuous collision need collision.
 EffectSet WithPrerequisites(EffectSet needed);
 
 /// The stages a step runs: what the scene enables, of what consumers need
