@@ -7,6 +7,7 @@
 #include <iostream>
 #include <thread>
 
+#include "client/channel.h"
 #include "client/device_path.h"
 #include "client/exit_codes.h"
 #include "client/frame_format.h"
@@ -47,7 +48,9 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   if (!(args.rate_hz > 0)) return ReportError("drive", "--rate must be > 0", err);
   absl::StatusOr<EffectSet> needs = ParseNeeds(args.needs);
   if (!needs.ok()) return ReportError("drive", needs.status(), err);
-  std::shared_ptr<grpc::Channel> channel = MakeChannel(args.server.address);
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> opened = MakeChannel(args.server);
+  if (!opened.ok()) return ReportError("drive", opened.status(), err);
+  std::shared_ptr<grpc::Channel> channel = *std::move(opened);
   std::vector<TimedPose> path;
   if (!args.motion.empty()) {
     absl::StatusOr<Motion> motion = ParseMotion(args.motion);

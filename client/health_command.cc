@@ -7,6 +7,7 @@
 #include <future>
 #include <iostream>
 
+#include "client/channel.h"
 #include "client/exit_codes.h"
 
 namespace hs::cli {
@@ -35,7 +36,9 @@ const char* ServingStatusName(int status) {
 }  // namespace
 
 int RunHealth(const HealthArgs& args, std::ostream& out, std::ostream& err) {
-  grpc::TemplatedGenericStub<HealthRequest, HealthResponse> stub(MakeChannel(args.server.address));
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> channel = MakeChannel(args.server);
+  if (!channel.ok()) return ReportError("health", channel.status(), err);
+  grpc::TemplatedGenericStub<HealthRequest, HealthResponse> stub(*channel);
   auto context = ContextWithin(args.server.timeout_s);
   HealthRequest request;
   request.set_value(args.service);

@@ -9,6 +9,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
+#include "client/channel.h"
 #include "client/exit_codes.h"
 #include "client/pose_args.h"
 #include "client/scenes_command.h"
@@ -106,7 +107,9 @@ absl::StatusOr<pb::UpdateObjectRequest> UpdateRequest(const ObjectsArgs& args) {
 
 int RunObjects(const ObjectsArgs& args, std::ostream& out, std::ostream& err) {
   const std::string command = "objects " + args.action;
-  auto stub = pb::SceneService::NewStub(MakeChannel(args.server.address));
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> channel = MakeChannel(args.server);
+  if (!channel.ok()) return ReportError(command, channel.status(), err);
+  auto stub = pb::SceneService::NewStub(*channel);
   auto context = ContextWithin(args.server.timeout_s);
   pb::SceneInfo info;
   grpc::Status status;

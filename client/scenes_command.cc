@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "client/channel.h"
 #include "client/exit_codes.h"
 #include "common/api/scene_file.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
@@ -37,7 +38,9 @@ void PrintSceneInfo(const pb::SceneInfo& info, bool json, bool with_objects, std
 
 int RunScenes(const ScenesArgs& args, std::ostream& out, std::ostream& err) {
   const std::string command = "scenes " + args.action;
-  auto stub = pb::SceneService::NewStub(MakeChannel(args.server.address));
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> channel = MakeChannel(args.server);
+  if (!channel.ok()) return ReportError(command, channel.status(), err);
+  auto stub = pb::SceneService::NewStub(*channel);
   auto context = ContextWithin(args.server.timeout_s);
   grpc::Status status;
   pb::SceneInfo info;

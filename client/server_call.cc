@@ -15,10 +15,19 @@ void AddConnectionOptions(CLI::App& cmd, ConnectionOptions& options) {
   cmd.add_option("--timeout", options.timeout_s, "Deadline of each request, seconds")
       ->check(CLI::Range(0.01, 3600.0))
       ->capture_default_str();
-}
-
-std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address) {
-  return grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
+  cmd.add_option("--tls-ca", options.tls_ca_file,
+                 "PEM CA certificates that sign the server's: connect over TLS")
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--tls-cert", options.tls_cert_file,
+                 "PEM client certificate, for servers that require one (with --tls-key)")
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--tls-key", options.tls_key_file, "PEM private key of --tls-cert")
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--tls-server-name", options.tls_server_name,
+                 "Name the server's certificate carries, when not --server's host");
+  cmd.add_option("--token-file", options.token_file,
+                 "File holding the bearer token (default: the HAPTIC_TOKEN variable)")
+      ->check(CLI::ExistingFile);
 }
 
 std::unique_ptr<grpc::ClientContext> ContextWithin(double seconds) {
@@ -78,18 +87,6 @@ std::string ProtoToJsonLine(const google::protobuf::Message& message) {
   options.preserve_proto_field_names = true;
   (void)google::protobuf::util::MessageToJsonString(message, &text, options);
   return text;
-}
-
-bool IsLoopbackAddress(std::string_view address) {
-  std::string_view host = address;
-  if (host.starts_with("[")) {
-    host = host.substr(
-        1, host.find(']') == std::string_view::npos ? host.size() - 1 : host.find(']') - 1);
-  } else if (const size_t colon = host.rfind(':'); colon != std::string_view::npos) {
-    host = host.substr(0, colon);
-  }
-  if (host.starts_with("ipv4:")) host.remove_prefix(5);
-  return host == "localhost" || host == "::1" || host.starts_with("127.");
 }
 
 }  // namespace hs::cli

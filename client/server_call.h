@@ -1,6 +1,6 @@
 #pragma once
 // What every hapticctl command that talks to haptic-server shares: the
-// --server and --timeout options, the channel, deadlines, and turning a
+// connection options (the channel itself: channel.h), deadlines, and turning a
 // gRPC status into a message on stderr and an exit status (exit_codes.h).
 
 #include <google/protobuf/message.h>
@@ -22,13 +22,20 @@ struct ConnectionOptions {
   std::string address = "127.0.0.1:50051";
   /// Deadline of each unary call, seconds.
   double timeout_s = 10;
+  /// PEM CA certificates that sign the server's certificate; set: TLS.
+  std::string tls_ca_file;
+  /// PEM client certificate and key, for a server that requires one.
+  std::string tls_cert_file;
+  std::string tls_key_file;
+  /// The name the server's certificate must carry, when not the address's host.
+  std::string tls_server_name;
+  /// File holding the bearer token; empty: HAPTIC_TOKEN, if set.
+  std::string token_file;
 };
 
-/// Adds --server and --timeout to `cmd`, filling `options`.
+/// Adds --server, --timeout, the TLS options and --token-file to `cmd`,
+/// filling `options`.
 void AddConnectionOptions(CLI::App& cmd, ConnectionOptions& options);
-
-/// An insecure channel to `address` (host:port).
-std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address);
 
 /// A client context whose call gives up after `seconds`.
 std::unique_ptr<grpc::ClientContext> ContextWithin(double seconds);
@@ -56,9 +63,5 @@ int ReportError(std::string_view command, const absl::Status& status, std::ostre
 
 /// `message` as one line of JSON with the proto field names.
 std::string ProtoToJsonLine(const google::protobuf::Message& message);
-
-/// True when `address` (host:port) names this machine's loopback:
-/// 127.x.x.x, localhost or [::1].
-bool IsLoopbackAddress(std::string_view address);
 
 }  // namespace hs::cli

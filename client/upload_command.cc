@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "client/channel.h"
 #include "client/exit_codes.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 
@@ -40,7 +41,9 @@ int RunUpload(const UploadArgs& args, std::ostream& out, std::ostream& err) {
   const std::string bytes = buffer.str();
   const std::filesystem::path path(args.file);
 
-  auto stub = pb::SceneService::NewStub(MakeChannel(args.server.address));
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> channel = MakeChannel(args.server);
+  if (!channel.ok()) return ReportError("upload", channel.status(), err);
+  auto stub = pb::SceneService::NewStub(*channel);
   // Large files take longer than one request: the deadline grows with size
   // (at least 1 s per 16 MiB).
   auto context = ContextWithin(args.server.timeout_s + static_cast<double>(bytes.size()) / 16e6);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "client/channel.h"
 #include "client/exit_codes.h"
 #include "client/frame_format.h"
 #include "client/percentiles.h"
@@ -105,7 +106,9 @@ int RunWatch(const WatchArgs& args, std::ostream& out, std::ostream& err) {
       return ReportError("watch", "unknown part '" + part + "' (poses, contacts, forces)", err);
     }
   }
-  auto stub = pb::SessionService::NewStub(MakeChannel(args.server.address));
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> channel = MakeChannel(args.server);
+  if (!channel.ok()) return ReportError("watch", channel.status(), err);
+  auto stub = pb::SessionService::NewStub(*channel);
   grpc::ClientContext context;
   if (args.duration_s > 0) {
     context.set_deadline(std::chrono::system_clock::now() +

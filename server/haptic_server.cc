@@ -10,6 +10,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/core/status_macros.h"
+#include "common/net/address.h"
 #include "server/thread_priority.h"
 
 namespace hs {
@@ -19,6 +20,15 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
   if (options.limits.realtime_priority != 0) {
     HS_RETURN_IF_ERROR(CheckRealtimePriority(options.limits.realtime_priority));
   }
+  if (!options.tls.enabled() && !options.insecure_listen && !IsLoopbackAddress(options.listen)) {
+    return absl::FailedPreconditionError(
+        absl::StrCat(options.listen,
+                     " is reachable from other machines: serve it with TLS (--tls-cert, "
+                     "--tls-key), or give --insecure-listen to serve it in the clear"));
+  }
+  absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
+      MakeServerCredentials(options.tls);
+  if (!credentials.ok()) return credentials.status();
   std::unique_ptr<HapticServer> server(new HapticServer());
   std::string model_dir = options.model_dir;
   if (model_dir.empty()) {
@@ -36,7 +46,7 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(options.listen, grpc::InsecureServerCredentials(), &server->port_);
+  builder.AddListeningPort(options.listen, *credentials, &server->port_);
   builder.RegisterService(server->scene_service_.get());
   builder.RegisterService(server->session_service_.get());
   builder.SetMaxReceiveMessageSize(options.max_receive_bytes);

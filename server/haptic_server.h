@@ -8,6 +8,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "server/auth/tls_credentials.h"
 #include "server/metrics.h"
 #include "server/scene_registry.h"
 #include "server/scene_service.h"
@@ -18,6 +19,10 @@ namespace hs {
 struct ServerOptions {
   /// host:port to listen on; port 0 picks a free one (see port()).
   std::string listen = "127.0.0.1:50051";
+  /// TLS certificate and key (and client CA for mutual TLS); empty: none.
+  ServerTlsFiles tls;
+  /// Lets `listen` name an address other machines reach without TLS.
+  bool insecure_listen = false;
   ServerLimits limits;
   /// Folder for uploaded models; empty: a fresh temporary folder, removed
   /// when the server is destroyed.
@@ -28,7 +33,10 @@ struct ServerOptions {
 
 class HapticServer {
  public:
-  /// Starts serving. UNAVAILABLE when it cannot listen on options.listen.
+  /// Starts serving. UNAVAILABLE when it cannot listen on options.listen;
+  /// INVALID_ARGUMENT for unusable TLS files (MakeServerCredentials);
+  /// FAILED_PRECONDITION when options.listen is reachable from other
+  /// machines without TLS and insecure_listen is not set.
   /// `metrics` outlives the server.
   static absl::StatusOr<std::unique_ptr<HapticServer>> Start(const ServerOptions& options,
                                                              Metrics& metrics);

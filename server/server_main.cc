@@ -10,6 +10,7 @@
 
 #include "CLI/CLI.hpp"
 #include "common/api/scene_file.h"
+#include "common/net/address.h"
 #include "server/haptic_server.h"
 
 int main(int argc, char** argv) {
@@ -19,6 +20,15 @@ int main(int argc, char** argv) {
   std::string metrics_address;
   app.add_option("--listen", options.listen, "host:port to serve gRPC on (port 0: any free)")
       ->capture_default_str();
+  app.add_option("--tls-cert", options.tls.cert_file, "PEM certificate chain: serve over TLS")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-key", options.tls.key_file, "PEM private key of --tls-cert")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-client-ca", options.tls.client_ca_file,
+                 "PEM CA certificates: clients must present a certificate they signed (mutual TLS)")
+      ->check(CLI::ExistingFile);
+  app.add_flag("--insecure-listen", options.insecure_listen,
+               "Allow --listen on an address other machines reach without TLS");
   app.add_option("--scene", scene_files, "Scene file to load at start (repeatable)")
       ->check(CLI::ExistingFile);
   app.add_option("--metrics", metrics_address, "host:port to serve Prometheus /metrics on");
@@ -74,6 +84,10 @@ int main(int argc, char** argv) {
       return 1;
     }
     std::cerr << "haptic-server: scene '" << info->spec.name() << "' from " << file << "\n";
+  }
+  if (!options.tls.enabled() && !hs::IsLoopbackAddress(options.listen)) {
+    std::cerr << "haptic-server: WARNING: " << options.listen
+              << " is served without TLS: anyone on the network can read and send its traffic\n";
   }
   std::cerr << "haptic-server: listening on port " << (*server)->port() << std::endl;
 

@@ -15,12 +15,14 @@
 #include "absl/cleanup/cleanup.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "client/channel.h"
 #include "client/device_path.h"
 #include "client/loadtest/echo_baseline.h"
 #include "client/loadtest/process_cpu.h"
 #include "client/loadtest/send_schedule.h"
 #include "client/needs_args.h"
 #include "common/api/proto_convert.h"
+#include "common/net/address.h"
 #include "haptics/v1/echo_service.grpc.pb.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
@@ -549,7 +551,9 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
       options.scene ? *options.scene : BuiltInLoadScene(), options.clients, report.scene);
   if (!spec.ok()) return spec.status();
 
-  std::shared_ptr<grpc::Channel> channel = MakeChannel(options.server.address);
+  absl::StatusOr<std::shared_ptr<grpc::Channel>> opened = MakeChannel(options.server);
+  if (!opened.ok()) return opened.status();
+  std::shared_ptr<grpc::Channel> channel = *std::move(opened);
   auto scenes = pb::SceneService::NewStub(channel);
   {
     pb::CreateSceneRequest request;
@@ -607,7 +611,8 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
     absl::StatusOr<std::unique_ptr<EchoBaselineServer>> started = EchoBaselineServer::Start();
     if (!started.ok()) return started.status();
     echo_baseline = *std::move(started);
-    auto echo_stub = pb::EchoService::NewStub(MakeChannel(echo_baseline->address()));
+    auto echo_stub = pb::EchoService::NewStub(
+        grpc::CreateChannel(echo_baseline->address(), grpc::InsecureChannelCredentials()));
     // A pose message's size depends on the pose: the mean over the path.
     constexpr uint64_t kSamples = 16;
     int64_t sampled = 0;

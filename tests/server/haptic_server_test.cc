@@ -119,5 +119,24 @@ TEST(HapticServerTest, ClientLimit) {
   EXPECT_NE(server.metrics().Text().find("hs_frames_sent_total"), std::string::npos);
 }
 
+// An address other machines reach is refused without TLS unless
+// insecure_listen says so; the check runs before anything binds (192.0.2.1
+// is a documentation address no interface here holds).
+TEST(HapticServerTest, RemoteListenNeedsTlsOrInsecureListen) {
+  Metrics metrics;
+  ServerOptions options;
+  for (const char* listen : {"0.0.0.0:0", "[::]:0", "192.0.2.1:0"}) {
+    options.listen = listen;
+    absl::StatusOr<std::unique_ptr<HapticServer>> server = HapticServer::Start(options, metrics);
+    ASSERT_FALSE(server.ok()) << listen;
+    EXPECT_EQ(server.status().code(), absl::StatusCode::kFailedPrecondition) << listen;
+    EXPECT_NE(server.status().message().find("--insecure-listen"), std::string::npos);
+  }
+  options.insecure_listen = true;
+  absl::StatusOr<std::unique_ptr<HapticServer>> server = HapticServer::Start(options, metrics);
+  ASSERT_FALSE(server.ok());
+  EXPECT_EQ(server.status().code(), absl::StatusCode::kUnavailable) << server.status();
+}
+
 }  // namespace
 }  // namespace hs::testing
