@@ -30,6 +30,14 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
       MakeServerCredentials(options.tls);
   if (!credentials.ok()) return credentials.status();
   std::unique_ptr<HapticServer> server(new HapticServer());
+  if (options.tokens_file.empty()) {
+    server->access_ = std::make_unique<AccessPolicy>();
+  } else {
+    absl::StatusOr<std::unique_ptr<AccessPolicy>> access =
+        AccessPolicy::FromFile(options.tokens_file);
+    if (!access.ok()) return access.status();
+    server->access_ = *std::move(access);
+  }
   std::string model_dir = options.model_dir;
   if (model_dir.empty()) {
     std::string pattern =
@@ -40,8 +48,8 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
     model_dir = server->temporary_model_dir_ = pattern;
   }
   server->registry_ = std::make_unique<SceneRegistry>(options.limits, model_dir, metrics);
-  server->scene_service_ = std::make_unique<SceneServiceImpl>(*server->registry_);
-  server->session_service_ = std::make_unique<SessionServiceImpl>(*server->registry_);
+  server->scene_service_ = std::make_unique<SceneServiceImpl>(*server->registry_, *server->access_);
+  server->session_service_ = std::make_unique<SessionServiceImpl>(*server->registry_, *server->access_);
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "server/auth/access_policy.h"
 #include "server/auth/tls_credentials.h"
 #include "server/metrics.h"
 #include "server/scene_registry.h"
@@ -23,6 +24,9 @@ struct ServerOptions {
   ServerTlsFiles tls;
   /// Lets `listen` name an address other machines reach without TLS.
   bool insecure_listen = false;
+  /// Tokens and roles (token_table.h); empty: an open server, where any
+  /// caller may do anything.
+  std::string tokens_file;
   ServerLimits limits;
   /// Folder for uploaded models; empty: a fresh temporary folder, removed
   /// when the server is destroyed.
@@ -34,7 +38,8 @@ struct ServerOptions {
 class HapticServer {
  public:
   /// Starts serving. UNAVAILABLE when it cannot listen on options.listen;
-  /// INVALID_ARGUMENT for unusable TLS files (MakeServerCredentials);
+  /// INVALID_ARGUMENT for unusable TLS files (MakeServerCredentials) or
+  /// tokens file (TokenTable::Read);
   /// FAILED_PRECONDITION when options.listen is reachable from other
   /// machines without TLS and insecure_listen is not set.
   /// `metrics` outlives the server.
@@ -46,6 +51,8 @@ class HapticServer {
   /// The port it listens on.
   int port() const { return port_; }
   SceneRegistry& registry() { return *registry_; }
+  /// Who may call what; Reload() it when the tokens file changes.
+  AccessPolicy& access() { return *access_; }
 
   /// First half of a graceful stop: health goes NOT_SERVING and every
   /// scene runs a final step and ends its streams with UNAVAILABLE; the
@@ -61,6 +68,7 @@ class HapticServer {
 
   int port_ = 0;
   std::string temporary_model_dir_;
+  std::unique_ptr<AccessPolicy> access_;
   std::unique_ptr<SceneRegistry> registry_;
   std::unique_ptr<SceneServiceImpl> scene_service_;
   std::unique_ptr<SessionServiceImpl> session_service_;

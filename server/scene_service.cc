@@ -2,6 +2,7 @@
 
 #include <exception>
 
+#include "common/core/status_macros.h"
 #include "server/grpc_status.h"
 #include "server/spec_edit.h"
 
@@ -58,8 +59,15 @@ absl::Status EditAndAnswer(SceneRegistry& registry, grpc::CallbackServerContext*
 
 class UploadReactor : public grpc::ServerReadReactor<pb::UploadModelChunk> {
  public:
-  UploadReactor(SceneRegistry& registry, pb::UploadModelResponse* response)
+  // Reads the upload when `allowed`, else ends the call with its error.
+  UploadReactor(SceneRegistry& registry, const absl::Status& allowed,
+                pb::UploadModelResponse* response)
       : registry_(registry), response_(response), upload_(registry.limits().max_model_bytes) {
+    if (!allowed.ok()) {
+      registry_.metrics().AddRejected("UploadModel", absl::StatusCodeToString(allowed.code()));
+      Finish(ToGrpcStatus(allowed));
+      return;
+    }
     StartRead(&chunk_);
   }
 
@@ -98,6 +106,7 @@ grpc::ServerUnaryReactor* SceneServiceImpl::CreateScene(grpc::CallbackServerCont
                                                         const pb::CreateSceneRequest* request,
                                                         pb::SceneInfo* response) {
   return Respond(context, registry_.metrics(), "CreateScene", [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->spec().name()).status());
     if (absl::Status s = RejectModelPaths(request->spec()); !s.ok()) return s;
     absl::StatusOr<RunnerInfo> info = registry_.Create(request->spec(), "", context->deadline());
     if (!info.ok()) return info.status();
@@ -111,6 +120,7 @@ grpc::ServerUnaryReactor* SceneServiceImpl::GetScene(grpc::CallbackServerContext
                                                      const pb::GetSceneRequest* request,
                                                      pb::SceneInfo* response) {
   return Respond(context, registry_.metrics(), "GetScene", [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kRead, request->scene()).status());
     absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(request->scene());
     if (!runner.ok()) return runner.status();
     InfoToProto((*runner)->Info(), (*runner)->step_s(), response);
@@ -122,9 +132,12 @@ grpc::ServerUnaryReactor* SceneServiceImpl::ListScenes(grpc::CallbackServerConte
                                                        const pb::ListScenesRequest*,
                                                        pb::ListScenesResponse* response) {
   return Respond(context, registry_.metrics(), "ListScenes", [&]() -> absl::Status {
+    absl::StatusOr<Caller> caller = access_.Check(*context, Access::kRead, "");
+    if (!caller.ok()) return caller.status();
     for (const std::shared_ptr<SceneRunner>& runner : registry_.List()) {
       RunnerInfo info = runner->Info();
       const std::string name = info.spec.name();
+      if (!AccessPolicy::MaySee(*caller, name)) continue;
       info.spec.Clear();
       info.spec.set_name(name);
       InfoToProto(info, runner->step_s(), response->add_scenes());
@@ -136,19 +149,23 @@ grpc::ServerUnaryReactor* SceneServiceImpl::ListScenes(grpc::CallbackServerConte
 grpc::ServerUnaryReactor* SceneServiceImpl::DeleteScene(grpc::CallbackServerContext* context,
                                                         const pb::DeleteSceneRequest* request,
                                                         pb::DeleteSceneResponse*) {
-  return Respond(context, registry_.metrics(), "DeleteScene",
-                 [&] { return registry_.Delete(request->scene()); });
+  return Respond(context, registry_.metrics(), "DeleteScene", [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
+    return registry_.Delete(request->scene());
+  });
 }
 
 grpc::ServerReadReactor<pb::UploadModelChunk>* SceneServiceImpl::UploadModel(
-    grpc::CallbackServerContext*, pb::UploadModelResponse* response) {
-  return new UploadReactor(registry_, response);
+    grpc::CallbackServerContext* context, pb::UploadModelResponse* response) {
+  return new UploadReactor(registry_, access_.Check(*context, Access::kAdmin, "").status(),
+                           response);
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::AddObject(grpc::CallbackServerContext* context,
                                                       const pb::AddObjectRequest* request,
                                                       pb::SceneInfo* response) {
   return Respond(context, registry_.metrics(), "AddObject", [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
     pb::SceneSpec alone;
     *alone.add_objects() = request->object();
     if (absl::Status s = RejectModelPaths(alone); !s.ok()) return s;
@@ -161,7 +178,8 @@ grpc::ServerUnaryReactor* SceneServiceImpl::AddObject(grpc::CallbackServerContex
 grpc::ServerUnaryReactor* SceneServiceImpl::UpdateObject(grpc::CallbackServerContext* context,
                                                          const pb::UpdateObjectRequest* request,
                                                          pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "UpdateObject", [&] {
+  return Respond(context, registry_.metrics(), "UpdateObject", [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
     return EditAndAnswer(
         registry_, context, request->scene(),
         [&](pb::SceneSpec& spec) { return UpdateObjectInSpec(*request, spec); }, response);
@@ -171,7 +189,8 @@ grpc::ServerUnaryReactor* SceneServiceImpl::UpdateObject(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* SceneServiceImpl::RemoveObject(grpc::CallbackServerContext* context,
                                                          const pb::RemoveObjectRequest* request,
                                                          pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "RemoveObject", [&] {
+  return Respond(context, registry_.metrics(), "RemoveObject", [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
     return EditAndAnswer(
         registry_, context, request->scene(),
         [&](pb::SceneSpec& spec) { return RemoveObjectFromSpec(request->object(), spec); },
@@ -182,7 +201,8 @@ grpc::ServerUnaryReactor* SceneServiceImpl::RemoveObject(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* SceneServiceImpl::SetEffects(grpc::CallbackServerContext* context,
                                                        const pb::SetEffectsRequest* request,
                                                        pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "SetEffects", [&] {
+  return Respond(context, registry_.metrics(), "SetEffects", [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
     return EditAndAnswer(
         registry_, context, request->scene(),
         [&](pb::SceneSpec& spec) {

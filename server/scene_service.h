@@ -1,17 +1,20 @@
 #pragma once
 // haptics.v1.SceneService on the gRPC callback API: scenes and their
 // objects, and model uploads. Each request runs as an edit of the scene's
-// spec through the SceneRegistry; no exception leaves a handler.
+// spec through the SceneRegistry, once AccessPolicy allows it; no exception
+// leaves a handler.
 
 #include "haptics/v1/scene_service.grpc.pb.h"
+#include "server/auth/access_policy.h"
 #include "server/scene_registry.h"
 
 namespace hs {
 
 class SceneServiceImpl final : public haptics::v1::SceneService::CallbackService {
  public:
-  /// `registry` outlives the service.
-  explicit SceneServiceImpl(SceneRegistry& registry) : registry_(registry) {}
+  /// `registry` and `access` outlive the service.
+  SceneServiceImpl(SceneRegistry& registry, const AccessPolicy& access)
+      : registry_(registry), access_(access) {}
 
   grpc::ServerUnaryReactor* CreateScene(grpc::CallbackServerContext* context,
                                         const haptics::v1::CreateSceneRequest* request,
@@ -42,6 +45,7 @@ class SceneServiceImpl final : public haptics::v1::SceneService::CallbackService
 
  private:
   SceneRegistry& registry_;
+  const AccessPolicy& access_;
 };
 
 }  // namespace hs

@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_flag("--insecure-listen", options.insecure_listen,
                "Allow --listen on an address other machines reach without TLS");
+  app.add_option("--tokens", options.tokens_file,
+                 "Tokens and their roles, one 'sha256:<hex> ROLE SCENE_PATTERN' a line; re-read "
+                 "on SIGHUP. Without it any client may do anything")
+      ->check(CLI::ExistingFile);
   app.add_option("--scene", scene_files, "Scene file to load at start (repeatable)")
       ->check(CLI::ExistingFile);
   app.add_option("--metrics", metrics_address, "host:port to serve Prometheus /metrics on");
@@ -53,11 +57,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
-  // SIGTERM and SIGINT are taken by sigwait below, not by any thread.
+  // SIGTERM, SIGINT and SIGHUP are taken by sigwait below, not by any thread.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   hs::Metrics metrics;
@@ -89,10 +94,21 @@ int main(int argc, char** argv) {
     std::cerr << "haptic-server: WARNING: " << options.listen
               << " is served without TLS: anyone on the network can read and send its traffic\n";
   }
+  if (options.tokens_file.empty()) {
+    std::cerr << "haptic-server: no --tokens: open to every client that reaches it\n";
+  }
   std::cerr << "haptic-server: listening on port " << (*server)->port() << std::endl;
 
   int signal = 0;
-  sigwait(&signals, &signal);
+  while (sigwait(&signals, &signal) == 0 && signal == SIGHUP) {
+    const absl::StatusOr<size_t> tokens = (*server)->access().Reload();
+    if (tokens.ok()) {
+      std::cerr << "haptic-server: SIGHUP: " << *tokens << " tokens" << std::endl;
+    } else {
+      std::cerr << "haptic-server: SIGHUP: " << tokens.status().message()
+                << "; the tokens read before stay" << std::endl;
+    }
+  }
   std::cerr << "haptic-server: " << (signal == SIGTERM ? "SIGTERM" : "SIGINT")
             << ", shutting down\n";
   (*server)->Shutdown();

@@ -53,8 +53,13 @@ class FrameStream : public Base, public FrameSink {
   }
 
  protected:
-  FrameStream(SceneRegistry& registry, bool device)
-      : registry_(registry), device_(device), outbox_(device ? 1 : kViewerQueueFrames) {}
+  FrameStream(SceneRegistry& registry, const AccessPolicy& access,
+              const grpc::CallbackServerContext& context, bool device)
+      : registry_(registry),
+        device_(device),
+        access_(access),
+        context_(context),
+        outbox_(device ? 1 : kViewerQueueFrames) {}
 
   // Ends the stream from this side: lets go of the scene (and the tool) at
   // once, so that the client seeing the end can claim the tool again; then
@@ -80,8 +85,15 @@ class FrameStream : public Base, public FrameSink {
     End(status, /*abort=*/false);
   }
 
-  // Counts the client and finds its scene; on error the stream is failed.
+  // Checks the caller may drive or watch `scene`, counts the client and
+  // finds its scene; on error the stream is failed.
   bool Open(const std::string& scene, const char* method) {
+    if (absl::Status s =
+            access_.Check(context_, device_ ? Access::kDrive : Access::kWatch, scene).status();
+        !s.ok()) {
+      Fail(s, method);
+      return false;
+    }
     if (absl::Status s = registry_.AddClient(); !s.ok()) {
       Fail(s, method);
       return false;
@@ -145,6 +157,8 @@ class FrameStream : public Base, public FrameSink {
     frame_.set_missed_steps_off_cpu(s.missed_steps_off_cpu);
   }
 
+  const AccessPolicy& access_;
+  const grpc::CallbackServerContext& context_;
   FrameOutbox outbox_;
   std::mutex finish_mu_;
   bool counted_ = false;
@@ -154,7 +168,9 @@ class FrameStream : public Base, public FrameSink {
 class InteractReactor
     : public FrameStream<grpc::ServerBidiReactor<pb::InteractRequest, pb::Frame>> {
  public:
-  explicit InteractReactor(SceneRegistry& registry) : FrameStream(registry, true) {
+  InteractReactor(SceneRegistry& registry, const AccessPolicy& access,
+                  const grpc::CallbackServerContext& context)
+      : FrameStream(registry, access, context, true) {
     UnlessClosed([this] { StartRead(&request_); });
   }
 
@@ -238,8 +254,9 @@ absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequ
 
 class WatchReactor : public FrameStream<grpc::ServerWriteReactor<pb::Frame>> {
  public:
-  WatchReactor(SceneRegistry& registry, const pb::WatchRequest& request)
-      : FrameStream(registry, false) {
+  WatchReactor(SceneRegistry& registry, const AccessPolicy& access,
+               const grpc::CallbackServerContext& context, const pb::WatchRequest& request)
+      : FrameStream(registry, access, context, false) {
     if (!Open(request.scene(), "Watch")) return;
     absl::StatusOr<std::pair<FrameParts, EffectSet>> needs = ViewerNeeds(request);
     if (!needs.ok()) {
@@ -254,13 +271,13 @@ class WatchReactor : public FrameStream<grpc::ServerWriteReactor<pb::Frame>> {
 }  // namespace
 
 grpc::ServerBidiReactor<pb::InteractRequest, pb::Frame>* SessionServiceImpl::Interact(
-    grpc::CallbackServerContext*) {
-  return new InteractReactor(registry_);
+    grpc::CallbackServerContext* context) {
+  return new InteractReactor(registry_, access_, *context);
 }
 
-grpc::ServerWriteReactor<pb::Frame>* SessionServiceImpl::Watch(grpc::CallbackServerContext*,
+grpc::ServerWriteReactor<pb::Frame>* SessionServiceImpl::Watch(grpc::CallbackServerContext* context,
                                                                const pb::WatchRequest* request) {
-  return new WatchReactor(registry_, *request);
+  return new WatchReactor(registry_, access_, *context, *request);
 }
 
 }  // namespace hs

@@ -5,6 +5,7 @@
 // happens as each client reads, so a slow client never slows the scene.
 
 #include "haptics/v1/session_service.grpc.pb.h"
+#include "server/auth/access_policy.h"
 #include "server/scene_registry.h"
 
 namespace hs {
@@ -14,8 +15,9 @@ inline constexpr size_t kViewerQueueFrames = 64;
 
 class SessionServiceImpl final : public haptics::v1::SessionService::CallbackService {
  public:
-  /// `registry` outlives the service.
-  explicit SessionServiceImpl(SceneRegistry& registry) : registry_(registry) {}
+  /// `registry` and `access` outlive the service.
+  SessionServiceImpl(SceneRegistry& registry, const AccessPolicy& access)
+      : registry_(registry), access_(access) {}
 
   grpc::ServerBidiReactor<haptics::v1::InteractRequest, haptics::v1::Frame>* Interact(
       grpc::CallbackServerContext* context) override;
@@ -24,6 +26,7 @@ class SessionServiceImpl final : public haptics::v1::SessionService::CallbackSer
 
  private:
   SceneRegistry& registry_;
+  const AccessPolicy& access_;
 };
 
 }  // namespace hs

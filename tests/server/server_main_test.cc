@@ -7,10 +7,14 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <thread>
 
+#include "absl/strings/escaping.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
+#include "server/sha256.h"
+#include "tests/common/scratch_dir.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 
 namespace hs {
@@ -20,10 +24,11 @@ namespace pb = haptics::v1;
 
 const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
 
-// The built haptic-server, started on a free port with the demo scene.
+// The built haptic-server, started on a free port with the demo scene and
+// `extra` arguments.
 class ServerProcess {
  public:
-  ServerProcess() {
+  explicit ServerProcess(const std::vector<std::string>& extra = {}) {
     int fds[2];
     EXPECT_EQ(pipe(fds), 0);
     posix_spawn_file_actions_t actions;
@@ -31,10 +36,12 @@ class ServerProcess {
     posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
     posix_spawn_file_actions_addclose(&actions, fds[0]);
     const std::string scene = kScenes + "/probe_on_torus.textproto";
-    const char* argv[] = {HS_HAPTIC_SERVER, "--listen",    "127.0.0.1:0",
-                          "--scene",        scene.c_str(), nullptr};
+    std::vector<const char*> argv = {HS_HAPTIC_SERVER, "--listen", "127.0.0.1:0", "--scene",
+                                     scene.c_str()};
+    for (const std::string& arg : extra) argv.push_back(arg.c_str());
+    argv.push_back(nullptr);
     EXPECT_EQ(posix_spawn(&pid_, HS_HAPTIC_SERVER, &actions, nullptr,
-                          const_cast<char* const*>(argv), environ),
+                          const_cast<char* const*>(argv.data()), environ),
               0);
     posix_spawn_file_actions_destroy(&actions);
     close(fds[1]);
@@ -53,6 +60,15 @@ class ServerProcess {
     if (stderr_ != nullptr) fclose(stderr_);
   }
   int port() const { return port_; }
+  // The next line of its stderr that holds `text`; empty at its end.
+  std::string LineWith(const char* text) {
+    char line[512];
+    while (fgets(line, sizeof line, stderr_) != nullptr) {
+      if (strstr(line, text) != nullptr) return line;
+    }
+    return "";
+  }
+  void Signal(int signal) { kill(pid_, signal); }
   // Sends `signal` and returns the exit status (-1 unless it exited).
   int StopWith(int signal) {
     kill(pid_, signal);
@@ -102,6 +118,43 @@ TEST(ServerMainTest, ServesSceneAndStopsGracefullyOnSigterm) {
   EXPECT_EQ(server.StopWith(SIGTERM), 0);
   reader.join();
   EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
+}
+
+// The status of GetScene("probe on torus") with bearer token `token`.
+grpc::StatusCode GetSceneAs(int port, const std::string& token) {
+  auto channel =
+      grpc::CreateChannel("127.0.0.1:" + std::to_string(port), grpc::InsecureChannelCredentials());
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  context.AddMetadata("authorization", "Bearer " + token);
+  pb::GetSceneRequest get;
+  get.set_scene("probe on torus");
+  pb::SceneInfo info;
+  return pb::SceneService::NewStub(channel)->GetScene(&context, get, &info).error_code();
+}
+
+void WriteAdminToken(const std::string& path, const std::string& token) {
+  Sha256 hash;
+  hash.Update(token);
+  std::ofstream(path) << "sha256:" << absl::BytesToHexString(hash.Finish()) << " admin *\n";
+}
+
+// With --tokens, the binary takes the tokens in the file, and on SIGHUP
+// the file as it is then.
+TEST(ServerMainTest, TokensFileIsReReadOnSighup) {
+  const std::string tokens = (ScratchDir("sighup") / "tokens").string();
+  WriteAdminToken(tokens, "first");
+  ServerProcess server({"--tokens", tokens});
+  ASSERT_GT(server.port(), 0);
+  EXPECT_EQ(GetSceneAs(server.port(), "first"), grpc::StatusCode::OK);
+  EXPECT_EQ(GetSceneAs(server.port(), "second"), grpc::StatusCode::UNAUTHENTICATED);
+
+  WriteAdminToken(tokens, "second");
+  server.Signal(SIGHUP);
+  EXPECT_NE(server.LineWith("SIGHUP: 1 tokens"), "");
+  EXPECT_EQ(GetSceneAs(server.port(), "second"), grpc::StatusCode::OK);
+  EXPECT_EQ(GetSceneAs(server.port(), "first"), grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_EQ(server.StopWith(SIGTERM), 0);
 }
 
 }  // namespace
