@@ -7,6 +7,7 @@
 #include "client/exit_codes.h"
 #include "common/hds/mesh_report.h"
 #include "common/model/import.h"
+#include "common/sandbox/sandboxed_import.h"
 
 namespace hs::cli {
 namespace {
@@ -76,7 +77,9 @@ int RunInspect(const InspectArgs& args, std::ostream& out, std::ostream& err) {
   ImportOptions options;
   options.unit_scale = args.unit_scale;
   options.weld_relative_tolerance = args.weld_relative_tolerance;
-  absl::StatusOr<ImportedModel> model = ImportModel(args.file, options);
+  // The file may come from anywhere: a reader that crashes or loops costs
+  // the import worker, not this process.
+  absl::StatusOr<ImportedModel> model = SandboxedImport(args.file, options);
   if (!model.ok()) {
     err << "hapticctl inspect: " << model.status().message() << "\n";
     return kExitFailure;

@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "absl/strings/str_cat.h"
-#include "common/model/import.h"
+#include "common/sandbox/sandboxed_import.h"
 #include "server/sha256.h"
 
 namespace hs {
@@ -80,7 +80,7 @@ absl::StatusOr<StoredModel> ModelStore::Store(const ModelUpload& upload) {
     out.write(upload.data().data(), static_cast<std::streamsize>(upload.data().size()));
     if (!out) return absl::InternalError(absl::StrCat("cannot write ", staged.string()));
   }
-  absl::StatusOr<ImportedModel> model = ImportModel(staged.string(), ImportOptions{});
+  absl::StatusOr<ImportedModel> model = SandboxedImport(staged.string(), ImportOptions{});
   if (!model.ok()) {
     std::filesystem::remove(staged, error);
     return absl::InvalidArgumentError(

@@ -14,6 +14,7 @@
 #include "common/api/proto_convert.h"
 #include "common/core/status_macros.h"
 #include "common/model/import.h"
+#include "common/sandbox/sandboxed_import.h"
 #include "common/model/procedural.h"
 
 namespace hs {
@@ -62,11 +63,18 @@ absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::str
   return Invalid(where, "no shape");
 }
 
+// Model files a scene file names are the operator's, read in this process
+// (an OBJ finds its mtllib beside it); uploaded ones come from clients and
+// are read in the import worker (common/sandbox).
+enum class Trust { kLocalFile, kUpload };
+
 absl::StatusOr<HapticObject> ImportFile(const std::string& path, double unit_scale,
-                                        const std::string& where) {
+                                        const std::string& where, Trust trust) {
   ImportOptions options;
   options.unit_scale = unit_scale;
-  absl::StatusOr<ImportedModel> model = ImportModel(path, options);
+  absl::StatusOr<ImportedModel> model = trust == Trust::kLocalFile
+                                            ? ImportModel(path, options)
+                                            : SandboxedImport(path, options);
   if (!model.ok()) return Invalid(where + ".model", std::string(model.status().message()));
   return std::move(model->object);
 }
@@ -82,7 +90,7 @@ absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::stri
     case pb::ModelSource::kPath: {
       std::filesystem::path path(source.path());
       if (path.is_relative()) path = std::filesystem::path(paths.base_dir) / path;
-      return ImportFile(path.string(), unit_scale, where);
+      return ImportFile(path.string(), unit_scale, where, Trust::kLocalFile);
     }
     case pb::ModelSource::kUploadedModelId: {
       const std::string& id = source.uploaded_model_id();
@@ -95,7 +103,7 @@ absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::stri
       if (!std::filesystem::exists(path)) {
         return absl::NotFoundError(absl::StrCat(at, ": no uploaded model '", id, "'"));
       }
-      return ImportFile(path.string(), unit_scale, where);
+      return ImportFile(path.string(), unit_scale, where, Trust::kUpload);
     }
     case pb::ModelSource::kProcedural: {
       HS_ASSIGN_OR_RETURN(MeshInput mesh, ProceduralMesh(source.procedural(), where + ".model"));

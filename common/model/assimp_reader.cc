@@ -12,6 +12,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 
 #include "absl/strings/str_cat.h"
@@ -127,16 +128,27 @@ absl::StatusOr<RawMesh> ToRawMesh(const aiScene& scene, bool is_dxf) {
   return out;
 }
 
-}  // namespace
+// Refuses every file: the only bytes a reader of a model's bytes alone
+// gets are the ones in memory (assimp's MemoryIOSystem serves those and
+// asks this for anything else, such as a glTF buffer or an OBJ mtllib).
+class NoFilesIOSystem final : public Assimp::IOSystem {
+ public:
+  bool Exists(const char*) const override { return false; }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char*, const char*) override { return nullptr; }
+  void Close(Assimp::IOStream* stream) override { delete stream; }
+};
 
-absl::StatusOr<RawMesh> ReadWithAssimp(const std::string& path) {
+// Reads with `read` (which calls ReadFile or ReadFileFromMemory on the
+// importer it is given) and turns the scene into a RawMesh.
+template <class Read>
+absl::StatusOr<RawMesh> ReadScene(Assimp::Importer& importer, Read read, bool dxf) {
   try {
-    Assimp::Importer importer;
     importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
     // No aiProcess_Triangulate: polygons stay whole so that every triangle
     // can name its file polygon. No aiProcess_JoinIdenticalVertices either:
     // cleaning welds and reports what it welded.
-    const aiScene* scene = importer.ReadFile(path, 0);
+    const aiScene* scene = read(importer);
     if (scene == nullptr) {
       return absl::InvalidArgumentError(absl::StrCat("assimp: ", importer.GetErrorString()));
     }
@@ -148,12 +160,34 @@ absl::StatusOr<RawMesh> ReadWithAssimp(const std::string& path) {
     if (scene == nullptr) {
       return absl::InvalidArgumentError(absl::StrCat("assimp: ", importer.GetErrorString()));
     }
-    return ToRawMesh(*scene, HasExtension(path, ".dxf"));
+    return ToRawMesh(*scene, dxf);
   } catch (const std::exception& e) {
     return absl::InvalidArgumentError(absl::StrCat("assimp threw: ", e.what()));
   } catch (...) {
     return absl::InvalidArgumentError("assimp threw an unknown exception");
   }
+}
+
+}  // namespace
+
+absl::StatusOr<RawMesh> ReadWithAssimp(const std::string& path) {
+  Assimp::Importer importer;
+  return ReadScene(
+      importer, [&](Assimp::Importer& i) { return i.ReadFile(path, 0); },
+      HasExtension(path, ".dxf"));
+}
+
+absl::StatusOr<RawMesh> ReadBytesWithAssimp(absl::string_view bytes, const std::string& file_name) {
+  Assimp::Importer importer;
+  importer.SetIOHandler(new NoFilesIOSystem());  // the importer owns it
+  std::string hint = std::filesystem::path(file_name).extension().string();
+  if (!hint.empty()) hint.erase(0, 1);
+  return ReadScene(
+      importer,
+      [&](Assimp::Importer& i) {
+        return i.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str());
+      },
+      HasExtension(file_name, ".dxf"));
 }
 
 }  // namespace hs

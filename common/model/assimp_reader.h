@@ -5,6 +5,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "common/model/raw_mesh.h"
 
 namespace hs {
@@ -20,5 +21,10 @@ namespace hs {
 /// INVALID_ARGUMENT with assimp's error string when assimp cannot read the
 /// file. Does not throw: exceptions from assimp become INVALID_ARGUMENT.
 absl::StatusOr<RawMesh> ReadWithAssimp(const std::string& path);
+
+/// ReadWithAssimp for a file's bytes alone; `file_name`'s extension tells
+/// assimp the format. No file is opened: a reference to another file (a
+/// glTF buffer or image, an OBJ mtllib) finds nothing.
+absl::StatusOr<RawMesh> ReadBytesWithAssimp(absl::string_view bytes, const std::string& file_name);
 
 }  // namespace hs

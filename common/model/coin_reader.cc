@@ -323,10 +323,12 @@ struct Unref {
   void operator()(SoNode* node) const { node->unref(); }
 };
 
-absl::StatusOr<RawMesh> ReadLocked(const std::string& path) {
+// Reads the graph `input` is set to (opened by `open`) into a RawMesh.
+template <class Open>
+absl::StatusOr<RawMesh> ReadLocked(Open open) {
   CoinErrorCapture errors;
   SoInput input;
-  if (!input.openFile(path.c_str())) {
+  if (!open(input)) {
     return absl::InvalidArgumentError(absl::StrCat("Coin cannot open it: ", errors.Text()));
   }
   SoSeparator* root = SoDB::readAll(&input);
@@ -350,18 +352,31 @@ absl::StatusOr<RawMesh> ReadLocked(const std::string& path) {
   return collector.TakeMesh();
 }
 
-}  // namespace
-
-absl::StatusOr<RawMesh> ReadWithCoin(const std::string& path) {
+// ReadLocked under the Coin lock, exceptions caught.
+template <class Open>
+absl::StatusOr<RawMesh> Read(Open open) {
   try {
     // The lock outlives every Coin object made below.
     std::unique_lock<std::mutex> lock = LockCoin();
-    return ReadLocked(path);
+    return ReadLocked(open);
   } catch (const std::exception& e) {
     return absl::InvalidArgumentError(absl::StrCat("Coin threw: ", e.what()));
   } catch (...) {
     return absl::InvalidArgumentError("Coin threw an unknown exception");
   }
+}
+
+}  // namespace
+
+absl::StatusOr<RawMesh> ReadWithCoin(const std::string& path) {
+  return Read([&](SoInput& input) { return input.openFile(path.c_str()) == TRUE; });
+}
+
+absl::StatusOr<RawMesh> ReadBytesWithCoin(absl::string_view bytes) {
+  return Read([&](SoInput& input) {
+    input.setBuffer(bytes.data(), bytes.size());
+    return true;
+  });
 }
 
 }  // namespace hs

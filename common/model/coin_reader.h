@@ -6,6 +6,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "common/model/raw_mesh.h"
 
 namespace hs {
@@ -50,5 +51,10 @@ namespace hs {
 /// out of range. Holds the process-wide Coin lock while it runs. Does not
 /// throw.
 absl::StatusOr<RawMesh> ReadWithCoin(const std::string& path);
+
+/// ReadWithCoin for a file's bytes alone, read from memory. Coin still
+/// opens what an Inventor File node names: run it where opening files is
+/// refused (the import sandbox) when the bytes are not trusted.
+absl::StatusOr<RawMesh> ReadBytesWithCoin(absl::string_view bytes);
 
 }  // namespace hs

@@ -14,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/model/assimp_reader.h"
 #include "common/model/cleaning.h"
+#include "common/model/coin_lock.h"
 #include "common/model/coin_reader.h"
 #include "common/model/raw_mesh.h"
 #include "common/model/triangulate.h"
@@ -61,15 +62,10 @@ bool ReadsWithCoin(const std::string& path) {
   return extension == ".iv" || extension == ".wrl";
 }
 
-// ImportModel without the file name in the messages and without the
-// exception barrier.
-absl::StatusOr<ImportedModel> Import(const std::string& path, const ImportOptions& options) {
-  if (absl::Status status = ValidateImportOptions(options); !status.ok()) {
-    return absl::InvalidArgumentError(absl::StrCat("bad import options: ", status.message()));
-  }
-  if (absl::Status status = CheckFile(path); !status.ok()) return status;
-  const bool coin = ReadsWithCoin(path);
-  absl::StatusOr<RawMesh> raw = coin ? ReadWithCoin(path) : ReadWithAssimp(path);
+// The HapticObject of the polygons a reader made of file `path`, or the
+// reader's error.
+absl::StatusOr<ImportedModel> Build(absl::StatusOr<RawMesh> raw, const std::string& path,
+                                    bool coin, const ImportOptions& options) {
   if (!raw.ok()) return raw.status();
   if (absl::Status status = ValidateRawMesh(*raw); !status.ok()) return status;
   const std::vector<FaceInput> triangles = TriangulatePolygons(*raw);
@@ -81,12 +77,20 @@ absl::StatusOr<ImportedModel> Import(const std::string& path, const ImportOption
   return ImportedModel{*std::move(object), cleaned->report, coin ? "coin3d" : "assimp"};
 }
 
-}  // namespace
+absl::Status CheckOptions(const ImportOptions& options) {
+  if (absl::Status status = ValidateImportOptions(options); !status.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat("bad import options: ", status.message()));
+  }
+  return absl::OkStatus();
+}
 
-absl::StatusOr<ImportedModel> ImportModel(const std::string& path, const ImportOptions& options) {
+// Runs `import` with the file named in front of its messages, behind the
+// last exception barrier.
+template <class Import>
+absl::StatusOr<ImportedModel> ForFileGuarded(const std::string& path, Import import) {
   absl::StatusOr<ImportedModel> model;
   try {
-    model = Import(path, options);
+    model = import();
   } catch (const std::exception& e) {
     // The readers catch what assimp and Coin throw; this is the last barrier
     // (std::bad_alloc from a header that promises billions of vertices).
@@ -97,5 +101,30 @@ absl::StatusOr<ImportedModel> ImportModel(const std::string& path, const ImportO
   if (!model.ok()) return ForFile(path, model.status());
   return model;
 }
+
+}  // namespace
+
+absl::StatusOr<ImportedModel> ImportModel(const std::string& path, const ImportOptions& options) {
+  return ForFileGuarded(path, [&]() -> absl::StatusOr<ImportedModel> {
+    if (absl::Status status = CheckOptions(options); !status.ok()) return status;
+    if (absl::Status status = CheckFile(path); !status.ok()) return status;
+    const bool coin = ReadsWithCoin(path);
+    return Build(coin ? ReadWithCoin(path) : ReadWithAssimp(path), path, coin, options);
+  });
+}
+
+absl::StatusOr<ImportedModel> ImportModelBytes(absl::string_view bytes,
+                                               const std::string& file_name,
+                                               const ImportOptions& options) {
+  return ForFileGuarded(file_name, [&]() -> absl::StatusOr<ImportedModel> {
+    if (absl::Status status = CheckOptions(options); !status.ok()) return status;
+    if (bytes.empty()) return absl::InvalidArgumentError("the file is empty");
+    const bool coin = ReadsWithCoin(file_name);
+    return Build(coin ? ReadBytesWithCoin(bytes) : ReadBytesWithAssimp(bytes, file_name),
+                 file_name, coin, options);
+  });
+}
+
+void PrepareReaders() { InitCoinOnce(); }
 
 }  // namespace hs

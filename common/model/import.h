@@ -7,6 +7,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "common/hds/haptic_object.h"
 #include "common/hds/material.h"
 
@@ -72,5 +73,19 @@ struct ImportedModel {
 ///   PERMISSION_DENIED   the file cannot be opened for reading.
 absl::StatusOr<ImportedModel> ImportModel(const std::string& path,
                                           const ImportOptions& options = {});
+
+/// ImportModel for a file's bytes alone, as if read from file `file_name`
+/// (its extension picks the reader, its stem names the object). assimp
+/// reads no other file (an OBJ mtllib, a glTF buffer finds nothing); Coin
+/// still opens the files an Inventor File node names, so bytes from
+/// elsewhere go through SandboxedImport (common/sandbox), which refuses
+/// every open. Errors as ImportModel, INVALID_ARGUMENT for empty bytes.
+absl::StatusOr<ImportedModel> ImportModelBytes(absl::string_view bytes,
+                                               const std::string& file_name,
+                                               const ImportOptions& options = {});
+
+/// Sets up the readers' process-wide state (Coin's database) now rather
+/// than on first use, so that reading later opens no file of its own.
+void PrepareReaders();
 
 }  // namespace hs

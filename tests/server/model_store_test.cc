@@ -89,5 +89,33 @@ TEST(ModelStoreTest, RefusesBadUploads) {
   std::filesystem::remove_all(store.dir());
 }
 
+// An upload that crashes its reader (Inventor nested past any stack) is
+// refused with the crash named, the store goes on serving, and nothing of
+// the upload is left in its folder.
+TEST(ModelStoreTest, UploadThatCrashesTheReaderIsRefused) {
+  std::string data = "#Inventor V2.1 ascii\n";
+  for (int i = 0; i < 200000; ++i) data += "Separator {\n";
+  data += std::string(200000, '}');
+  ModelUpload upload(16 << 20);
+  pb::UploadModelChunk header = Header("deep", data);
+  header.mutable_header()->set_format("iv");
+  ASSERT_TRUE(upload.Add(header).ok());
+  ASSERT_TRUE(upload.Add(Data(data)).ok());
+  ModelStore store(TempDir("crash"), 4);
+  absl::StatusOr<StoredModel> stored = store.Store(upload);
+  ASSERT_FALSE(stored.ok());
+  EXPECT_EQ(stored.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(stored.status().message().find("model 'deep.iv' does not import"), std::string::npos)
+      << stored.status();
+  EXPECT_TRUE(std::filesystem::is_empty(store.dir()));
+
+  const std::string tetrahedron = kTetrahedronObj;
+  ModelUpload good(1 << 20);
+  ASSERT_TRUE(good.Add(Header("tet", tetrahedron)).ok());
+  ASSERT_TRUE(good.Add(Data(tetrahedron)).ok());
+  EXPECT_TRUE(store.Store(good).ok());
+  std::filesystem::remove_all(store.dir());
+}
+
 }  // namespace
 }  // namespace hs
