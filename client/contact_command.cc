@@ -87,10 +87,13 @@ void AddContactCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("moving", args->moving_file, "Model file of the moving object")->required();
   cmd->add_option("fixed", args->fixed_file, "Model file of the fixed object")->required();
   cmd->add_option("--pose-moving", args->pose_moving,
-                  "x,y,z,rx,ry,rz: translation (m) and rotation vector (rad)");
-  cmd->add_option("--pose-fixed", args->pose_fixed, "x,y,z,rx,ry,rz of the fixed object");
+                  "x,y,z,rx,ry,rz: translation (m) and rotation vector (rad)")
+      ->check(PoseValue());
+  cmd->add_option("--pose-fixed", args->pose_fixed, "x,y,z,rx,ry,rz of the fixed object")
+      ->check(PoseValue());
   cmd->add_option("--direction", args->direction, "dx,dy,dz: motion of the moving object")
-      ->required();
+      ->required()
+      ->check(Vector3Value());
   cmd->add_option("--method", args->method, "paper (2D projections) or 3d (exact sweep)")
       ->check(CLI::IsMember({"paper", "3d"}));
   cmd->add_option("--bv", args->bv, "Bounding volume: obbrss, obb, rss, kios, aabb")

@@ -1,6 +1,8 @@
 // hapticctl: the command-line client of the haptic simulation service.
 // Only wiring: each subcommand lives in its own *_command.cc.
 
+#include <iostream>
+
 #include "CLI/CLI.hpp"
 #include "client/contact_command.h"
 #include "client/drive_command.h"
@@ -30,6 +32,17 @@ int main(int argc, char** argv) {
   hs::cli::AddLoadtestCommand(app, exit_code);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ExtrasError& e) {
+    // Options belong to a subcommand; CLI11's own message would list the
+    // ones given before it backwards.
+    if (argc > 1 && argv[1][0] == '-') {
+      std::cerr << "hapticctl: options go after the subcommand (hapticctl SUBCOMMAND "
+                   "[OPTIONS]); not expected before it: "
+                << argv[1] << "\nRun with --help for more information.\n";
+      return hs::cli::kExitUsage;
+    }
+    app.exit(e);
+    return hs::cli::kExitUsage;
   } catch (const CLI::ParseError& e) {
     const int parse_code = app.exit(e);
     return parse_code == 0 ? hs::cli::kExitOk : hs::cli::kExitUsage;

@@ -1,5 +1,6 @@
 #include "client/needs_args.h"
 
+#include "client/pose_args.h"
 #include "common/api/proto_convert.h"
 
 namespace hs::cli {
@@ -28,7 +29,8 @@ void AddNeedsOption(CLI::App& cmd, std::vector<std::string>& names) {
   cmd.add_option("--needs", names,
                  "Effects the consumer needs (collision, contact_set, reversing_vector, force, "
                  "friction, continuous_collision, free_body_motion); default all. A haptic "
-                 "device needs 'force friction'");
+                 "device needs 'force friction'")
+      ->check(ValueCheck("EFFECT", [](const std::string& name) { return ParseEffect(name).status(); }));
 }
 
 void SetNeeds(const EffectSet& needs, haptics::v1::InteractRequest::Open& open) {

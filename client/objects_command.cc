@@ -88,17 +88,13 @@ absl::StatusOr<pb::UpdateObjectRequest> UpdateRequest(const ObjectsArgs& args) {
     override->mutable_material()->set_static_friction((*m)[2]);
     override->mutable_material()->set_dynamic_friction((*m)[3]);
   }
-  for (const std::string& move : args.vertex_moves) {
-    const size_t colon = move.find(':');
-    int id = 0;
-    if (colon == std::string::npos || !absl::SimpleAtoi(move.substr(0, colon), &id)) {
-      return absl::InvalidArgumentError("'" + move + "': expected ID:x,y,z");
-    }
-    absl::StatusOr<Vector3d> p = ParseVector3(move.substr(colon + 1));
-    if (!p.ok()) return p.status();
+  for (const std::string& text : args.vertex_moves) {
+    absl::StatusOr<std::pair<int, Vector3d>> move = ParseVertexMove(text);
+    if (!move.ok()) return move.status();
+    const auto& [id, p] = *move;
     pb::VertexMove* vertex = request.add_vertex_moves();
     vertex->set_vertex_id(id);
-    VectorToProto(*p, vertex->mutable_position_m());
+    VectorToProto(p, vertex->mutable_position_m());
   }
   return request;
 }
@@ -156,23 +152,28 @@ void AddObjectsCommand(CLI::App& app, int& exit_code) {
   add->add_option("--kind", args->kind, "fixed or tool")
       ->check(CLI::IsMember({"fixed", "tool"}))
       ->capture_default_str();
-  add->add_option("--box", args->box, "A box: full side lengths x,y,z, metres");
+  add->add_option("--box", args->box, "A box: full side lengths x,y,z, metres")
+      ->check(Vector3Value());
   add->add_option("--sphere", args->sphere_radius_m, "A sphere of this radius, metres")
       ->check(CLI::PositiveNumber);
   add->add_option("--model", args->model_id, "An uploaded model's id (see upload)");
   add->add_option("--from", args->object_file,
                   "A haptics.v1.SceneObject file (text format, or JSON for *.json)");
-  add->add_option("--pose", args->pose, "X_WO: x,y,z,rx,ry,rz (metres, rotation vector)");
+  add->add_option("--pose", args->pose, "X_WO: x,y,z,rx,ry,rz (metres, rotation vector)")
+      ->check(PoseValue());
   CLI::App* update =
       action(objects->add_subcommand("update", "Change an object's pose, materials or vertices"),
              "update");
-  update->add_option("--pose", args->pose, "X_WO: x,y,z,rx,ry,rz (metres, rotation vector)");
+  update->add_option("--pose", args->pose, "X_WO: x,y,z,rx,ry,rz (metres, rotation vector)")
+      ->check(PoseValue());
   update->add_option("--material", args->material,
-                     "stiffness,damping,static,dynamic (N/m, N s/m, friction coefficients)");
+                     "stiffness,damping,static,dynamic (N/m, N s/m, friction coefficients)")
+      ->check(NumbersValue(4));
   update->add_option("--face-group", args->face_group,
                      "Material name the --material is for (default: every group)");
   update->add_option("--move-vertex", args->vertex_moves,
-                     "ID:x,y,z, object frame, metres (repeatable)");
+                     "ID:x,y,z, object frame, metres (repeatable)")
+      ->check(VertexMoveValue());
   action(objects->add_subcommand("remove", "Remove an object from a scene"), "remove");
 }
 

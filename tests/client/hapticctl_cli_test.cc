@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include "client/exit_codes.h"
 
@@ -52,6 +53,44 @@ TEST(HapticctlCliTest, ServerCommands) {
   EXPECT_EQ(RunHapticctl("scenes list" + nowhere), kExitUnavailable);
   EXPECT_EQ(RunHapticctl("health" + nowhere), kExitUnavailable);
   EXPECT_EQ(RunHapticctl("watch s --frames 1" + nowhere), kExitUnavailable);
+}
+
+// What the built hapticctl prints on stderr for `args`, and its exit status.
+std::pair<std::string, int> StderrOf(const std::string& args) {
+  const std::string command = std::string(HS_HAPTICCTL) + " " + args + " 2>&1 >/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string text;
+  char buffer[256];
+  while (fgets(buffer, sizeof buffer, pipe) != nullptr) text += buffer;
+  const int status = pclose(pipe);
+  return {text, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
+}
+
+// A malformed value is a wrong command line (exit 2, before any server is
+// asked), with a message naming the flag; options given before the
+// subcommand are named in the order given.
+TEST(HapticctlCliTest, MalformedValuesAreUsageErrors) {
+  const struct {
+    std::string args;
+    std::string message;
+  } cases[] = {
+      {"objects add s o --box 1,2", "--box: '1,2': expected 3 comma-separated numbers"},
+      {"objects add s o --box 1,1,1 --pose 0,0,0", "--pose: '0,0,0': expected 6"},
+      {"objects update s o --move-vertex 3:1,2", "--move-vertex: '1,2': expected 3"},
+      {"objects update s o --move-vertex x:1,2,3", "--move-vertex: 'x:1,2,3': expected ID:x,y,z"},
+      {"objects update s o --material 1,2,3", "--material: '1,2,3': expected 4"},
+      {"objects add s o --box 1,nan,1", "--box: 'nan' is not a finite number"},
+      {"drive --scene s --tool t --motion press --needs forse", "--needs: unknown effect 'forse'"},
+      {"contact a.obj b.obj --direction 1,0", "--direction: '1,0': expected 3"},
+      {"--server 1.2.3.4:5 scenes list",
+       "options go after the subcommand (hapticctl SUBCOMMAND [OPTIONS]); not expected before "
+       "it: --server"},
+  };
+  for (const auto& c : cases) {
+    const auto [text, code] = StderrOf(c.args + " --server 127.0.0.1:1");
+    EXPECT_EQ(code, kExitUsage) << c.args << "\n" << text;
+    EXPECT_NE(text.find(c.message), std::string::npos) << c.args << "\n" << text;
+  }
 }
 
 }  // namespace
