@@ -1,6 +1,7 @@
 #include "server/scene_registry.h"
 
 #include "absl/strings/str_cat.h"
+#include "common/api/names.h"
 #include "common/core/status_macros.h"
 #include "server/spec_edit.h"
 #include "server/thread_priority.h"
@@ -17,6 +18,13 @@ SceneRegistry::~SceneRegistry() { StopAll(absl::UnavailableError("the server is 
 absl::StatusOr<LoadedScene> SceneRegistry::BuildChecked(const pb::SceneSpec& spec,
                                                         const std::string& base_dir,
                                                         Deadline deadline) {
+  // The spec comes back whole in every SceneInfo: bounded, it always fits
+  // a reply (vertex moves would grow it without end).
+  if (spec.ByteSizeLong() > static_cast<size_t>(limits_.max_spec_bytes)) {
+    return absl::ResourceExhaustedError(absl::StrCat("the scene's spec would take ",
+                                                     spec.ByteSizeLong(), " bytes; at most ",
+                                                     limits_.max_spec_bytes));
+  }
   if (spec.objects_size() > limits_.max_objects_per_scene) {
     return absl::ResourceExhaustedError(
         absl::StrCat("at most ", limits_.max_objects_per_scene, " objects per scene"));
@@ -46,7 +54,7 @@ absl::StatusOr<LoadedScene> SceneRegistry::BuildChecked(const pb::SceneSpec& spe
 absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::string& base_dir,
                                                  Deadline deadline) {
   std::lock_guard edit(edit_mu_);
-  if (spec.name().empty()) return absl::InvalidArgumentError("name: empty");
+  HS_RETURN_IF_ERROR(ValidateName(spec.name()));
   {
     std::lock_guard lock(mu_);
     if (stopped_) return absl::UnavailableError("the server is stopping");

@@ -28,6 +28,11 @@ struct ServerLimits {
   int max_clients = 64;
   int64_t max_model_bytes = int64_t{256} << 20;
   int max_models = 64;
+  /// A scene's spec, serialized, bytes: it comes back in every SceneInfo
+  /// (vertex moves and materials add to it).
+  int64_t max_spec_bytes = int64_t{1} << 20;
+  /// Vertex moves in one UpdateObject request.
+  int max_vertex_moves_per_request = 10'000;
   /// The step lengths a scene may have, seconds (INVALID_ARGUMENT
   /// outside): one thread per scene must keep up with its rate.
   double min_step_s = 1e-4;

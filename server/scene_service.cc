@@ -2,6 +2,7 @@
 
 #include <exception>
 
+#include "absl/strings/str_cat.h"
 #include "common/core/status_macros.h"
 #include "server/grpc_status.h"
 #include "server/spec_edit.h"
@@ -180,6 +181,11 @@ grpc::ServerUnaryReactor* SceneServiceImpl::UpdateObject(grpc::CallbackServerCon
                                                          pb::SceneInfo* response) {
   return Respond(context, registry_.metrics(), "UpdateObject", [&]() -> absl::Status {
     HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
+    if (request->vertex_moves_size() > registry_.limits().max_vertex_moves_per_request) {
+      return absl::ResourceExhaustedError(
+          absl::StrCat(request->vertex_moves_size(), " vertex moves; at most ",
+                       registry_.limits().max_vertex_moves_per_request, " per request"));
+    }
     return EditAndAnswer(
         registry_, context, request->scene(),
         [&](pb::SceneSpec& spec) { return UpdateObjectInSpec(*request, spec); }, response);

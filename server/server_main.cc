@@ -42,6 +42,12 @@ int main(int argc, char** argv) {
   app.add_option("--max-clients", options.limits.max_clients)->capture_default_str();
   app.add_option("--max-objects", options.limits.max_objects_per_scene)->capture_default_str();
   app.add_option("--max-triangles", options.limits.max_triangles_per_scene)->capture_default_str();
+  app.add_option("--max-spec-bytes", options.limits.max_spec_bytes,
+                 "Largest scene spec, serialized, bytes (it comes back in every SceneInfo)")
+      ->capture_default_str();
+  app.add_option("--max-vertex-moves", options.limits.max_vertex_moves_per_request,
+                 "Vertex moves in one UpdateObject")
+      ->capture_default_str();
   // One per core, up to 4: a step rarely has more tools than that busy.
   options.limits.threads_per_scene =
       static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));

@@ -11,11 +11,12 @@
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
+#include "common/api/names.h"
 #include "common/api/proto_convert.h"
 #include "common/core/status_macros.h"
 #include "common/model/import.h"
-#include "common/sandbox/sandboxed_import.h"
 #include "common/model/procedural.h"
+#include "common/sandbox/sandboxed_import.h"
 
 namespace hs {
 namespace {
@@ -72,9 +73,8 @@ absl::StatusOr<HapticObject> ImportFile(const std::string& path, double unit_sca
                                         const std::string& where, Trust trust) {
   ImportOptions options;
   options.unit_scale = unit_scale;
-  absl::StatusOr<ImportedModel> model = trust == Trust::kLocalFile
-                                            ? ImportModel(path, options)
-                                            : SandboxedImport(path, options);
+  absl::StatusOr<ImportedModel> model =
+      trust == Trust::kLocalFile ? ImportModel(path, options) : SandboxedImport(path, options);
   if (!model.ok()) return Invalid(where + ".model", std::string(model.status().message()));
   return std::move(model->object);
 }
@@ -265,16 +265,18 @@ absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const std::str
 }
 
 absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const BuildPaths& paths) {
+  if (!spec.name().empty()) HS_RETURN_IF_ERROR(ValidateName(spec.name()));
   HS_ASSIGN_OR_RETURN(const SceneOptions options, ToOptions(spec));
   LoadedScene loaded;
   HS_ASSIGN_OR_RETURN(loaded.scene, Scene::Create(options));
   std::set<std::string> names;
   for (int i = 0; i < spec.objects_size(); ++i) {
     const pb::SceneObject& o = spec.objects(i);
-    const std::string where = absl::StrCat("objects[", i, "] '", o.name(), "'");
-    if (o.name().empty() || !names.insert(o.name()).second) {
-      return Invalid(where, "name must be non-empty and unique");
+    if (absl::Status s = ValidateName(o.name()); !s.ok()) {
+      return Invalid(absl::StrCat("objects[", i, "]"), std::string(s.message()));
     }
+    const std::string where = absl::StrCat("objects[", i, "] '", o.name(), "'");
+    if (!names.insert(o.name()).second) return Invalid(where, "name must be unique");
     HS_ASSIGN_OR_RETURN(const ObjectKind kind, ToKind(o, where));
     HS_ASSIGN_OR_RETURN(const BodyOptions body, ToBodyOptions(o, where));
     HS_ASSIGN_OR_RETURN(const Isometry3d X_WO, PoseFromProto(o.pose(), where + ".pose"));

@@ -298,6 +298,70 @@ TEST(SceneServiceTest, SceneAndObjectLimits) {
   EXPECT_EQ(server.Get("only").spec().objects_size(), 2);
 }
 
+// Vertex moves grow a scene's spec until it would pass max_spec_bytes:
+// that UpdateObject is RESOURCE_EXHAUSTED and changes nothing, revision
+// included, and every reply before it fitted; more moves in one request
+// than max_vertex_moves_per_request are refused the same way.
+TEST(SceneServiceTest, SpecSizeAndVertexMoveLimits) {
+  ServerLimits limits;
+  limits.max_spec_bytes = 4096;
+  limits.max_vertex_moves_per_request = 4;
+  TestServer server(limits);
+  server.Create(SmallScene("grow"));
+  pb::UpdateObjectRequest update;
+  update.set_scene("grow");
+  update.set_object("table");
+  pb::SceneInfo info;
+  grpc::Status status;
+  int64_t revision = server.Get("grow").revision();
+  for (int round = 0; round < 1000; ++round) {
+    update.clear_vertex_moves();
+    for (int v = 0; v < 4; ++v) {
+      pb::VertexMove* move = update.add_vertex_moves();
+      move->set_vertex_id(v);
+      move->mutable_position_m()->set_x(0.1 + 1e-6 * round);
+      move->mutable_position_m()->set_y(0.1);
+      move->mutable_position_m()->set_z(0.01 * (v % 2));
+    }
+    status = server.scenes().UpdateObject(ContextWithin(10).get(), update, &info);
+    if (!status.ok()) break;
+    EXPECT_LE(info.spec().ByteSizeLong(), 4096u);
+    revision = info.revision();
+  }
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+  EXPECT_EQ(server.Get("grow").revision(), revision);
+
+  const pb::VertexMove move = update.vertex_moves(0);
+  update.clear_vertex_moves();
+  for (int v = 0; v < 5; ++v) *update.add_vertex_moves() = move;
+  EXPECT_EQ(server.scenes().UpdateObject(ContextWithin(10).get(), update, &info).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(server.Get("grow").revision(), revision);
+}
+
+// Scene and object names outside the documented set (1..64 of
+// [A-Za-z0-9 _.-]) are INVALID_ARGUMENT and nothing is made.
+TEST(SceneServiceTest, NamesAreChecked) {
+  TestServer server;
+  pb::SceneInfo info;
+  for (const std::string& name :
+       {std::string(65, 'a'), std::string("bad\nname"), std::string("nul\0x", 5),
+        std::string(" lead"), std::string("")}) {
+    pb::CreateSceneRequest create;
+    *create.mutable_spec() = SmallScene(name);
+    EXPECT_EQ(server.scenes().CreateScene(ContextWithin(10).get(), create, &info).error_code(),
+              grpc::StatusCode::INVALID_ARGUMENT);
+    *create.mutable_spec() = SmallScene("ok name-1.2_x");
+    create.mutable_spec()->mutable_objects(0)->set_name(name);
+    EXPECT_EQ(server.scenes().CreateScene(ContextWithin(10).get(), create, &info).error_code(),
+              grpc::StatusCode::INVALID_ARGUMENT);
+  }
+  pb::ListScenesResponse listed;
+  ASSERT_TRUE(server.scenes().ListScenes(ContextWithin(10).get(), {}, &listed).ok());
+  EXPECT_EQ(listed.scenes_size(), 0);
+  server.Create(SmallScene("ok name-1.2_x"));
+}
+
 // A tool held by a device cannot be removed (FAILED_PRECONDITION) and the
 // scene stays as it was.
 TEST(SceneServiceTest, HeldToolCannotBeRemoved) {
