@@ -5,6 +5,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/core/status_macros.h"
 #include "server/grpc_status.h"
+#include "server/raw_message.h"
 #include "server/spec_edit.h"
 
 namespace hs {
@@ -28,11 +29,20 @@ absl::Status Guarded(Metrics& metrics, const char* method, Handler&& handler) {
   return status;
 }
 
-template <class Handler>
+// Parses the request, runs `handler(&request, &response)` and serializes
+// the response; ends the call with the first error.
+template <class Request, class Response, class Handler>
 grpc::ServerUnaryReactor* Respond(grpc::CallbackServerContext* context, Metrics& metrics,
-                                  const char* method, Handler&& handler) {
+                                  const char* method, const grpc::ByteBuffer* raw_request,
+                                  grpc::ByteBuffer* raw_response, Handler&& handler) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  reactor->Finish(ToGrpcStatus(Guarded(metrics, method, handler)));
+  Request request;
+  Response response;
+  reactor->Finish(ToGrpcStatus(Guarded(metrics, method, [&]() -> absl::Status {
+    HS_RETURN_IF_ERROR(ParseMessage(*raw_request, request));
+    HS_RETURN_IF_ERROR(handler(&request, &response));
+    return SerializeMessage(response, *raw_response);
+  })));
   return reactor;
 }
 
@@ -104,56 +114,68 @@ class UploadReactor : public grpc::ServerReadReactor<pb::UploadModelChunk> {
 }  // namespace
 
 grpc::ServerUnaryReactor* SceneServiceImpl::CreateScene(grpc::CallbackServerContext* context,
-                                                        const pb::CreateSceneRequest* request,
-                                                        pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "CreateScene", [&]() -> absl::Status {
-    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->spec().name()).status());
-    if (absl::Status s = RejectModelPaths(request->spec()); !s.ok()) return s;
-    absl::StatusOr<RunnerInfo> info = registry_.Create(request->spec(), "", context->deadline());
-    if (!info.ok()) return info.status();
-    absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(request->spec().name());
-    InfoToProto(*info, runner.ok() ? (*runner)->step_s() : 0, response);
-    return absl::OkStatus();
-  });
+                                                        const grpc::ByteBuffer* raw_request,
+                                                        grpc::ByteBuffer* raw_response) {
+  return Respond<pb::CreateSceneRequest, pb::SceneInfo>(
+      context, registry_.metrics(), "CreateScene", raw_request, raw_response,
+      [&](const pb::CreateSceneRequest* request, pb::SceneInfo* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(
+            access_.Check(*context, Access::kAdmin, request->spec().name()).status());
+        if (absl::Status s = RejectModelPaths(request->spec()); !s.ok()) return s;
+        absl::StatusOr<RunnerInfo> info =
+            registry_.Create(request->spec(), "", context->deadline());
+        if (!info.ok()) return info.status();
+        absl::StatusOr<std::shared_ptr<SceneRunner>> runner =
+            registry_.Find(request->spec().name());
+        InfoToProto(*info, runner.ok() ? (*runner)->step_s() : 0, response);
+        return absl::OkStatus();
+      });
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::GetScene(grpc::CallbackServerContext* context,
-                                                     const pb::GetSceneRequest* request,
-                                                     pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "GetScene", [&]() -> absl::Status {
-    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kRead, request->scene()).status());
-    absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(request->scene());
-    if (!runner.ok()) return runner.status();
-    InfoToProto((*runner)->Info(), (*runner)->step_s(), response);
-    return absl::OkStatus();
-  });
+                                                     const grpc::ByteBuffer* raw_request,
+                                                     grpc::ByteBuffer* raw_response) {
+  return Respond<pb::GetSceneRequest, pb::SceneInfo>(
+      context, registry_.metrics(), "GetScene", raw_request, raw_response,
+      [&](const pb::GetSceneRequest* request, pb::SceneInfo* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kRead, request->scene()).status());
+        absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(request->scene());
+        if (!runner.ok()) return runner.status();
+        InfoToProto((*runner)->Info(), (*runner)->step_s(), response);
+        return absl::OkStatus();
+      });
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::ListScenes(grpc::CallbackServerContext* context,
-                                                       const pb::ListScenesRequest*,
-                                                       pb::ListScenesResponse* response) {
-  return Respond(context, registry_.metrics(), "ListScenes", [&]() -> absl::Status {
-    absl::StatusOr<Caller> caller = access_.Check(*context, Access::kRead, "");
-    if (!caller.ok()) return caller.status();
-    for (const std::shared_ptr<SceneRunner>& runner : registry_.List()) {
-      RunnerInfo info = runner->Info();
-      const std::string name = info.spec.name();
-      if (!AccessPolicy::MaySee(*caller, name)) continue;
-      info.spec.Clear();
-      info.spec.set_name(name);
-      InfoToProto(info, runner->step_s(), response->add_scenes());
-    }
-    return absl::OkStatus();
-  });
+                                                       const grpc::ByteBuffer* raw_request,
+                                                       grpc::ByteBuffer* raw_response) {
+  return Respond<pb::ListScenesRequest, pb::ListScenesResponse>(
+      context, registry_.metrics(), "ListScenes", raw_request, raw_response,
+      [&](const pb::ListScenesRequest* request, pb::ListScenesResponse* response) -> absl::Status {
+        absl::StatusOr<Caller> caller = access_.Check(*context, Access::kRead, "");
+        if (!caller.ok()) return caller.status();
+        for (const std::shared_ptr<SceneRunner>& runner : registry_.List()) {
+          RunnerInfo info = runner->Info();
+          const std::string name = info.spec.name();
+          if (!AccessPolicy::MaySee(*caller, name)) continue;
+          info.spec.Clear();
+          info.spec.set_name(name);
+          InfoToProto(info, runner->step_s(), response->add_scenes());
+        }
+        return absl::OkStatus();
+      });
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::DeleteScene(grpc::CallbackServerContext* context,
-                                                        const pb::DeleteSceneRequest* request,
-                                                        pb::DeleteSceneResponse*) {
-  return Respond(context, registry_.metrics(), "DeleteScene", [&]() -> absl::Status {
-    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
-    return registry_.Delete(request->scene());
-  });
+                                                        const grpc::ByteBuffer* raw_request,
+                                                        grpc::ByteBuffer* raw_response) {
+  return Respond<pb::DeleteSceneRequest, pb::DeleteSceneResponse>(
+      context, registry_.metrics(), "DeleteScene", raw_request, raw_response,
+      [&](const pb::DeleteSceneRequest* request,
+          pb::DeleteSceneResponse* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
+        return registry_.Delete(request->scene());
+      });
 }
 
 grpc::ServerReadReactor<pb::UploadModelChunk>* SceneServiceImpl::UploadModel(
@@ -163,60 +185,69 @@ grpc::ServerReadReactor<pb::UploadModelChunk>* SceneServiceImpl::UploadModel(
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::AddObject(grpc::CallbackServerContext* context,
-                                                      const pb::AddObjectRequest* request,
-                                                      pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "AddObject", [&]() -> absl::Status {
-    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
-    pb::SceneSpec alone;
-    *alone.add_objects() = request->object();
-    if (absl::Status s = RejectModelPaths(alone); !s.ok()) return s;
-    return EditAndAnswer(
-        registry_, context, request->scene(),
-        [&](pb::SceneSpec& spec) { return AddObjectToSpec(request->object(), spec); }, response);
-  });
+                                                      const grpc::ByteBuffer* raw_request,
+                                                      grpc::ByteBuffer* raw_response) {
+  return Respond<pb::AddObjectRequest, pb::SceneInfo>(
+      context, registry_.metrics(), "AddObject", raw_request, raw_response,
+      [&](const pb::AddObjectRequest* request, pb::SceneInfo* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
+        pb::SceneSpec alone;
+        *alone.add_objects() = request->object();
+        if (absl::Status s = RejectModelPaths(alone); !s.ok()) return s;
+        return EditAndAnswer(
+            registry_, context, request->scene(),
+            [&](pb::SceneSpec& spec) { return AddObjectToSpec(request->object(), spec); },
+            response);
+      });
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::UpdateObject(grpc::CallbackServerContext* context,
-                                                         const pb::UpdateObjectRequest* request,
-                                                         pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "UpdateObject", [&]() -> absl::Status {
-    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
-    if (request->vertex_moves_size() > registry_.limits().max_vertex_moves_per_request) {
-      return absl::ResourceExhaustedError(
-          absl::StrCat(request->vertex_moves_size(), " vertex moves; at most ",
-                       registry_.limits().max_vertex_moves_per_request, " per request"));
-    }
-    return EditAndAnswer(
-        registry_, context, request->scene(),
-        [&](pb::SceneSpec& spec) { return UpdateObjectInSpec(*request, spec); }, response);
-  });
+                                                         const grpc::ByteBuffer* raw_request,
+                                                         grpc::ByteBuffer* raw_response) {
+  return Respond<pb::UpdateObjectRequest, pb::SceneInfo>(
+      context, registry_.metrics(), "UpdateObject", raw_request, raw_response,
+      [&](const pb::UpdateObjectRequest* request, pb::SceneInfo* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
+        if (request->vertex_moves_size() > registry_.limits().max_vertex_moves_per_request) {
+          return absl::ResourceExhaustedError(
+              absl::StrCat(request->vertex_moves_size(), " vertex moves; at most ",
+                           registry_.limits().max_vertex_moves_per_request, " per request"));
+        }
+        return EditAndAnswer(
+            registry_, context, request->scene(),
+            [&](pb::SceneSpec& spec) { return UpdateObjectInSpec(*request, spec); }, response);
+      });
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::RemoveObject(grpc::CallbackServerContext* context,
-                                                         const pb::RemoveObjectRequest* request,
-                                                         pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "RemoveObject", [&]() -> absl::Status {
-    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
-    return EditAndAnswer(
-        registry_, context, request->scene(),
-        [&](pb::SceneSpec& spec) { return RemoveObjectFromSpec(request->object(), spec); },
-        response);
-  });
+                                                         const grpc::ByteBuffer* raw_request,
+                                                         grpc::ByteBuffer* raw_response) {
+  return Respond<pb::RemoveObjectRequest, pb::SceneInfo>(
+      context, registry_.metrics(), "RemoveObject", raw_request, raw_response,
+      [&](const pb::RemoveObjectRequest* request, pb::SceneInfo* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
+        return EditAndAnswer(
+            registry_, context, request->scene(),
+            [&](pb::SceneSpec& spec) { return RemoveObjectFromSpec(request->object(), spec); },
+            response);
+      });
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::SetEffects(grpc::CallbackServerContext* context,
-                                                       const pb::SetEffectsRequest* request,
-                                                       pb::SceneInfo* response) {
-  return Respond(context, registry_.metrics(), "SetEffects", [&]() -> absl::Status {
-    HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
-    return EditAndAnswer(
-        registry_, context, request->scene(),
-        [&](pb::SceneSpec& spec) {
-          SetEffectsInSpec(*request, spec);
-          return absl::OkStatus();
-        },
-        response);
-  });
+                                                       const grpc::ByteBuffer* raw_request,
+                                                       grpc::ByteBuffer* raw_response) {
+  return Respond<pb::SetEffectsRequest, pb::SceneInfo>(
+      context, registry_.metrics(), "SetEffects", raw_request, raw_response,
+      [&](const pb::SetEffectsRequest* request, pb::SceneInfo* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
+        return EditAndAnswer(
+            registry_, context, request->scene(),
+            [&](pb::SceneSpec& spec) {
+              SetEffectsInSpec(*request, spec);
+              return absl::OkStatus();
+            },
+            response);
+      });
 }
 
 }  // namespace hs
