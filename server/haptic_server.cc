@@ -49,7 +49,8 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
   }
   server->registry_ = std::make_unique<SceneRegistry>(options.limits, model_dir, metrics);
   server->scene_service_ = std::make_unique<SceneServiceImpl>(*server->registry_, *server->access_);
-  server->session_service_ = std::make_unique<SessionServiceImpl>(*server->registry_, *server->access_);
+  server->session_service_ =
+      std::make_unique<SessionServiceImpl>(*server->registry_, *server->access_);
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "absl/strings/str_cat.h"
 #include "common/sandbox/sandboxed_import.h"
@@ -62,12 +63,35 @@ absl::Status ModelUpload::Verify() const {
   return absl::OkStatus();
 }
 
+ModelStore::ModelStore(std::string dir, int max_models)
+    : dir_(std::move(dir)), max_models_(max_models) {
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir_, error)) {
+    const std::string id = entry.path().filename().string();
+    if (!entry.is_regular_file() || id.starts_with(".")) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    sha256_by_id_[id] = Sha256Of(bytes.str());
+  }
+}
+
 absl::StatusOr<StoredModel> ModelStore::Store(const ModelUpload& upload) {
   if (absl::Status s = upload.Verify(); !s.ok()) return s;
   const std::string id = absl::StrCat(upload.header().name(), ".", upload.header().format());
   std::lock_guard lock(mu_);
-  if (ids_.count(id)) return absl::AlreadyExistsError(absl::StrCat("model '", id, "' exists"));
-  if (static_cast<int>(ids_.size()) >= max_models_) {
+  const std::filesystem::path kept = std::filesystem::path(dir_) / id;
+  if (const auto it = sha256_by_id_.find(id); it != sha256_by_id_.end()) {
+    if (it->second != upload.header().sha256()) {
+      return absl::AlreadyExistsError(
+          absl::StrCat("model '", id, "' exists with other content; delete it first"));
+    }
+    // The same bytes again: the stored model, counted afresh.
+    absl::StatusOr<ImportedModel> model = SandboxedImport(kept.string(), ImportOptions{});
+    if (!model.ok()) return absl::InternalError(absl::StrCat("model '", id, "' no longer imports"));
+    return StoredModel{id, model->object.num_vertices(), model->object.num_faces(), true};
+  }
+  if (static_cast<int>(sha256_by_id_.size()) >= max_models_) {
     return absl::ResourceExhaustedError(absl::StrCat("at most ", max_models_, " models"));
   }
   std::error_code error;
@@ -78,7 +102,10 @@ absl::StatusOr<StoredModel> ModelStore::Store(const ModelUpload& upload) {
   {
     std::ofstream out(staged, std::ios::binary);
     out.write(upload.data().data(), static_cast<std::streamsize>(upload.data().size()));
-    if (!out) return absl::InternalError(absl::StrCat("cannot write ", staged.string()));
+    if (!out) {
+      std::filesystem::remove(staged, error);
+      return absl::InternalError(absl::StrCat("cannot write ", staged.string()));
+    }
   }
   absl::StatusOr<ImportedModel> model = SandboxedImport(staged.string(), ImportOptions{});
   if (!model.ok()) {
@@ -86,10 +113,26 @@ absl::StatusOr<StoredModel> ModelStore::Store(const ModelUpload& upload) {
     return absl::InvalidArgumentError(
         absl::StrCat("model '", id, "' does not import: ", model.status().message()));
   }
-  std::filesystem::rename(staged, std::filesystem::path(dir_) / id, error);
-  if (error) return absl::InternalError(absl::StrCat("cannot keep model: ", error.message()));
-  ids_.insert(id);
+  std::filesystem::rename(staged, kept, error);
+  if (error) {
+    std::filesystem::remove(staged, error);
+    return absl::InternalError(absl::StrCat("cannot keep model: ", error.message()));
+  }
+  sha256_by_id_[id] = upload.header().sha256();
   return StoredModel{id, model->object.num_vertices(), model->object.num_faces()};
+}
+
+bool ModelStore::Has(const std::string& id) const {
+  std::lock_guard lock(mu_);
+  return sha256_by_id_.count(id) > 0;
+}
+
+absl::Status ModelStore::Delete(const std::string& id) {
+  std::lock_guard lock(mu_);
+  if (sha256_by_id_.erase(id) == 0) return absl::NotFoundError(absl::StrCat("no model '", id, "'"));
+  std::error_code error;
+  std::filesystem::remove(std::filesystem::path(dir_) / id, error);
+  return absl::OkStatus();
 }
 
 }  // namespace hs

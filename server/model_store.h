@@ -4,8 +4,8 @@
 // folder, named by their model id, where BuildScene finds them.
 
 #include <cstdint>
+#include <map>
 #include <mutex>
-#include <set>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -19,6 +19,8 @@ struct StoredModel {
   std::string model_id;
   int32_t vertices = 0;
   int32_t triangles = 0;
+  /// Stored before, from the same bytes (nothing new was kept).
+  bool existed = false;
 };
 
 /// One upload in progress (one per UploadModel stream; not thread-safe).
@@ -50,21 +52,28 @@ class ModelUpload {
 /// The folder of uploaded models. Thread-safe.
 class ModelStore {
  public:
-  /// Keeps models in `dir` (created if missing), at most `max_models`.
-  ModelStore(std::string dir, int max_models) : dir_(std::move(dir)), max_models_(max_models) {}
+  /// Keeps models in `dir` (created if missing), at most `max_models`;
+  /// the models already in `dir` (a --model-dir kept across restarts)
+  /// count and keep their ids.
+  ModelStore(std::string dir, int max_models);
 
-  /// Imports a verified upload and keeps it. ALREADY_EXISTS for a taken id,
-  /// INVALID_ARGUMENT when the file does not import as a mesh,
-  /// RESOURCE_EXHAUSTED past max_models; nothing is kept on error.
+  /// Imports a verified upload (in the import sandbox) and keeps it. The
+  /// same bytes under a stored id return that model; other bytes under it
+  /// are ALREADY_EXISTS. INVALID_ARGUMENT when the file does not import as
+  /// a mesh, RESOURCE_EXHAUSTED past max_models; nothing is kept on error.
   absl::StatusOr<StoredModel> Store(const ModelUpload& upload);
+  /// Whether model `id` is stored.
+  bool Has(const std::string& id) const;
+  /// Deletes model `id`. NOT_FOUND when there is none.
+  absl::Status Delete(const std::string& id);
 
   const std::string& dir() const { return dir_; }
 
  private:
   std::string dir_;
   int max_models_;
-  std::mutex mu_;
-  std::set<std::string> ids_;  // guarded by mu_
+  mutable std::mutex mu_;
+  std::map<std::string, std::string> sha256_by_id_;  // guarded by mu_
 };
 
 }  // namespace hs

@@ -11,7 +11,10 @@ namespace hs {
 namespace pb = haptics::v1;
 
 SceneRegistry::SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics)
-    : limits_(limits), metrics_(metrics), models_(std::move(model_dir), limits.max_models) {}
+    : limits_(limits),
+      metrics_(metrics),
+      models_(std::move(model_dir), limits.max_models),
+      quotas_(limits.per_caller) {}
 
 SceneRegistry::~SceneRegistry() { StopAll(absl::UnavailableError("the server is stopping")); }
 
@@ -98,6 +101,20 @@ absl::Status SceneRegistry::Delete(const std::string& name) {
   }
   runner->Stop(absl::UnavailableError(absl::StrCat("scene '", name, "' was deleted")));
   return absl::OkStatus();
+}
+
+absl::Status SceneRegistry::DeleteModel(const std::string& id) {
+  std::lock_guard edit(edit_mu_);  // no scene is built or changed meanwhile
+  for (const std::shared_ptr<SceneRunner>& runner : List()) {
+    const pb::SceneSpec spec = runner->spec();
+    for (const pb::SceneObject& o : spec.objects()) {
+      if (o.model().uploaded_model_id() == id) {
+        return absl::FailedPreconditionError(absl::StrCat(
+            "model '", id, "' is used by object '", o.name(), "' of scene '", spec.name(), "'"));
+      }
+    }
+  }
+  return models_.Delete(id);
 }
 
 absl::StatusOr<std::shared_ptr<SceneRunner>> SceneRegistry::Find(const std::string& name) const {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "server/caller_quotas.h"
 #include "server/metrics.h"
 #include "server/model_store.h"
 #include "server/scene_runner.h"
@@ -45,6 +46,8 @@ struct ServerLimits {
   /// cores, so it is the operator's choice (haptic-server
   /// --realtime-priority), checked when the server starts.
   int realtime_priority = 0;
+  /// What each caller may hold at once.
+  CallerLimits per_caller;
 };
 
 class SceneRegistry {
@@ -69,6 +72,9 @@ class SceneRegistry {
                                   Deadline deadline = Deadline::max());
   /// Stops scene `name` (its streams end with UNAVAILABLE). NOT_FOUND.
   absl::Status Delete(const std::string& name);
+  /// Deletes uploaded model `id`. FAILED_PRECONDITION naming a scene that
+  /// uses it (no scene can start using it meanwhile); NOT_FOUND.
+  absl::Status DeleteModel(const std::string& id);
 
   /// NOT_FOUND for an unknown scene.
   absl::StatusOr<std::shared_ptr<SceneRunner>> Find(const std::string& name) const;
@@ -83,6 +89,7 @@ class SceneRegistry {
   void RemoveClient();
 
   ModelStore& models() { return models_; }
+  CallerQuotas& quotas() { return quotas_; }
   const ServerLimits& limits() const { return limits_; }
   Metrics& metrics() { return metrics_; }
 
@@ -93,6 +100,7 @@ class SceneRegistry {
   const ServerLimits limits_;
   Metrics& metrics_;
   ModelStore models_;
+  CallerQuotas quotas_;
   // Changes run one at a time (builds included); lookups only take mu_.
   std::mutex edit_mu_;
   mutable std::mutex mu_;

@@ -70,15 +70,19 @@ absl::Status EditAndAnswer(SceneRegistry& registry, grpc::CallbackServerContext*
 
 class UploadReactor : public grpc::ServerReadReactor<pb::UploadModelChunk> {
  public:
-  // Reads the upload when `allowed`, else ends the call with its error.
-  UploadReactor(SceneRegistry& registry, const absl::Status& allowed,
+  // Reads the upload of `caller` when it may upload, else ends the call
+  // with the error.
+  UploadReactor(SceneRegistry& registry, const absl::StatusOr<Caller>& caller,
                 pb::UploadModelResponse* response)
       : registry_(registry), response_(response), upload_(registry.limits().max_model_bytes) {
+    absl::Status allowed = caller.status();
+    if (allowed.ok()) allowed = registry_.quotas().Take(caller->id, Quota::kUploadsInFlight);
     if (!allowed.ok()) {
       registry_.metrics().AddRejected("UploadModel", absl::StatusCodeToString(allowed.code()));
       Finish(ToGrpcStatus(allowed));
       return;
     }
+    caller_ = caller->id;
     StartRead(&chunk_);
   }
 
@@ -93,12 +97,18 @@ class UploadReactor : public grpc::ServerReadReactor<pb::UploadModelChunk> {
     }
     Finish(ToGrpcStatus(status));
   }
-  void OnDone() override { delete this; }
+  void OnDone() override {
+    if (!caller_.empty()) registry_.quotas().Give(caller_, Quota::kUploadsInFlight);
+    delete this;
+  }
 
  private:
   absl::Status Store() {
+    HS_RETURN_IF_ERROR(registry_.quotas().Take(caller_, Quota::kModels));
     absl::StatusOr<StoredModel> stored = registry_.models().Store(upload_);
+    if (!stored.ok() || stored->existed) registry_.quotas().Give(caller_, Quota::kModels);
     if (!stored.ok()) return stored.status();
+    if (!stored->existed) registry_.quotas().Own(caller_, Quota::kModels, stored->model_id);
     response_->set_model_id(stored->model_id);
     response_->set_vertices(stored->vertices);
     response_->set_triangles(stored->triangles);
@@ -109,6 +119,7 @@ class UploadReactor : public grpc::ServerReadReactor<pb::UploadModelChunk> {
   pb::UploadModelResponse* response_;
   ModelUpload upload_;
   pb::UploadModelChunk chunk_;
+  std::string caller_;  // set once it may upload
 };
 
 }  // namespace
@@ -119,12 +130,18 @@ grpc::ServerUnaryReactor* SceneServiceImpl::CreateScene(grpc::CallbackServerCont
   return Respond<pb::CreateSceneRequest, pb::SceneInfo>(
       context, registry_.metrics(), "CreateScene", raw_request, raw_response,
       [&](const pb::CreateSceneRequest* request, pb::SceneInfo* response) -> absl::Status {
-        HS_RETURN_IF_ERROR(
-            access_.Check(*context, Access::kAdmin, request->spec().name()).status());
+        absl::StatusOr<Caller> caller =
+            access_.Check(*context, Access::kAdmin, request->spec().name());
+        if (!caller.ok()) return caller.status();
         if (absl::Status s = RejectModelPaths(request->spec()); !s.ok()) return s;
+        HS_RETURN_IF_ERROR(registry_.quotas().Take(caller->id, Quota::kScenes));
         absl::StatusOr<RunnerInfo> info =
             registry_.Create(request->spec(), "", context->deadline());
-        if (!info.ok()) return info.status();
+        if (!info.ok()) {
+          registry_.quotas().Give(caller->id, Quota::kScenes);
+          return info.status();
+        }
+        registry_.quotas().Own(caller->id, Quota::kScenes, request->spec().name());
         absl::StatusOr<std::shared_ptr<SceneRunner>> runner =
             registry_.Find(request->spec().name());
         InfoToProto(*info, runner.ok() ? (*runner)->step_s() : 0, response);
@@ -174,14 +191,28 @@ grpc::ServerUnaryReactor* SceneServiceImpl::DeleteScene(grpc::CallbackServerCont
       [&](const pb::DeleteSceneRequest* request,
           pb::DeleteSceneResponse* response) -> absl::Status {
         HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
-        return registry_.Delete(request->scene());
+        HS_RETURN_IF_ERROR(registry_.Delete(request->scene()));
+        registry_.quotas().Disown(Quota::kScenes, request->scene());
+        return absl::OkStatus();
       });
 }
 
 grpc::ServerReadReactor<pb::UploadModelChunk>* SceneServiceImpl::UploadModel(
     grpc::CallbackServerContext* context, pb::UploadModelResponse* response) {
-  return new UploadReactor(registry_, access_.Check(*context, Access::kAdmin, "").status(),
-                           response);
+  return new UploadReactor(registry_, access_.Check(*context, Access::kAdmin, ""), response);
+}
+
+grpc::ServerUnaryReactor* SceneServiceImpl::DeleteModel(grpc::CallbackServerContext* context,
+                                                        const grpc::ByteBuffer* raw_request,
+                                                        grpc::ByteBuffer* raw_response) {
+  return Respond<pb::DeleteModelRequest, pb::DeleteModelResponse>(
+      context, registry_.metrics(), "DeleteModel", raw_request, raw_response,
+      [&](const pb::DeleteModelRequest* request, pb::DeleteModelResponse*) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, "").status());
+        HS_RETURN_IF_ERROR(registry_.DeleteModel(request->model_id()));
+        registry_.quotas().Disown(Quota::kModels, request->model_id());
+        return absl::OkStatus();
+      });
 }
 
 grpc::ServerUnaryReactor* SceneServiceImpl::AddObject(grpc::CallbackServerContext* context,

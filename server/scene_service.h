@@ -20,8 +20,9 @@ using SceneServiceBase = haptics::v1::SceneService::WithRawCallbackMethod_Create
                     haptics::v1::SceneService::WithRawCallbackMethod_UpdateObject<
                         haptics::v1::SceneService::WithRawCallbackMethod_RemoveObject<
                             haptics::v1::SceneService::WithRawCallbackMethod_SetEffects<
-                                haptics::v1::SceneService::WithCallbackMethod_UploadModel<
-                                    haptics::v1::SceneService::Service>>>>>>>>>;
+                                haptics::v1::SceneService::WithRawCallbackMethod_DeleteModel<
+                                    haptics::v1::SceneService::WithCallbackMethod_UploadModel<
+                                        haptics::v1::SceneService::Service>>>>>>>>>>;
 
 class SceneServiceImpl final : public SceneServiceBase {
  public:
@@ -47,6 +48,10 @@ class SceneServiceImpl final : public SceneServiceBase {
                                         grpc::ByteBuffer* response) override;
   grpc::ServerReadReactor<haptics::v1::UploadModelChunk>* UploadModel(
       grpc::CallbackServerContext* context, haptics::v1::UploadModelResponse* response) override;
+  // A DeleteModelRequest, answered with a DeleteModelResponse.
+  grpc::ServerUnaryReactor* DeleteModel(grpc::CallbackServerContext* context,
+                                        const grpc::ByteBuffer* request,
+                                        grpc::ByteBuffer* response) override;
   // AddObjectRequest, UpdateObjectRequest, RemoveObjectRequest and
   // SetEffectsRequest, each answered with a SceneInfo.
   grpc::ServerUnaryReactor* AddObject(grpc::CallbackServerContext* context,

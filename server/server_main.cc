@@ -45,6 +45,18 @@ int main(int argc, char** argv) {
   app.add_option("--max-spec-bytes", options.limits.max_spec_bytes,
                  "Largest scene spec, serialized, bytes (it comes back in every SceneInfo)")
       ->capture_default_str();
+  app.add_option("--max-streams-per-caller", options.limits.per_caller.streams,
+                 "Open Interact and Watch streams per caller (token, or peer on an open server)")
+      ->capture_default_str();
+  app.add_option("--max-uploads-per-caller", options.limits.per_caller.uploads_in_flight,
+                 "Uploads in progress per caller")
+      ->capture_default_str();
+  app.add_option("--max-models-per-caller", options.limits.per_caller.models,
+                 "Stored models per caller (until deleted)")
+      ->capture_default_str();
+  app.add_option("--max-scenes-per-caller", options.limits.per_caller.scenes,
+                 "Scenes per caller (until deleted)")
+      ->capture_default_str();
   app.add_option("--max-vertex-moves", options.limits.max_vertex_moves_per_request,
                  "Vertex moves in one UpdateObject")
       ->capture_default_str();

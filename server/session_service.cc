@@ -45,6 +45,7 @@ class FrameStream : public Base, public FrameSink {
   void OnCancel() override { End(absl::CancelledError("cancelled by the client"), true); }
   void OnDone() override {
     if (runner_) runner_->Detach(this);
+    if (!caller_.empty()) registry_.quotas().Give(caller_, Quota::kStreams);
     if (counted_) {
       registry_.RemoveClient();
       registry_.metrics().AddClients(device_, -1);
@@ -88,12 +89,17 @@ class FrameStream : public Base, public FrameSink {
   // Checks the caller may drive or watch `scene`, counts the client and
   // finds its scene; on error the stream is failed.
   bool Open(const std::string& scene, const char* method) {
-    if (absl::Status s =
-            access_.Check(context_, device_ ? Access::kDrive : Access::kWatch, scene).status();
-        !s.ok()) {
+    absl::StatusOr<Caller> caller =
+        access_.Check(context_, device_ ? Access::kDrive : Access::kWatch, scene);
+    if (!caller.ok()) {
+      Fail(caller.status(), method);
+      return false;
+    }
+    if (absl::Status s = registry_.quotas().Take(caller->id, Quota::kStreams); !s.ok()) {
       Fail(s, method);
       return false;
     }
+    caller_ = caller->id;
     if (absl::Status s = registry_.AddClient(); !s.ok()) {
       Fail(s, method);
       return false;
@@ -162,7 +168,8 @@ class FrameStream : public Base, public FrameSink {
   FrameOutbox outbox_;
   std::mutex finish_mu_;
   bool counted_ = false;
-  pb::Frame frame_;  // the write in flight
+  std::string caller_;  // set once its stream quota is taken
+  pb::Frame frame_;     // the write in flight
 };
 
 class InteractReactor

@@ -3,8 +3,8 @@
 #include <fnmatch.h>
 
 #include "absl/strings/match.h"
-#include "absl/strings/strip.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/strip.h"
 
 namespace hs {
 namespace {
@@ -99,9 +99,8 @@ absl::StatusOr<Caller> AccessPolicy::Check(const grpc::ServerContextBase& contex
         absl::StrCat("role '", RoleName(caller->role), "' may not ", Doing(access)));
   }
   if (!scene.empty() && !MaySee(*caller, scene)) {
-    return absl::PermissionDeniedError(absl::StrCat("scene '", scene,
-                                                    "' is not among this token's scenes ('",
-                                                    caller->scene_pattern, "')"));
+    return absl::PermissionDeniedError(absl::StrCat(
+        "scene '", scene, "' is not among this token's scenes ('", caller->scene_pattern, "')"));
   }
   return caller;
 }

@@ -23,7 +23,8 @@ absl::StatusOr<std::string> ReadPem(const std::string& path) {
 // OpenSSL parses the PEM here, before gRPC does, so that a wrong file gets
 // a message naming it instead of a failed handshake later.
 struct Bio {
-  explicit Bio(const std::string& pem) : bio(BIO_new_mem_buf(pem.data(), static_cast<int>(pem.size()))) {}
+  explicit Bio(const std::string& pem)
+      : bio(BIO_new_mem_buf(pem.data(), static_cast<int>(pem.size()))) {}
   ~Bio() { BIO_free(bio); }
   BIO* bio;
 };
@@ -86,8 +87,7 @@ absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> MakeServerCredentials(
     if (!ca.ok()) return ca.status();
     if (absl::Status s = CheckCertificate(*ca, files.client_ca_file); !s.ok()) return s;
     options.pem_root_certs = *ca;
-    options.client_certificate_request =
-        GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
+    options.client_certificate_request = GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
   }
   return grpc::SslServerCredentials(options);
 }

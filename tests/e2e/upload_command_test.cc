@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "client/exit_codes.h"
 #include "client/objects_command.h"
+#include "tests/common/scratch_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::cli {
@@ -36,7 +39,17 @@ TEST(UploadCommandTest, UploadAndUse) {
   ASSERT_EQ(RunObjects(add, out, err), kExitOk) << err.str();
   EXPECT_EQ(server.Get("s").spec().objects_size(), 3);
 
-  EXPECT_EQ(RunUpload(args, out, err), kExitRefused);  // the name is taken
+  // The same bytes again are the stored model; other bytes under its id
+  // are refused.
+  EXPECT_EQ(RunUpload(args, out, err), kExitOk) << err.str();
+  const std::filesystem::path other = hs::ScratchDir("other") / "cube.obj";
+  std::ofstream(other)
+      << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  args.file = other.string();
+  EXPECT_EQ(RunUpload(args, out, err), kExitRefused);
+  EXPECT_NE(err.str().find("ALREADY_EXISTS: model 'cube.obj' exists with other content"),
+            std::string::npos)
+      << err.str();
   args.file = kData + "/garbage.obj";
   EXPECT_EQ(RunUpload(args, out, err), kExitRefused);
   args.file = kData + "/no_such_file.obj";

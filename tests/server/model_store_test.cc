@@ -35,8 +35,9 @@ std::string TempDir(const std::string& name) {
   return dir.string();
 }
 
-// Chunks assemble into the file; it is kept under "<name>.<format>" once,
-// and a second upload of that id is ALREADY_EXISTS.
+// Chunks assemble into the file; it is kept under "<name>.<format>"; the
+// same bytes again return it, other bytes under its id are ALREADY_EXISTS,
+// also after a restart over the same folder; Delete removes it.
 TEST(ModelStoreTest, AssemblesVerifiesAndKeeps) {
   const std::string data = kTetrahedronObj;
   ModelUpload upload(1 << 20);
@@ -49,7 +50,23 @@ TEST(ModelStoreTest, AssemblesVerifiesAndKeeps) {
   EXPECT_EQ(stored->model_id, "tet.obj");
   EXPECT_EQ(stored->triangles, 4);
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(store.dir()) / "tet.obj"));
-  EXPECT_EQ(store.Store(upload).status().code(), absl::StatusCode::kAlreadyExists);
+  absl::StatusOr<StoredModel> again = store.Store(upload);
+  ASSERT_TRUE(again.ok()) << again.status();
+  EXPECT_TRUE(again->existed);
+  EXPECT_EQ(again->triangles, 4);
+  const std::string other = std::string(kTetrahedronObj) + "f 1 2 3\n";
+  ModelUpload changed(1 << 20);
+  ASSERT_TRUE(changed.Add(Header("tet", other)).ok());
+  ASSERT_TRUE(changed.Add(Data(other)).ok());
+  EXPECT_EQ(store.Store(changed).status().code(), absl::StatusCode::kAlreadyExists);
+  // A store over the same folder (a restart) knows the model by its bytes.
+  ModelStore reopened(store.dir(), 4);
+  EXPECT_TRUE(reopened.Has("tet.obj"));
+  EXPECT_EQ(reopened.Store(changed).status().code(), absl::StatusCode::kAlreadyExists);
+  EXPECT_TRUE(reopened.Store(upload).ok());
+  EXPECT_TRUE(reopened.Delete("tet.obj").ok());
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(store.dir()) / "tet.obj"));
+  EXPECT_EQ(reopened.Delete("tet.obj").code(), absl::StatusCode::kNotFound);
   std::filesystem::remove_all(store.dir());
 }
 

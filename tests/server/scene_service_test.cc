@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <thread>
 
 #include "server/sha256.h"
 #include "tests/server/test_server.h"
@@ -337,6 +338,97 @@ TEST(SceneServiceTest, SpecSizeAndVertexMoveLimits) {
   EXPECT_EQ(server.scenes().UpdateObject(ContextWithin(10).get(), update, &info).error_code(),
             grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_EQ(server.Get("grow").revision(), revision);
+}
+
+// One caller cannot take what others need: past its own stream and scene
+// quotas it is RESOURCE_EXHAUSTED while another caller (here: the same
+// peer with a token would be another; on an open server all of this test's
+// calls are one peer) is refused only by the server-wide limits.
+TEST(SceneServiceTest, PerCallerQuotas) {
+  ServerLimits limits;
+  limits.per_caller.streams = 2;
+  limits.per_caller.scenes = 2;
+  TestServer server(limits);
+  server.Create(SmallScene("one"));
+  server.Create(SmallScene("two"));
+  pb::CreateSceneRequest create;
+  *create.mutable_spec() = SmallScene("three");
+  pb::SceneInfo info;
+  const grpc::Status third = server.scenes().CreateScene(ContextWithin(10).get(), create, &info);
+  EXPECT_EQ(third.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(third.error_message(), "at most 2 scenes per caller");
+  pb::DeleteSceneRequest remove;
+  remove.set_scene("two");
+  pb::DeleteSceneResponse removed;
+  ASSERT_TRUE(server.scenes().DeleteScene(ContextWithin(10).get(), remove, &removed).ok());
+  EXPECT_TRUE(server.scenes().CreateScene(ContextWithin(10).get(), create, &info).ok());
+
+  pb::WatchRequest watch;
+  watch.set_scene("one");
+  std::vector<std::unique_ptr<grpc::ClientContext>> contexts;
+  std::vector<std::unique_ptr<grpc::ClientReader<pb::Frame>>> readers;
+  pb::Frame frame;
+  for (int i = 0; i < 3; ++i) {
+    contexts.push_back(ContextWithin(10));
+    readers.push_back(server.sessions().Watch(contexts.back().get(), watch));
+    const bool got_frame = readers.back()->Read(&frame);
+    EXPECT_EQ(got_frame, i < 2) << i;
+  }
+  EXPECT_EQ(readers.back()->Finish().error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  contexts[0]->TryCancel();
+  readers[0]->Finish();
+  // The slot comes back once the stream is done (on the server's time).
+  bool reopened = false;
+  for (int attempt = 0; attempt < 100 && !reopened; ++attempt) {
+    auto context = ContextWithin(10);
+    auto reader = server.sessions().Watch(context.get(), watch);
+    reopened = reader->Read(&frame);
+    context->TryCancel();
+    reader->Finish();
+    if (!reopened) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(reopened);
+  contexts[1]->TryCancel();
+  readers[1]->Finish();
+}
+
+// An uploaded model cannot be deleted while a scene uses it; once no scene
+// does, DeleteModel removes it and the id is free for other bytes.
+TEST(SceneServiceTest, DeleteModelOnlyWhenUnused) {
+  TestServer server;
+  const std::string tetrahedron =
+      "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  pb::UploadModelResponse uploaded;
+  {
+    auto context = ContextWithin(10);
+    auto writer = server.scenes().UploadModel(context.get(), &uploaded);
+    pb::UploadModelChunk chunk;
+    chunk.mutable_header()->set_name("tet");
+    chunk.mutable_header()->set_format("obj");
+    chunk.mutable_header()->set_size_bytes(static_cast<int64_t>(tetrahedron.size()));
+    chunk.mutable_header()->set_sha256(Sha256Of(tetrahedron));
+    chunk.set_data(tetrahedron);
+    writer->Write(chunk);
+    writer->WritesDone();
+    ASSERT_TRUE(writer->Finish().ok());
+  }
+  pb::SceneSpec spec = SmallScene("uses");
+  spec.mutable_objects(0)->mutable_model()->set_uploaded_model_id("tet.obj");
+  server.Create(spec);
+  pb::DeleteModelRequest request;
+  request.set_model_id("tet.obj");
+  pb::DeleteModelResponse response;
+  const grpc::Status in_use =
+      server.scenes().DeleteModel(ContextWithin(10).get(), request, &response);
+  EXPECT_EQ(in_use.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_EQ(in_use.error_message(), "model 'tet.obj' is used by object 'table' of scene 'uses'");
+  pb::DeleteSceneRequest remove;
+  remove.set_scene("uses");
+  pb::DeleteSceneResponse removed;
+  ASSERT_TRUE(server.scenes().DeleteScene(ContextWithin(10).get(), remove, &removed).ok());
+  EXPECT_TRUE(server.scenes().DeleteModel(ContextWithin(10).get(), request, &response).ok());
+  EXPECT_EQ(server.scenes().DeleteModel(ContextWithin(10).get(), request, &response).error_code(),
+            grpc::StatusCode::NOT_FOUND);
 }
 
 // Scene and object names outside the documented set (1..64 of

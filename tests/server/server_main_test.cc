@@ -13,9 +13,9 @@
 
 #include "absl/strings/escaping.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
+#include "haptics/v1/session_service.grpc.pb.h"
 #include "server/sha256.h"
 #include "tests/common/scratch_dir.h"
-#include "haptics/v1/session_service.grpc.pb.h"
 
 namespace hs {
 namespace {

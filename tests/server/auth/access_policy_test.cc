@@ -26,7 +26,8 @@ class AccessPolicyTest : public ::testing::Test {
  protected:
   void SetUp() override {
     tokens_file_ = (ScratchDir("tokens") / "tokens").string();
-    WriteTokens({{"admin-token", "admin *"}, {"drive-token", "drive train-*"},
+    WriteTokens({{"admin-token", "admin *"},
+                 {"drive-token", "drive train-*"},
                  {"watch-token", "watch train-*"}});
     ServerOptions options;
     options.listen = "127.0.0.1:0";
@@ -51,7 +52,8 @@ class AccessPolicyTest : public ::testing::Test {
 
   void WriteTokens(const std::vector<std::pair<std::string, std::string>>& lines) {
     std::ofstream out(tokens_file_);
-    for (const auto& [token, grant] : lines) out << "sha256:" << Digest(token) << " " << grant << "\n";
+    for (const auto& [token, grant] : lines)
+      out << "sha256:" << Digest(token) << " " << grant << "\n";
   }
 
   // A context carrying `authorization` as given ("" sends none).
@@ -77,8 +79,8 @@ class AccessPolicyTest : public ::testing::Test {
   std::unique_ptr<pb::SessionService::Stub> sessions_;
 };
 
-std::map<std::string, grpc::StatusCode> AccessPolicyTest::CallEach(
-    const std::string& authorization, const std::string& scene) {
+std::map<std::string, grpc::StatusCode> AccessPolicyTest::CallEach(const std::string& authorization,
+                                                                   const std::string& scene) {
   std::map<std::string, grpc::StatusCode> codes;
   pb::SceneInfo info;
   {
@@ -134,6 +136,13 @@ std::map<std::string, grpc::StatusCode> AccessPolicyTest::CallEach(
         scenes_->SetEffects(WithHeader(authorization).get(), request, &info).error_code();
   }
   {
+    pb::DeleteModelRequest request;
+    request.set_model_id("missing.obj");  // let through: NOT_FOUND
+    pb::DeleteModelResponse response;
+    codes["DeleteModel"] =
+        scenes_->DeleteModel(WithHeader(authorization).get(), request, &response).error_code();
+  }
+  {
     pb::UploadModelResponse response;
     auto context = WithHeader(authorization);
     auto writer = scenes_->UploadModel(context.get(), &response);
@@ -170,13 +179,13 @@ std::map<std::string, grpc::StatusCode> AccessPolicyTest::CallEach(
 }
 
 // The documented role table: the least role of each method; every method
-// but ListScenes and UploadModel names a scene.
+// but ListScenes, UploadModel and DeleteModel names a scene.
 const std::map<std::string, Role>& LeastRoles() {
   static const auto* roles = new std::map<std::string, Role>{
-      {"GetScene", Role::kWatch},     {"ListScenes", Role::kWatch},  {"Watch", Role::kWatch},
-      {"Interact", Role::kDrive},     {"CreateScene", Role::kAdmin}, {"DeleteScene", Role::kAdmin},
-      {"AddObject", Role::kAdmin},    {"UpdateObject", Role::kAdmin}, {"RemoveObject", Role::kAdmin},
-      {"SetEffects", Role::kAdmin},   {"UploadModel", Role::kAdmin}};
+      {"GetScene", Role::kWatch},   {"ListScenes", Role::kWatch},   {"Watch", Role::kWatch},
+      {"Interact", Role::kDrive},   {"CreateScene", Role::kAdmin},  {"DeleteScene", Role::kAdmin},
+      {"AddObject", Role::kAdmin},  {"UpdateObject", Role::kAdmin}, {"RemoveObject", Role::kAdmin},
+      {"SetEffects", Role::kAdmin}, {"UploadModel", Role::kAdmin},  {"DeleteModel", Role::kAdmin}};
   return *roles;
 }
 
@@ -191,7 +200,8 @@ grpc::StatusCode LetThrough(const std::string& method) {
 // Without a token, with a malformed header or an unknown token, every
 // method is UNAUTHENTICATED, streams included.
 TEST_F(AccessPolicyTest, EveryMethodNeedsAKnownToken) {
-  for (const std::string authorization : {"", "Bearer nobody", "Basic admin-token", "admin-token"}) {
+  for (const std::string authorization :
+       {"", "Bearer nobody", "Basic admin-token", "admin-token"}) {
     for (const auto& [method, code] : CallEach(authorization, "train-missing")) {
       EXPECT_EQ(code, grpc::StatusCode::UNAUTHENTICATED) << authorization << " " << method;
     }
@@ -208,9 +218,9 @@ TEST_F(AccessPolicyTest, RolesAndScenePatternsAllowWhatTheTableSays) {
     for (const std::string scene : {"train-missing", "exam-missing"}) {
       const bool scene_matches = role == Role::kAdmin || scene.starts_with("train-");
       for (const auto& [method, code] : CallEach("Bearer " + token, scene)) {
-        const bool names_scene = method != "ListScenes" && method != "UploadModel";
-        const bool allowed =
-            role >= LeastRoles().at(method) && (!names_scene || scene_matches);
+        const bool names_scene =
+            method != "ListScenes" && method != "UploadModel" && method != "DeleteModel";
+        const bool allowed = role >= LeastRoles().at(method) && (!names_scene || scene_matches);
         EXPECT_EQ(code, allowed ? LetThrough(method) : grpc::StatusCode::PERMISSION_DENIED)
             << token << " " << scene << " " << method;
       }
