@@ -16,7 +16,8 @@ namespace hs {
 /// when they are not one.
 absl::Status ParseMessage(const grpc::ByteBuffer& bytes, google::protobuf::Message& message);
 
-/// Serializes `message` into `bytes`. INTERNAL when it cannot.
+/// Serializes `message` into `bytes`, replacing what they held. INTERNAL
+/// when it cannot.
 absl::Status SerializeMessage(const google::protobuf::Message& message, grpc::ByteBuffer& bytes);
 
 }  // namespace hs

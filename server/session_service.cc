@@ -7,6 +7,7 @@
 #include "common/api/proto_convert.h"
 #include "server/frame_outbox.h"
 #include "server/grpc_status.h"
+#include "server/raw_message.h"
 
 namespace hs {
 namespace {
@@ -137,7 +138,11 @@ class FrameStream : public Base, public FrameSink {
     FrameOutbox::Next next = outbox_.TakeNext();
     if (next.kind == FrameOutbox::Next::kWrite) {
       Fill(*next.snapshot, next.dropped);
-      this->StartWrite(&frame_);
+      if (absl::Status s = SerializeMessage(frame_, bytes_); !s.ok()) {
+        End(s, /*abort=*/true);
+        return;
+      }
+      this->StartWrite(&bytes_);
     } else if (next.kind == FrameOutbox::Next::kFinish) {
       std::lock_guard lock(finish_mu_);
       this->Finish(ToGrpcStatus(next.status));
@@ -168,17 +173,20 @@ class FrameStream : public Base, public FrameSink {
   FrameOutbox outbox_;
   std::mutex finish_mu_;
   bool counted_ = false;
-  std::string caller_;  // set once its stream quota is taken
-  pb::Frame frame_;     // the write in flight
+  std::string caller_;      // set once its stream quota is taken
+  pb::Frame frame_;         // the frame of the write in flight
+  grpc::ByteBuffer bytes_;  // frame_, serialized: the write in flight
 };
 
+// Reads bytes and parses them here (raw_message.h): a message that is no
+// InteractRequest ends the stream with INVALID_ARGUMENT.
 class InteractReactor
-    : public FrameStream<grpc::ServerBidiReactor<pb::InteractRequest, pb::Frame>> {
+    : public FrameStream<grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>> {
  public:
   InteractReactor(SceneRegistry& registry, const AccessPolicy& access,
                   const grpc::CallbackServerContext& context)
       : FrameStream(registry, access, context, true) {
-    UnlessClosed([this] { StartRead(&request_); });
+    UnlessClosed([this] { StartRead(&read_); });
   }
 
   void OnReadDone(bool ok) override {
@@ -187,8 +195,12 @@ class InteractReactor
       End(absl::OkStatus(), /*abort=*/false);
       return;
     }
+    if (absl::Status s = ParseMessage(read_, request_); !s.ok()) {
+      Fail(s, "Interact");
+      return;
+    }
     if (!(opened_ ? ApplyPose() : OpenSession())) return;
-    UnlessClosed([this] { StartRead(&request_); });
+    UnlessClosed([this] { StartRead(&read_); });
   }
 
  private:
@@ -230,6 +242,7 @@ class InteractReactor
     return true;
   }
 
+  grpc::ByteBuffer read_;
   pb::InteractRequest request_;
   bool opened_ = false;
 };
@@ -259,11 +272,16 @@ absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequ
   return std::pair{parts, needs};
 }
 
-class WatchReactor : public FrameStream<grpc::ServerWriteReactor<pb::Frame>> {
+class WatchReactor : public FrameStream<grpc::ServerWriteReactor<grpc::ByteBuffer>> {
  public:
   WatchReactor(SceneRegistry& registry, const AccessPolicy& access,
-               const grpc::CallbackServerContext& context, const pb::WatchRequest& request)
+               const grpc::CallbackServerContext& context, const grpc::ByteBuffer& bytes)
       : FrameStream(registry, access, context, false) {
+    pb::WatchRequest request;
+    if (absl::Status s = ParseMessage(bytes, request); !s.ok()) {
+      Fail(s, "Watch");
+      return;
+    }
     if (!Open(request.scene(), "Watch")) return;
     absl::StatusOr<std::pair<FrameParts, EffectSet>> needs = ViewerNeeds(request);
     if (!needs.ok()) {
@@ -277,13 +295,13 @@ class WatchReactor : public FrameStream<grpc::ServerWriteReactor<pb::Frame>> {
 
 }  // namespace
 
-grpc::ServerBidiReactor<pb::InteractRequest, pb::Frame>* SessionServiceImpl::Interact(
+grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* SessionServiceImpl::Interact(
     grpc::CallbackServerContext* context) {
   return new InteractReactor(registry_, access_, *context);
 }
 
-grpc::ServerWriteReactor<pb::Frame>* SessionServiceImpl::Watch(grpc::CallbackServerContext* context,
-                                                               const pb::WatchRequest* request) {
+grpc::ServerWriteReactor<grpc::ByteBuffer>* SessionServiceImpl::Watch(
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* request) {
   return new WatchReactor(registry_, access_, *context, *request);
 }
 

@@ -13,16 +13,23 @@ namespace hs {
 /// Frames a viewer may have waiting before the oldest is dropped.
 inline constexpr size_t kViewerQueueFrames = 64;
 
-class SessionServiceImpl final : public haptics::v1::SessionService::CallbackService {
+// Both methods take their requests as bytes and write frames as bytes
+// (raw_message.h): a message that is no request gets INVALID_ARGUMENT.
+using SessionServiceBase = haptics::v1::SessionService::WithRawCallbackMethod_Interact<
+    haptics::v1::SessionService::WithRawCallbackMethod_Watch<haptics::v1::SessionService::Service>>;
+
+class SessionServiceImpl final : public SessionServiceBase {
  public:
   /// `registry` and `access` outlive the service.
   SessionServiceImpl(SceneRegistry& registry, const AccessPolicy& access)
       : registry_(registry), access_(access) {}
 
-  grpc::ServerBidiReactor<haptics::v1::InteractRequest, haptics::v1::Frame>* Interact(
+  // InteractRequests in, Frames out.
+  grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* Interact(
       grpc::CallbackServerContext* context) override;
-  grpc::ServerWriteReactor<haptics::v1::Frame>* Watch(
-      grpc::CallbackServerContext* context, const haptics::v1::WatchRequest* request) override;
+  // A WatchRequest in, Frames out.
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* Watch(grpc::CallbackServerContext* context,
+                                                    const grpc::ByteBuffer* request) override;
 
  private:
   SceneRegistry& registry_;

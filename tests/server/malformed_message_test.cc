@@ -73,5 +73,20 @@ TEST(MalformedMessageTest, EverySceneServiceMethodSaysInvalidArgument) {
   EXPECT_EQ(server.Get("s").revision(), revision);
 }
 
+// Both stream kinds end with INVALID_ARGUMENT, no frame sent, when their
+// first message is no request.
+TEST(MalformedMessageTest, EverySessionServiceMethodSaysInvalidArgument) {
+  TestServer server;
+  server.Create(SmallScene("s"));
+  for (const char* method :
+       {"/haptics.v1.SessionService/Interact", "/haptics.v1.SessionService/Watch"}) {
+    const auto [status, messages] = CallStream(server, method);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT)
+        << method << ": " << status.error_message();
+    EXPECT_EQ(messages, 0) << method;
+  }
+  EXPECT_EQ(server.Get("s").devices(), 0);
+}
+
 }  // namespace
 }  // namespace hs::testing
