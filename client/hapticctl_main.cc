@@ -5,6 +5,7 @@
 
 #include "CLI/CLI.hpp"
 #include "client/contact_command.h"
+#include "client/delete_model_command.h"
 #include "client/drive_command.h"
 #include "client/exit_codes.h"
 #include "client/health_command.h"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   hs::cli::AddSimulateCommand(app, exit_code);
   hs::cli::AddScenesCommand(app, exit_code);
   hs::cli::AddUploadCommand(app, exit_code);
+  hs::cli::AddDeleteModelCommand(app, exit_code);
   hs::cli::AddObjectsCommand(app, exit_code);
   hs::cli::AddHealthCommand(app, exit_code);
   hs::cli::AddWatchCommand(app, exit_code);

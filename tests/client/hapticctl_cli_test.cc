@@ -36,7 +36,7 @@ TEST(HapticctlCliTest, ExitStatuses) {
 // with 2, and exits 3 when no server listens.
 TEST(HapticctlCliTest, ServerCommands) {
   for (const char* command : {"scenes", "scenes list", "scenes create", "scenes show",
-                              "scenes delete", "upload", "objects", "objects add", "objects update",
+                              "scenes delete", "upload", "delete-model", "objects", "objects add", "objects update",
                               "objects remove", "health", "watch", "drive", "loadtest"}) {
     EXPECT_EQ(RunHapticctl(std::string(command) + " --help"), kExitOk) << command;
   }

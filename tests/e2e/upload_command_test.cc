@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "client/delete_model_command.h"
 #include "client/exit_codes.h"
 #include "client/objects_command.h"
 #include "tests/common/scratch_dir.h"
@@ -50,6 +51,24 @@ TEST(UploadCommandTest, UploadAndUse) {
   EXPECT_NE(err.str().find("ALREADY_EXISTS: model 'cube.obj' exists with other content"),
             std::string::npos)
       << err.str();
+  // delete-model: refused while scene "s" uses it, done once it does not.
+  DeleteModelArgs remove;
+  remove.server.address = server.address();
+  remove.model_id = "cube.obj";
+  EXPECT_EQ(RunDeleteModel(remove, out, err), kExitRefused);
+  EXPECT_NE(err.str().find("FAILED_PRECONDITION: model 'cube.obj' is used by object 'block'"),
+            std::string::npos)
+      << err.str();
+  ObjectsArgs drop;
+  drop.server.address = server.address();
+  drop.action = "remove";
+  drop.scene = "s";
+  drop.object = "block";
+  ASSERT_EQ(RunObjects(drop, out, err), kExitOk) << err.str();
+  EXPECT_EQ(RunDeleteModel(remove, out, err), kExitOk) << err.str();
+  EXPECT_EQ(RunDeleteModel(remove, out, err), kExitNotFound);
+  EXPECT_EQ(RunUpload(args, out, err), kExitOk) << err.str();  // the id is free again
+
   args.file = kData + "/garbage.obj";
   EXPECT_EQ(RunUpload(args, out, err), kExitRefused);
   args.file = kData + "/no_such_file.obj";
