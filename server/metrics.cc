@@ -41,10 +41,8 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
   missed_steps_off_cpu_ =
       &BuildCounter()
            .Name("hs_missed_steps_off_cpu_total")
-           .Help(
-               "Missed steps after which the stepping thread had run for less than a step's "
-               "time since the step before, which took less than one (kept off the CPU, not "
-               "stepping)")
+           .Help("Missed steps while the stepping thread was kept off the CPU, not stepping "
+                 "(the rule: server/step_pacer.h)")
            .Register(*registry_)
            .Add({});
   auto& clients = BuildGauge().Name("hs_clients").Help("Open streams by kind").Register(*registry_);

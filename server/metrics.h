@@ -36,7 +36,7 @@ class Metrics {
   /// stage added to its counters during it.
   void ObserveStep(double step_s, const StageStatsTable& stats_delta);
   /// `n` steps missed, with the stepping thread off the CPU if `off_cpu`
-  /// (see StepSnapshot).
+  /// (server/step_pacer.h states the rule).
   void AddMissedSteps(int64_t n, bool off_cpu);
   /// A device (Interact) or viewer (Watch) stream opened (+1) or closed (-1).
   void AddClients(bool device, int delta);

@@ -7,6 +7,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/core/check.h"
+#include "server/step_pacer.h"
 #include "server/thread_priority.h"
 
 namespace hs {
@@ -25,6 +26,13 @@ int64_t Nanoseconds(Clock::duration d) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(d).count();
 }
 
+int64_t NowNanoseconds() { return Nanoseconds(Clock::now().time_since_epoch()); }
+
+Clock::time_point AtNanoseconds(int64_t ns) {
+  return Clock::time_point(
+      std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(ns)));
+}
+
 // The id of tool `name` in `scene`, or -1.
 ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
   for (ObjectId id : scene.tools) {
@@ -41,15 +49,12 @@ SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics
       step_s_(scene.scene->options().step_s),
       spec_(std::move(spec)),
       loaded_(std::move(scene)),
-      names_(std::make_shared<const std::vector<std::string>>(loaded_.names)) {
+      names_(std::make_shared<const std::vector<std::string>>(loaded_.names)),
+      streams_([this](bool fresh) { SetDevicesFresh(fresh); }),
+      fan_out_(streams_, metrics, realtime_priority) {
   loaded_.scene->SetNeeded(EffectSet());
-  fanout_thread_ = std::thread([this, realtime_priority] { FanOut(realtime_priority); });
-  try {
-    thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
-  } catch (...) {  // no thread to be had: stop the first, not std::terminate
-    StopFanOut();
-    throw;
-  }
+  // Should no thread be had, fan_out_ stops as the members go.
+  thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
 }
 
 SceneRunner::~SceneRunner() { Stop(absl::UnavailableError("the scene was deleted")); }
@@ -65,88 +70,59 @@ void SceneRunner::Stop(const absl::Status& status) {
   thread_.join();
 }
 
+void SceneRunner::SetDevicesFresh(bool fresh) {
+  {
+    std::lock_guard lock(stop_mu_);
+    devices_fresh_ = fresh;
+  }
+  if (fresh) stop_cv_.notify_all();
+}
+
 void SceneRunner::Run(int realtime_priority) {
   // Named so that `top -H` and profilers tell the stepping thread apart.
   pthread_setname_np(pthread_self(), "scene-step");
   // Checked when the server started; should the system refuse now, the
   // scene steps at the default scheduler, as without the option.
   if (realtime_priority != 0) (void)SetRealtimePriority(realtime_priority);
-  const auto period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(step_s_));
-  const int64_t period_ns = Nanoseconds(period);
-  // A device faster than the scene's rate speeds it up by 4/3 at most.
-  const Clock::duration shortest = period * 3 / 4;
-  Clock::time_point last = Clock::now();
-  int64_t cpu_at_last = ThreadCpuNanoseconds();
-  int64_t last_step_ns = 0;
-  Clock::time_point next = last + period;  // the deadline of the next step
+  const int64_t period_ns = Nanoseconds(
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(step_s_)));
+  StepPacer pacer(period_ns, NowNanoseconds(), ThreadCpuNanoseconds());
   absl::Status status;
   while (true) {
-    bool early = false;
+    bool devices_clocked = false;
     {
       std::unique_lock lock(stop_mu_);
-      // Not sooner than `shortest` after the last step; then at the
-      // deadline, or once every device has sent.
-      stop_cv_.wait_until(lock, std::min(next, last + shortest), [this] { return stop_; });
-      stop_cv_.wait_until(lock, next, [this] { return stop_ || devices_fresh_; });
+      stop_cv_.wait_until(lock, AtNanoseconds(pacer.earliest_ns()), [this] { return stop_; });
+      stop_cv_.wait_until(lock, AtNanoseconds(pacer.deadline_ns()),
+                          [this] { return stop_ || devices_fresh_; });
       if (stop_) {
         status = stop_status_;
         break;
       }
-      early = devices_fresh_;
+      devices_clocked = devices_fresh_;
     }
-    const Clock::time_point now = Clock::now();
-    const int64_t cpu_now = ThreadCpuNanoseconds();
-    const Clock::duration lag = now - next;  // negative when the devices came first
-    if (lag > period) {
-      // Too late to catch up: skip the missed steps rather than run a burst.
-      const int64_t missed = lag / period;
-      // Having run for less than a period since the last step began, after
-      // a step shorter than a period (wall time, so its workers' share
-      // too), this thread lost the time waiting (for a core, a lock or its
-      // wake-up), not stepping. All of one late wake-up's misses count alike.
-      const bool off_cpu = cpu_now - cpu_at_last < period_ns && last_step_ns < period_ns;
-      missed_steps_ += missed;
-      if (off_cpu) missed_steps_off_cpu_ += missed;
-      metrics_.AddMissedSteps(missed, off_cpu);
-      next += missed * period;
+    const StepPacer::Start start =
+        pacer.StepStarts(NowNanoseconds(), ThreadCpuNanoseconds(), devices_clocked);
+    if (start.missed > 0) {
+      missed_steps_ += start.missed;
+      if (start.off_cpu) missed_steps_off_cpu_ += start.missed;
+      metrics_.AddMissedSteps(start.missed, start.off_cpu);
     }
-    last_step_ns = StepOnce(std::max<int64_t>(Nanoseconds(lag), 0));
-    last = now;
-    cpu_at_last = cpu_now;
-    // Devices that came first set the phase from now on, and their next
-    // poses are due one period later: the deadline falls a quarter period
-    // after that, so that a pose a little late joins its step instead of
-    // waiting a whole period for the next.
-    next = early ? now + period + period / 4 : next + period;
+    pacer.StepEnded(StepOnce(start.lag_ns));
   }
   StepOnce(0);  // the final frame
-  StopFanOut();
-  std::lock_guard lock(io_mu_);
-  stopping_ = true;
-  for (auto& [sink, attached] : sinks_) sink->Close(status);
+  fan_out_.Stop();
+  streams_.CloseAll(status);
 }
 
 int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
-  std::vector<std::pair<std::string, PendingPose>> fresh;
-  EffectSet needs;
-  {
-    std::lock_guard lock(io_mu_);
-    for (auto& [tool, pose] : pending_) {
-      if (!pose.fresh) continue;
-      fresh.emplace_back(tool, pose);
-      pose.fresh = false;
-    }
-    needs = NeedsLocked();
-    std::lock_guard stop(stop_mu_);
-    devices_fresh_ = false;
-  }
+  const EffectSet needs = streams_.TakeFreshPoses(fresh_);
   auto snapshot = std::make_shared<StepSnapshot>();
   int64_t step_ns = 0;
   {
     std::lock_guard lock(scene_mu_);
     Scene& scene = *loaded_.scene;
-    for (const auto& [tool, pose] : fresh) {
+    for (const auto& [tool, pose] : fresh_) {
       const ObjectId id = FindTool(loaded_, tool);
       // Poses are validated at the edge; a tool removed meanwhile is skipped.
       if (id < 0 || !scene.SetDevicePose(id, pose.X_WD).ok()) continue;
@@ -176,122 +152,29 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   snapshot->start_lag_ns = start_lag_ns;
   snapshot->missed_steps = missed_steps_;
   snapshot->missed_steps_off_cpu = missed_steps_off_cpu_;
-  {
-    std::lock_guard lock(fanout_mu_);
-    if (fanout_queue_.size() >= kMaxQueuedFrames) {
-      fanout_queue_.pop_front();
-      metrics_.AddFramesDropped(1);
-    }
-    fanout_queue_.push_back(std::move(snapshot));
-  }
-  fanout_cv_.notify_one();
+  fan_out_.Push(std::move(snapshot));
   return step_ns;
 }
 
-void SceneRunner::StopFanOut() {
-  {
-    std::lock_guard lock(fanout_mu_);
-    fanout_stop_ = true;
-  }
-  fanout_cv_.notify_all();
-  fanout_thread_.join();  // every frame queued is handed over first
-}
-
-void SceneRunner::FanOut(int realtime_priority) {
-  pthread_setname_np(pthread_self(), "scene-frames");
-  if (realtime_priority != 0) (void)SetRealtimePriority(realtime_priority);  // as Run
-  std::unique_lock lock(fanout_mu_);
-  while (true) {
-    fanout_cv_.wait(lock, [this] { return fanout_stop_ || !fanout_queue_.empty(); });
-    if (fanout_queue_.empty()) return;  // stopped, and every frame handed over
-    std::shared_ptr<const StepSnapshot> snapshot = std::move(fanout_queue_.front());
-    fanout_queue_.pop_front();
-    lock.unlock();
-    {
-      std::lock_guard offering(offer_mu_);
-      offer_to_.clear();
-      {
-        std::lock_guard io(io_mu_);
-        for (const auto& [sink, attached] : sinks_) offer_to_.push_back(sink);
-      }
-      for (FrameSink* sink : offer_to_) sink->Offer(snapshot);
-    }
-    lock.lock();
-  }
-}
-
-bool SceneRunner::DevicesFreshLocked() const {
-  bool any = false;
-  for (const auto& [sink, attached] : sinks_) {
-    if (attached.tool.empty()) continue;
-    const auto it = pending_.find(attached.tool);
-    if (it == pending_.end() || !it->second.fresh) return false;
-    any = true;
-  }
-  return any;
-}
-
-EffectSet SceneRunner::NeedsLocked() const {
-  EffectSet needs;
-  for (const auto& [sink, attached] : sinks_) needs = needs | attached.needs;
-  return needs;
-}
-
 absl::Status SceneRunner::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs) {
-  std::lock_guard io(io_mu_);
-  if (stopping_) return absl::UnavailableError("the scene is stopping");
-  {
+  return streams_.AttachDevice(sink, tool, needs, [this](const std::string& name) {
     std::lock_guard scene(scene_mu_);
-    if (FindTool(loaded_, tool) < 0) {
-      return absl::NotFoundError(absl::StrCat("no tool '", tool, "' in the scene"));
-    }
-  }
-  for (const auto& [other, attached] : sinks_) {
-    if (attached.tool == tool) {
-      return absl::FailedPreconditionError(
-          absl::StrCat("tool '", tool, "' is held by another device"));
-    }
-  }
-  sinks_[sink] = Attached{tool, needs};
-  return absl::OkStatus();
+    return FindTool(loaded_, name) >= 0;
+  });
 }
 
 absl::Status SceneRunner::AttachViewer(FrameSink* sink, EffectSet needs) {
-  std::lock_guard io(io_mu_);
-  if (stopping_) return absl::UnavailableError("the scene is stopping");
-  sinks_[sink] = Attached{"", needs};
-  return absl::OkStatus();
+  return streams_.AttachViewer(sink, needs);
 }
 
 void SceneRunner::Detach(FrameSink* sink) {
-  {
-    std::lock_guard io(io_mu_);
-    sinks_.erase(sink);
-    // The device that went may have been the only one not to have sent.
-    if (DevicesFreshLocked()) {
-      {
-        std::lock_guard lock(stop_mu_);
-        devices_fresh_ = true;
-      }
-      stop_cv_.notify_all();
-    }
-  }
-  // An offer to `sink` that started before the erase ends before this.
-  std::lock_guard offering(offer_mu_);
+  streams_.Detach(sink);
+  // An offer to `sink` that started before it left the registry ends first.
+  fan_out_.WaitForOffers();
 }
 
 void SceneRunner::SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp) {
-  std::lock_guard io(io_mu_);
-  const auto it = sinks_.find(sink);
-  if (it == sinks_.end() || it->second.tool.empty()) return;
-  pending_[it->second.tool] = PendingPose{X_WD, stamp, true};
-  if (DevicesFreshLocked()) {
-    {
-      std::lock_guard lock(stop_mu_);
-      devices_fresh_ = true;
-    }
-    stop_cv_.notify_all();
-  }
+  streams_.SetPose(sink, X_WD, stamp);
 }
 
 haptics::v1::SceneSpec SceneRunner::spec() const {
@@ -300,44 +183,35 @@ haptics::v1::SceneSpec SceneRunner::spec() const {
 }
 
 absl::Status SceneRunner::Replace(haptics::v1::SceneSpec spec, LoadedScene scene) {
-  std::lock_guard io(io_mu_);
-  for (const auto& [sink, attached] : sinks_) {
-    if (!attached.tool.empty() && FindTool(scene, attached.tool) < 0) {
-      return absl::FailedPreconditionError(
-          absl::StrCat("tool '", attached.tool, "' is held by a device"));
-    }
-  }
-  std::lock_guard lock(scene_mu_);
-  // Tools keep where their devices put them; the proxies start over there.
-  for (auto it = applied_.begin(); it != applied_.end();) {
-    const ObjectId id = FindTool(scene, it->first);
-    if (id < 0 || !scene.scene->SetDevicePose(id, it->second.X_WD).ok()) {
-      it = applied_.erase(it);
-    } else {
-      ++it;
-    }
-  }
-  // The old scene goes with `scene` once the locks are released: tearing
-  // down its meshes and threads must not hold up the steps.
-  std::swap(spec_, spec);
-  std::swap(loaded_, scene);
-  names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
-  last_stats_ = StageStatsTable{};
-  ++revision_;
-  return absl::OkStatus();
+  return streams_.WhileToolsHeld(
+      [&](const std::string& tool) { return FindTool(scene, tool) >= 0; },
+      [&] {
+        std::lock_guard lock(scene_mu_);
+        // Tools keep where their devices put them; the proxies start over there.
+        for (auto it = applied_.begin(); it != applied_.end();) {
+          const ObjectId id = FindTool(scene, it->first);
+          if (id < 0 || !scene.scene->SetDevicePose(id, it->second.X_WD).ok()) {
+            it = applied_.erase(it);
+          } else {
+            ++it;
+          }
+        }
+        // The old scene goes with `scene` once the locks are released:
+        // tearing down its meshes and threads must not hold up the steps.
+        std::swap(spec_, spec);
+        std::swap(loaded_, scene);
+        names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
+        last_stats_ = StageStatsTable{};
+        ++revision_;
+      });
 }
 
 RunnerInfo SceneRunner::Info() const {
   RunnerInfo info;
-  std::lock_guard io(io_mu_);
-  for (const auto& [sink, attached] : sinks_) {
-    if (attached.tool.empty()) {
-      ++info.viewers;
-    } else {
-      ++info.devices;
-      info.claimed_tools.push_back(attached.tool);
-    }
-  }
+  StreamRegistry::Counts counts = streams_.counts();
+  info.devices = counts.devices;
+  info.viewers = counts.viewers;
+  info.claimed_tools = std::move(counts.claimed_tools);
   std::lock_guard lock(scene_mu_);
   info.spec = spec_;
   info.step = step_;

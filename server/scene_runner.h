@@ -1,18 +1,14 @@
 #pragma once
 // One running scene: the spec it was built from, its simulation, and the
-// thread that steps it at the scene's rate with the latest device poses.
-// Devices clock the steps: once every attached device has sent a pose since
-// the last step, the next step runs at once (but not sooner than 3/4 of a
-// period after the last), so a pose waits for no tick; the deadline after
-// such a step leaves a quarter period for a late device. Without devices
-// the scene steps on its own period.
-// Frames go to the streams from a second thread (scene-frames), so that no
-// step waits on gRPC.
+// thread (scene-step) that steps it with the latest device poses, when
+// its StepPacer says (the clock rules, and what a missed step is, are
+// stated there). Its parts: the StreamRegistry of attached streams and
+// their poses, and the FrameFanOut that hands each step's frame to them
+// on a second thread, so that no step waits on gRPC.
 // hs::Scene is not thread-safe: only the runner's thread steps it; requests
-// reach it through the runner's mutexes, never by touching the Scene.
+// reach it through the runner, never by touching the Scene.
 
 #include <condition_variable>
-#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -23,9 +19,11 @@
 #include "absl/status/statusor.h"
 #include "common/api/scene_file.h"
 #include "haptics/v1/scene.pb.h"
+#include "server/frame_fan_out.h"
 #include "server/metrics.h"
 #include "server/priority_inheriting_mutex.h"
 #include "server/step_snapshot.h"
+#include "server/stream_registry.h"
 
 namespace hs {
 
@@ -83,33 +81,17 @@ class SceneRunner {
   double step_s() const { return step_s_; }
 
  private:
-  struct Attached {
-    std::string tool;  // empty for viewers
-    EffectSet needs;
-  };
-  struct PendingPose {
-    Isometry3d X_WD;
-    AppliedPose stamp;
-    bool fresh = false;
-  };
-
   void Run(int realtime_priority);
-  // Hands each step's frame to the streams, in step order, off the
-  // stepping thread: a stream's write can wait on gRPC's locks for
-  // milliseconds, and a step must not.
-  void FanOut(int realtime_priority);
-  // Lets FanOut hand over the frames queued, then joins it.
-  void StopFanOut();
   // Returns the step's wall time, nanoseconds (workers included).
   int64_t StepOnce(int64_t start_lag_ns);
-  EffectSet NeedsLocked() const;
-  // Whether every attached device has a pose the last step did not apply.
-  bool DevicesFreshLocked() const;
+  // Told by streams_ whether every device has a fresh pose.
+  void SetDevicesFresh(bool fresh);
 
   Metrics& metrics_;
   const double step_s_;
 
   // The simulation; only the runner's thread steps it, Replace swaps it.
+  // Taken after the registry's lock when both are held.
   mutable PriorityInheritingMutex scene_mu_;
   haptics::v1::SceneSpec spec_;
   LoadedScene loaded_;
@@ -119,37 +101,19 @@ class SceneRunner {
   StageStatsTable last_stats_{};
   std::map<std::string, PendingPose> applied_;  // by tool name
 
-  // What the streams send and need.
-  mutable PriorityInheritingMutex io_mu_;
-  std::map<FrameSink*, Attached> sinks_;
-  std::map<std::string, PendingPose> pending_;  // by tool name
-  bool stopping_ = false;
-
-  // Taken after io_mu_ when both are held.
+  // Taken after the registry's lock when both are held.
   PriorityInheritingMutex stop_mu_;
   std::condition_variable_any stop_cv_;  // stop_ or devices_fresh_ set
   bool stop_ = false;
-  bool devices_fresh_ = false;  // DevicesFreshLocked() held at the last pose
+  bool devices_fresh_ = false;
   absl::Status stop_status_;
-  std::thread thread_;
-  int64_t missed_steps_ = 0;          // runner thread only
-  int64_t missed_steps_off_cpu_ = 0;  // runner thread only
+  int64_t missed_steps_ = 0;                                // runner thread only
+  int64_t missed_steps_off_cpu_ = 0;                        // runner thread only
+  std::vector<std::pair<std::string, PendingPose>> fresh_;  // runner thread only
 
-  // Frames stepped and not yet handed to the streams, oldest first. Past
-  // kMaxQueuedFrames (the hand-over stalled for that many steps) the
-  // oldest is dropped and counted in the metrics.
-  static constexpr size_t kMaxQueuedFrames = 64;
-  PriorityInheritingMutex fanout_mu_;
-  std::condition_variable_any fanout_cv_;
-  std::deque<std::shared_ptr<const StepSnapshot>> fanout_queue_;
-  bool fanout_stop_ = false;
-  std::thread fanout_thread_;
-  // Held by scene-frames while it offers a frame, and taken by Detach once
-  // the sink is out of sinks_: so io_mu_, which the stepping thread needs,
-  // is never held across a stream's write. Taken before io_mu_ when both
-  // are held.
-  PriorityInheritingMutex offer_mu_;
-  std::vector<FrameSink*> offer_to_;  // scene-frames only
+  StreamRegistry streams_;
+  FrameFanOut fan_out_;
+  std::thread thread_;
 };
 
 }  // namespace hs

@@ -35,10 +35,8 @@ struct StepSnapshot {
   /// Wall time of the step, and how late it started, nanoseconds.
   int64_t step_ns = 0;
   int64_t start_lag_ns = 0;
-  /// Steps started late by more than one step, since the runner began,
-  /// and those of them missed while the stepping thread was off the CPU
-  /// (it had run for less than a period since the step before, which took
-  /// less than a period: see SceneRunner::Run).
+  /// Steps missed since the runner began, and those of them missed while
+  /// the stepping thread was off the CPU (server/step_pacer.h states both).
   int64_t missed_steps = 0;
   int64_t missed_steps_off_cpu = 0;
 };

@@ -71,7 +71,7 @@ struct StreamReport {
   /// Frames the server dropped for this stream (from the frames' counters).
   int64_t dropped_frames = 0;
   /// Steps the scene missed, and those of them with its stepping thread
-  /// off the CPU (not computing), from the frames' counters.
+  /// off the CPU (Frame.missed_steps_off_cpu), from the frames' counters.
   int64_t missed_steps = 0;
   int64_t missed_steps_off_cpu = 0;
   double frames_per_s = 0;

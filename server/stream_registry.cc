@@ -1,0 +1,109 @@
+#include "server/stream_registry.h"
+
+#include "absl/strings/str_cat.h"
+
+namespace hs {
+
+absl::Status StreamRegistry::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+                                          const std::function<bool(const std::string&)>& has_tool) {
+  std::lock_guard lock(mu_);
+  if (closed_) return absl::UnavailableError("the scene is stopping");
+  if (!has_tool(tool))
+    return absl::NotFoundError(absl::StrCat("no tool '", tool, "' in the scene"));
+  for (const auto& [other, attached] : sinks_) {
+    if (attached.tool == tool) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("tool '", tool, "' is held by another device"));
+    }
+  }
+  sinks_[sink] = Attached{tool, needs};
+  return absl::OkStatus();
+}
+
+absl::Status StreamRegistry::AttachViewer(FrameSink* sink, EffectSet needs) {
+  std::lock_guard lock(mu_);
+  if (closed_) return absl::UnavailableError("the scene is stopping");
+  sinks_[sink] = Attached{"", needs};
+  return absl::OkStatus();
+}
+
+void StreamRegistry::Detach(FrameSink* sink) {
+  std::lock_guard lock(mu_);
+  sinks_.erase(sink);
+  // The device that went may have been the only one not to have sent.
+  if (DevicesFreshLocked()) devices_fresh_(true);
+}
+
+void StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp) {
+  std::lock_guard lock(mu_);
+  const auto it = sinks_.find(sink);
+  if (it == sinks_.end() || it->second.tool.empty()) return;
+  pending_[it->second.tool] = PendingPose{X_WD, stamp, true};
+  if (DevicesFreshLocked()) devices_fresh_(true);
+}
+
+EffectSet StreamRegistry::TakeFreshPoses(std::vector<std::pair<std::string, PendingPose>>& fresh) {
+  fresh.clear();
+  std::lock_guard lock(mu_);
+  for (auto& [tool, pose] : pending_) {
+    if (!pose.fresh) continue;
+    fresh.emplace_back(tool, pose);
+    pose.fresh = false;
+  }
+  EffectSet needs;
+  for (const auto& [sink, attached] : sinks_) needs = needs | attached.needs;
+  devices_fresh_(false);
+  return needs;
+}
+
+void StreamRegistry::ListSinks(std::vector<FrameSink*>& out) const {
+  out.clear();
+  std::lock_guard lock(mu_);
+  for (const auto& [sink, attached] : sinks_) out.push_back(sink);
+}
+
+absl::Status StreamRegistry::WhileToolsHeld(const std::function<bool(const std::string&)>& has_tool,
+                                            const std::function<void()>& then) {
+  std::lock_guard lock(mu_);
+  for (const auto& [sink, attached] : sinks_) {
+    if (!attached.tool.empty() && !has_tool(attached.tool)) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("tool '", attached.tool, "' is held by a device"));
+    }
+  }
+  then();
+  return absl::OkStatus();
+}
+
+void StreamRegistry::CloseAll(const absl::Status& status) {
+  std::lock_guard lock(mu_);
+  closed_ = true;
+  for (auto& [sink, attached] : sinks_) sink->Close(status);
+}
+
+StreamRegistry::Counts StreamRegistry::counts() const {
+  Counts counts;
+  std::lock_guard lock(mu_);
+  for (const auto& [sink, attached] : sinks_) {
+    if (attached.tool.empty()) {
+      ++counts.viewers;
+    } else {
+      ++counts.devices;
+      counts.claimed_tools.push_back(attached.tool);
+    }
+  }
+  return counts;
+}
+
+bool StreamRegistry::DevicesFreshLocked() const {
+  bool any = false;
+  for (const auto& [sink, attached] : sinks_) {
+    if (attached.tool.empty()) continue;
+    const auto it = pending_.find(attached.tool);
+    if (it == pending_.end() || !it->second.fresh) return false;
+    any = true;
+  }
+  return any;
+}
+
+}  // namespace hs

@@ -1,0 +1,89 @@
+#pragma once
+// The streams attached to one scene: devices (each holding one tool),
+// viewers, what each needs the scene to compute, and the devices' latest
+// poses. Thread-safe: gRPC threads attach, detach and send poses; the
+// stepping thread takes the fresh poses; the frames thread lists the
+// streams.
+
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "common/core/types.h"
+#include "common/sim/effects.h"
+#include "server/priority_inheriting_mutex.h"
+#include "server/step_snapshot.h"
+
+namespace hs {
+
+/// A device pose waiting for the next step.
+struct PendingPose {
+  Isometry3d X_WD = Isometry3d::Identity();
+  AppliedPose stamp;
+  bool fresh = false;
+};
+
+class StreamRegistry {
+ public:
+  /// `devices_fresh` is told, with the registry's lock held (so nothing
+  /// can slip between), whether every attached device has sent a pose the
+  /// last TakeFreshPoses did not take: true after a pose or a detach that
+  /// makes it so, false after TakeFreshPoses.
+  explicit StreamRegistry(std::function<void(bool)> devices_fresh)
+      : devices_fresh_(std::move(devices_fresh)) {}
+
+  /// Lets `sink` drive tool `tool`. `has_tool` is asked under the lock.
+  /// NOT_FOUND when it says no, FAILED_PRECONDITION when another device
+  /// holds the tool, UNAVAILABLE once closed.
+  absl::Status AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+                            const std::function<bool(const std::string&)>& has_tool);
+  /// Lets `sink` receive frames. UNAVAILABLE once closed.
+  absl::Status AttachViewer(FrameSink* sink, EffectSet needs);
+  /// Forgets `sink` and frees its tool.
+  void Detach(FrameSink* sink);
+
+  /// The pose of `sink`'s tool for the next step (latest wins); ignored
+  /// for a viewer or a stream not attached.
+  void SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp);
+  /// Moves the poses not taken before into `fresh` (tool, pose) and
+  /// returns what the streams need, at one instant.
+  EffectSet TakeFreshPoses(std::vector<std::pair<std::string, PendingPose>>& fresh);
+
+  /// The attached streams, into `out` (cleared first).
+  void ListSinks(std::vector<FrameSink*>& out) const;
+  /// FAILED_PRECONDITION naming a tool a device holds that `has_tool`
+  /// says is gone; checked under the lock, so no device attaches meanwhile
+  /// when `then` (run under it on OK) swaps the scene.
+  absl::Status WhileToolsHeld(const std::function<bool(const std::string&)>& has_tool,
+                              const std::function<void()>& then);
+  /// Ends every stream with `status` (FrameSink::Close); later attaches
+  /// are UNAVAILABLE.
+  void CloseAll(const absl::Status& status);
+
+  /// Devices and viewers attached, and the tools the devices hold.
+  struct Counts {
+    int devices = 0;
+    int viewers = 0;
+    std::vector<std::string> claimed_tools;
+  };
+  Counts counts() const;
+
+ private:
+  struct Attached {
+    std::string tool;  // empty for viewers
+    EffectSet needs;
+  };
+  // Whether every attached device has a pose not taken yet (and there is one).
+  bool DevicesFreshLocked() const;
+
+  const std::function<void(bool)> devices_fresh_;
+  mutable PriorityInheritingMutex mu_;
+  std::map<FrameSink*, Attached> sinks_;
+  std::map<std::string, PendingPose> pending_;  // by tool name
+  bool closed_ = false;
+};
+
+}  // namespace hs

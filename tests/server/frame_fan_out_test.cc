@@ -1,0 +1,119 @@
+#include "server/frame_fan_out.h"
+
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <mutex>
+#include <vector>
+
+namespace hs {
+namespace {
+
+// A stream that records the steps offered to it; while `hold` is set, an
+// offer waits until it is cleared (a write stuck on gRPC).
+class SlowSink : public FrameSink {
+ public:
+  void Offer(std::shared_ptr<const StepSnapshot> snapshot) override {
+    std::unique_lock lock(mu_);
+    steps_.push_back(snapshot->step);
+    cv_.notify_all();
+    cv_.wait(lock, [this] { return !hold_; });
+  }
+  void Close(const absl::Status&) override {}
+  void Hold(bool hold) {
+    {
+      std::lock_guard lock(mu_);
+      hold_ = hold;
+    }
+    cv_.notify_all();
+  }
+  // Waits until `n` steps were offered.
+  void WaitForSteps(size_t n) {
+    std::unique_lock lock(mu_);
+    cv_.wait(lock, [&] { return steps_.size() >= n; });
+  }
+  std::vector<int64_t> steps() {
+    std::lock_guard lock(mu_);
+    return steps_;
+  }
+
+ private:
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool hold_ = false;
+  std::vector<int64_t> steps_;
+};
+
+std::shared_ptr<const StepSnapshot> Step(int64_t step) {
+  auto snapshot = std::make_shared<StepSnapshot>();
+  snapshot->step = step;
+  return snapshot;
+}
+
+// Every frame pushed reaches every stream, in step order, and Stop hands
+// over everything queued before it returns.
+TEST(FrameFanOutTest, EveryFrameInOrderAndStopDrains) {
+  Metrics metrics;
+  StreamRegistry streams([](bool) {});
+  SlowSink a, b;
+  ASSERT_TRUE(streams.AttachViewer(&a, EffectSet::All()).ok());
+  ASSERT_TRUE(streams.AttachViewer(&b, EffectSet::All()).ok());
+  FrameFanOut fan_out(streams, metrics, 0);
+  std::vector<int64_t> expected;
+  for (int64_t step = 1; step <= 50; ++step) {
+    fan_out.Push(Step(step));
+    expected.push_back(step);
+  }
+  fan_out.Stop();
+  EXPECT_EQ(a.steps(), expected);
+  EXPECT_EQ(b.steps(), expected);
+}
+
+// While a stream's write is stuck, frames queue up to kMaxQueuedFrames;
+// past that the oldest go, counted in hs_frames_dropped_total, and the
+// rest still arrive in order.
+TEST(FrameFanOutTest, StalledHandOverDropsTheOldest) {
+  Metrics metrics;
+  StreamRegistry streams([](bool) {});
+  SlowSink sink;
+  ASSERT_TRUE(streams.AttachViewer(&sink, EffectSet::All()).ok());
+  FrameFanOut fan_out(streams, metrics, 0);
+  sink.Hold(true);
+  fan_out.Push(Step(1));
+  sink.WaitForSteps(1);  // step 1 is being offered, stuck
+  const int64_t queued = FrameFanOut::kMaxQueuedFrames + 6;
+  for (int64_t step = 2; step <= 1 + queued; ++step) fan_out.Push(Step(step));
+  sink.Hold(false);
+  fan_out.Stop();
+  const std::vector<int64_t> steps = sink.steps();
+  ASSERT_EQ(steps.size(), 1 + FrameFanOut::kMaxQueuedFrames);
+  EXPECT_EQ(steps[0], 1);
+  EXPECT_EQ(steps[1], 2 + 6);  // steps 2-7 were dropped
+  EXPECT_EQ(steps.back(), 1 + queued);
+  EXPECT_NE(metrics.Text().find("hs_frames_dropped_total 6"), std::string::npos)
+      << metrics.Text();
+}
+
+// WaitForOffers returns only once an offer under way has ended: after a
+// stream leaves the registry and WaitForOffers returns, nothing more is
+// offered to it.
+TEST(FrameFanOutTest, WaitForOffersOutlastsTheOfferUnderWay) {
+  Metrics metrics;
+  StreamRegistry streams([](bool) {});
+  SlowSink sink;
+  ASSERT_TRUE(streams.AttachViewer(&sink, EffectSet::All()).ok());
+  FrameFanOut fan_out(streams, metrics, 0);
+  sink.Hold(true);
+  fan_out.Push(Step(1));
+  sink.WaitForSteps(1);
+  streams.Detach(&sink);
+  std::thread release([&] { sink.Hold(false); });
+  fan_out.WaitForOffers();  // returns after the stuck offer of step 1
+  release.join();
+  fan_out.Push(Step(2));
+  fan_out.Stop();
+  EXPECT_EQ(sink.steps(), std::vector<int64_t>{1});
+}
+
+}  // namespace
+}  // namespace hs

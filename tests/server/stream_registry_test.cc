@@ -1,0 +1,116 @@
+#include "server/stream_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace hs {
+namespace {
+
+// A stream that records what it was told.
+struct RecordingSink : FrameSink {
+  void Offer(std::shared_ptr<const StepSnapshot>) override { ++offers; }
+  void Close(const absl::Status& status) override { closed_with = status; }
+  int offers = 0;
+  std::optional<absl::Status> closed_with;
+};
+
+bool AnyTool(const std::string& tool) { return tool != "missing"; }
+
+Isometry3d At(double x) {
+  Isometry3d X = Isometry3d::Identity();
+  X.translation().x() = x;
+  return X;
+}
+
+// A tool is held by one device at a time; a tool the scene lacks is
+// NOT_FOUND; viewers attach freely; the counts say who is there.
+TEST(StreamRegistryTest, ToolsAreHeldByOneDevice) {
+  StreamRegistry streams([](bool) {});
+  RecordingSink a, b, viewer;
+  EXPECT_EQ(streams.AttachDevice(&a, "missing", EffectSet::All(), AnyTool).code(),
+            absl::StatusCode::kNotFound);
+  EXPECT_TRUE(streams.AttachDevice(&a, "probe", EffectSet::All(), AnyTool).ok());
+  EXPECT_EQ(streams.AttachDevice(&b, "probe", EffectSet::All(), AnyTool).code(),
+            absl::StatusCode::kFailedPrecondition);
+  EXPECT_TRUE(streams.AttachViewer(&viewer, EffectSet::All()).ok());
+  StreamRegistry::Counts counts = streams.counts();
+  EXPECT_EQ(counts.devices, 1);
+  EXPECT_EQ(counts.viewers, 1);
+  EXPECT_EQ(counts.claimed_tools, std::vector<std::string>{"probe"});
+  streams.Detach(&a);
+  EXPECT_TRUE(streams.AttachDevice(&b, "probe", EffectSet::All(), AnyTool).ok());
+}
+
+// The scene computes the union of what the streams need.
+TEST(StreamRegistryTest, NeedsAreTheUnion) {
+  StreamRegistry streams([](bool) {});
+  std::vector<std::pair<std::string, PendingPose>> fresh;
+  EXPECT_EQ(streams.TakeFreshPoses(fresh), EffectSet());
+  RecordingSink device, viewer;
+  ASSERT_TRUE(streams.AttachDevice(&device, "probe", EffectSet{Effect::kForce}, AnyTool).ok());
+  ASSERT_TRUE(streams.AttachViewer(&viewer, EffectSet{Effect::kContactSet}).ok());
+  EXPECT_EQ(streams.TakeFreshPoses(fresh), (EffectSet{Effect::kForce, Effect::kContactSet}));
+}
+
+// "Every device has a fresh pose" turns true with the last device's pose
+// (or when the only silent device leaves), false when the poses are taken;
+// each pose is taken once, the latest of a device winning; viewers' poses
+// are ignored.
+TEST(StreamRegistryTest, DevicesFreshOnceEveryDeviceSent) {
+  std::vector<bool> told;
+  StreamRegistry streams([&](bool fresh) { told.push_back(fresh); });
+  RecordingSink a, b, viewer;
+  ASSERT_TRUE(streams.AttachDevice(&a, "left", EffectSet::All(), AnyTool).ok());
+  ASSERT_TRUE(streams.AttachDevice(&b, "right", EffectSet::All(), AnyTool).ok());
+  ASSERT_TRUE(streams.AttachViewer(&viewer, EffectSet::All()).ok());
+  streams.SetPose(&viewer, At(9), {9, 9});
+  streams.SetPose(&a, At(1), {1, 10});
+  streams.SetPose(&a, At(2), {2, 20});
+  EXPECT_TRUE(told.empty());
+  streams.SetPose(&b, At(3), {1, 30});
+  EXPECT_EQ(told, std::vector<bool>{true});
+
+  std::vector<std::pair<std::string, PendingPose>> fresh;
+  streams.TakeFreshPoses(fresh);
+  EXPECT_EQ(told.back(), false);
+  ASSERT_EQ(fresh.size(), 2u);
+  EXPECT_EQ(fresh[0].first, "left");
+  EXPECT_EQ(fresh[0].second.stamp.sequence, 2u);
+  EXPECT_EQ(fresh[0].second.X_WD.translation().x(), 2);
+  EXPECT_EQ(fresh[1].first, "right");
+  streams.TakeFreshPoses(fresh);
+  EXPECT_TRUE(fresh.empty());
+
+  told.clear();
+  streams.SetPose(&a, At(4), {3, 40});
+  EXPECT_TRUE(told.empty());  // "right" has not sent
+  streams.Detach(&b);
+  EXPECT_EQ(told, std::vector<bool>{true});
+}
+
+// A scene swap may go ahead only while every held tool stays; CloseAll
+// ends every stream and refuses later attaches.
+TEST(StreamRegistryTest, SwapsKeepHeldToolsAndCloseEnds) {
+  StreamRegistry streams([](bool) {});
+  RecordingSink device, viewer;
+  ASSERT_TRUE(streams.AttachDevice(&device, "probe", EffectSet::All(), AnyTool).ok());
+  ASSERT_TRUE(streams.AttachViewer(&viewer, EffectSet::All()).ok());
+  bool swapped = false;
+  const absl::Status refused = streams.WhileToolsHeld(
+      [](const std::string& tool) { return tool != "probe"; }, [&] { swapped = true; });
+  EXPECT_EQ(refused.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_FALSE(swapped);
+  EXPECT_TRUE(streams.WhileToolsHeld(AnyTool, [&] { swapped = true; }).ok());
+  EXPECT_TRUE(swapped);
+
+  streams.CloseAll(absl::UnavailableError("bye"));
+  ASSERT_TRUE(device.closed_with.has_value());
+  EXPECT_EQ(device.closed_with->code(), absl::StatusCode::kUnavailable);
+  ASSERT_TRUE(viewer.closed_with.has_value());
+  RecordingSink late;
+  EXPECT_EQ(streams.AttachViewer(&late, EffectSet::All()).code(), absl::StatusCode::kUnavailable);
+}
+
+}  // namespace
+}  // namespace hs
