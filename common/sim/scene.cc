@@ -8,6 +8,7 @@
 #include "common/core/rigid_pose.h"
 #include "common/core/status_macros.h"
 #include "common/sim/motion_bounds.h"
+#include "common/sim/tool_force.h"
 
 namespace hs {
 namespace {
@@ -385,18 +386,17 @@ void Scene::StepToolProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
   }
   if (stages.Has(Effect::kForce) && proxy.touching) {
     StageTimer timer(stats[static_cast<int>(Effect::kForce)]);
-    const Material& m = objects_[proxy.obstacle]->object.face_material(proxy.face);
-    const Vector3d stretch = proxy.X_WP.translation() - tool.X_WD.translation();
-    const Vector3d velocity = motion / options_.step_s;
-    // Spring toward the proxy; damping of the device's speed along the normal.
-    Vector3d force = m.stiffness_n_per_m * stretch -
-                     m.damping_ns_per_m * velocity.dot(proxy.normal_W) * proxy.normal_W;
-    if (force.norm() > options_.force_clamp_n) {
-      force *= options_.force_clamp_n / force.norm();
-      frame.force_clamped = true;
-    }
-    frame.force_W = force;
-    frame.torque_W = (proxy.p_WC - proxy.X_WP.translation()).cross(force);
+    const ToolForce force =
+        SpringDamperForce(objects_[proxy.obstacle]->object.face_material(proxy.face),
+                          ToolContact{.p_WD = tool.X_WD.translation(),
+                                      .p_WP = proxy.X_WP.translation(),
+                                      .v_WD = motion / options_.step_s,
+                                      .normal_W = proxy.normal_W,
+                                      .p_WC = proxy.p_WC},
+                          options_.force_clamp_n);
+    frame.force_W = force.force_W;
+    frame.torque_W = force.torque_W;
+    frame.force_clamped = force.clamped;
   }
 }
 

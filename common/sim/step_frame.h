@@ -34,8 +34,10 @@ struct ToolFrame {
   /// The proxy (god-object) pose: the device pose kept out of the objects,
   /// world frame, metres. Equal to X_WD when nothing is touched.
   Isometry3d X_WP = Isometry3d::Identity();
-  /// Force and torque on the device (to render), world frame, N and N*m,
-  /// about the device origin. Zero unless the force stage ran.
+  /// Force and torque on the device (to render), world frame, N and N*m;
+  /// the torque about the device origin, its lever the tool-fixed one from
+  /// the proxy's origin to the touching point (tool_force.h). Zero unless
+  /// the force stage ran.
   Vector3d force_W = Vector3d::Zero();
   Vector3d torque_W = Vector3d::Zero();
   /// The force was limited to the scene's clamp.

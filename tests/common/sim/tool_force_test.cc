@@ -1,0 +1,84 @@
+#include "common/sim/tool_force.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace hs {
+namespace {
+
+// k = 1000 N/m, c = 2 N s/m (stiffness_n_per_m, damping_ns_per_m).
+Material Steel() {
+  Material m;
+  m.stiffness_n_per_m = 1000;
+  m.damping_ns_per_m = 2;
+  return m;
+}
+
+// A device 2 mm into a floor (normal +z), still: the spring alone,
+// F = k * 0.002 m = 2 N up; touching 10 mm to the side of the tool's
+// origin along x, the torque is (0.01, 0, 0) x (0, 0, 2) = (0, -0.02, 0).
+TEST(ToolForceTest, SpringAloneByHand) {
+  const ToolForce f = SpringDamperForce(
+      Steel(),
+      ToolContact{
+          .p_WD = {0, 0, -0.002}, .p_WP = {0, 0, 0}, .normal_W = {0, 0, 1}, .p_WC = {0.01, 0, 0}},
+      10);
+  EXPECT_NEAR(f.force_W.x(), 0, 1e-15);
+  EXPECT_NEAR(f.force_W.y(), 0, 1e-15);
+  EXPECT_NEAR(f.force_W.z(), 2.0, 1e-12);
+  EXPECT_NEAR(f.torque_W.x(), 0, 1e-15);
+  EXPECT_NEAR(f.torque_W.y(), -0.02, 1e-14);
+  EXPECT_NEAR(f.torque_W.z(), 0, 1e-15);
+  EXPECT_FALSE(f.clamped);
+}
+
+// Pressing in at v = (0.3, 0, -0.5) m/s: only the normal part is damped,
+// -c (v . n) n = -2 * (-0.5) * z = +1 N; sliding (x) is not damped here
+// (friction is the proxy's). Spring 1 mm: +1 N. Total (0, 0, 2).
+TEST(ToolForceTest, DampingAlongTheNormalOnly) {
+  const ToolForce f = SpringDamperForce(Steel(),
+                                        ToolContact{.p_WD = {0, 0, -0.001},
+                                                    .p_WP = {0, 0, 0},
+                                                    .v_WD = {0.3, 0, -0.5},
+                                                    .normal_W = {0, 0, 1},
+                                                    .p_WC = {0, 0, 0}},
+                                        10);
+  EXPECT_NEAR(f.force_W.x(), 0, 1e-15);
+  EXPECT_NEAR(f.force_W.z(), 2.0, 1e-12);
+  EXPECT_NEAR(f.torque_W.norm(), 0, 1e-15);  // touching at the origin: no lever
+}
+
+// Past the clamp the force keeps its direction at the clamp's length, and
+// the torque follows the clamped force: 30 mm at 45 degrees in the x-z
+// plane, k = 1000: |F| = 30 N, clamped to 10 N along (1, 0, 1)/sqrt 2.
+TEST(ToolForceTest, ClampKeepsTheDirection) {
+  const double d = 0.03 / std::sqrt(2.0);
+  const ToolForce f = SpringDamperForce(
+      Steel(),
+      ToolContact{
+          .p_WD = {-d, 0, -d}, .p_WP = {0, 0, 0}, .normal_W = {0, 0, 1}, .p_WC = {0, 0.01, 0}},
+      10);
+  EXPECT_TRUE(f.clamped);
+  EXPECT_NEAR(f.force_W.norm(), 10, 1e-12);
+  EXPECT_NEAR(f.force_W.x(), 10 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(f.force_W.z(), 10 / std::sqrt(2.0), 1e-12);
+  // (0, 0.01, 0) x (a, 0, a) = (0.01 a, 0, -0.01 a), a = 10 / sqrt 2.
+  EXPECT_NEAR(f.torque_W.x(), 0.1 / std::sqrt(2.0), 1e-13);
+  EXPECT_NEAR(f.torque_W.z(), -0.1 / std::sqrt(2.0), 1e-13);
+}
+
+// Device at its proxy and still: no force at all (tiny scales included).
+TEST(ToolForceTest, NoStretchNoMotionNoForce) {
+  for (double scale : {1e-6, 1.0, 1e3}) {
+    const Vector3d p(scale, -scale, 2 * scale);
+    const ToolForce f = SpringDamperForce(
+        Steel(), ToolContact{.p_WD = p, .p_WP = p, .normal_W = {0, 1, 0}, .p_WC = p * 2}, 10);
+    EXPECT_EQ(f.force_W, Vector3d::Zero());
+    EXPECT_EQ(f.torque_W, Vector3d::Zero());
+    EXPECT_FALSE(f.clamped);
+  }
+}
+
+}  // namespace
+}  // namespace hs
