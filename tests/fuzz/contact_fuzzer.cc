@@ -1,0 +1,83 @@
+// libFuzzer target: the contact query on meshes and poses made of the
+// input's bytes, non-finite numbers and degenerate triangles included.
+// Bad input must come back as a status, never as a crash or a hang.
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+
+#include "common/collision/collision_model.h"
+#include "common/contact/contact_query.h"
+
+namespace {
+
+// Reads doubles and small integers off the input, zeros once it runs out.
+class Bytes {
+ public:
+  Bytes(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  double Number() {
+    double value = 0;
+    if (size_ >= sizeof value) {
+      std::memcpy(&value, data_, sizeof value);
+      data_ += sizeof value;
+      size_ -= sizeof value;
+    }
+    return value;
+  }
+  int Small(int below) {
+    if (size_ == 0) return 0;
+    const int value = data_[0] % below;
+    ++data_;
+    --size_;
+    return value;
+  }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+};
+
+// A mesh of up to 8 vertices and 8 faces over them, or nullptr when
+// HapticObject refuses it (that refusal is the edge's check).
+std::unique_ptr<hs::HapticObject> Mesh(Bytes& in) {
+  hs::MeshInput mesh;
+  mesh.materials.emplace_back();
+  const int vertices = 3 + in.Small(6);
+  for (int v = 0; v < vertices; ++v) mesh.positions.emplace_back(in.Number(), in.Number(), in.Number());
+  const int faces = 1 + in.Small(8);
+  for (int f = 0; f < faces; ++f) {
+    mesh.faces.push_back(hs::FaceInput{
+        .vertices = {in.Small(vertices), in.Small(vertices), in.Small(vertices)}});
+  }
+  absl::StatusOr<hs::HapticObject> object = hs::HapticObject::Create("m", std::move(mesh));
+  if (!object.ok()) return nullptr;
+  return std::make_unique<hs::HapticObject>(*std::move(object));
+}
+
+hs::Isometry3d Pose(Bytes& in) {
+  hs::Isometry3d X = hs::Isometry3d::Identity();
+  X.translation() = hs::Vector3d(in.Number(), in.Number(), in.Number());
+  const hs::Vector3d axis(in.Number(), in.Number(), in.Number());
+  if (axis.norm() > 0 && std::isfinite(axis.norm())) {
+    X.linear() = Eigen::AngleAxisd(axis.norm(), axis.normalized()).toRotationMatrix();
+  }
+  return X;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  Bytes in(data, size);
+  std::unique_ptr<hs::HapticObject> moving = Mesh(in);
+  std::unique_ptr<hs::HapticObject> fixed = Mesh(in);
+  if (moving == nullptr || fixed == nullptr) return 0;
+  const hs::CollisionModel moving_model(*moving, hs::BvType::kObbRss, 1e-9);
+  const hs::CollisionModel fixed_model(*fixed, hs::BvType::kObbRss, 1e-9);
+  hs::ContactQuery query;
+  query.direction_W = hs::Vector3d(in.Number(), in.Number(), in.Number());
+  query.method = in.Small(2) == 0 ? hs::ContactMethod::kSweep3d : hs::ContactMethod::kPaper2d;
+  (void)hs::ComputeContact({moving.get(), &moving_model, Pose(in)},
+                           {fixed.get(), &fixed_model, Pose(in)}, query);
+  return 0;
+}
