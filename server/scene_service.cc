@@ -168,7 +168,7 @@ grpc::ServerUnaryReactor* SceneServiceImpl::ListScenes(grpc::CallbackServerConte
                                                        grpc::ByteBuffer* raw_response) {
   return Respond<pb::ListScenesRequest, pb::ListScenesResponse>(
       context, registry_.metrics(), "ListScenes", raw_request, raw_response,
-      [&](const pb::ListScenesRequest* request, pb::ListScenesResponse* response) -> absl::Status {
+      [&](const pb::ListScenesRequest*, pb::ListScenesResponse* response) -> absl::Status {
         absl::StatusOr<Caller> caller = access_.Check(*context, Access::kRead, "");
         if (!caller.ok()) return caller.status();
         for (const std::shared_ptr<SceneRunner>& runner : registry_.List()) {
@@ -188,8 +188,7 @@ grpc::ServerUnaryReactor* SceneServiceImpl::DeleteScene(grpc::CallbackServerCont
                                                         grpc::ByteBuffer* raw_response) {
   return Respond<pb::DeleteSceneRequest, pb::DeleteSceneResponse>(
       context, registry_.metrics(), "DeleteScene", raw_request, raw_response,
-      [&](const pb::DeleteSceneRequest* request,
-          pb::DeleteSceneResponse* response) -> absl::Status {
+      [&](const pb::DeleteSceneRequest* request, pb::DeleteSceneResponse*) -> absl::Status {
         HS_RETURN_IF_ERROR(access_.Check(*context, Access::kAdmin, request->scene()).status());
         HS_RETURN_IF_ERROR(registry_.Delete(request->scene()));
         registry_.quotas().Disown(Quota::kScenes, request->scene());

@@ -55,8 +55,8 @@ void BroadPhase::SetPose(Key key, const Isometry3d& X_WO) {
   impl_->manager.update(it->second.get());
 }
 
-std::vector<std::pair<BroadPhase::Key, BroadPhase::Key>> BroadPhase::CandidatePairs() const {
-  std::vector<std::pair<Key, Key>> pairs;
+void BroadPhase::CandidatePairs(std::vector<std::pair<Key, Key>>& pairs) const {
+  pairs.clear();
   impl_->manager.collide(
       &pairs, [](fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
         auto& out = *static_cast<std::vector<std::pair<Key, Key>>*>(data);
@@ -65,7 +65,6 @@ std::vector<std::pair<BroadPhase::Key, BroadPhase::Key>> BroadPhase::CandidatePa
         return false;  // never stop early: we want every pair
       });
   std::sort(pairs.begin(), pairs.end());
-  return pairs;
 }
 
 }  // namespace hs

@@ -29,9 +29,10 @@ class BroadPhase {
   /// Moves `key` to X_WO. The key must have been added.
   void SetPose(Key key, const Isometry3d& X_WO);
 
-  /// Object pairs (first < second, sorted) whose world boxes, grown by the
-  /// models' margins, overlap.
-  std::vector<std::pair<Key, Key>> CandidatePairs() const;
+  /// Fills `pairs` with the object pairs (first < second, sorted) whose
+  /// world boxes, grown by the models' margins, overlap; what it held goes
+  /// (its capacity stays, so a step reusing it allocates nothing).
+  void CandidatePairs(std::vector<std::pair<Key, Key>>& pairs) const;
 
  private:
   struct Impl;

@@ -38,4 +38,12 @@ struct ToolForce {
 /// `clamp_n` newtons when longer; torque = (p_WC - p_WP) x F.
 ToolForce SpringDamperForce(const Material& material, const ToolContact& contact, double clamp_n);
 
+/// `force` with the reaction of the free bodies the tool pushed this step:
+/// they push back with the impulse they took (`push_impulse_W`, world
+/// frame, N*s) spread over the step of `step_s` seconds, F - J / dt,
+/// scaled down to `clamp_n` again (clamped stays set once set). The
+/// torque is the spring's.
+ToolForce WithPushReaction(ToolForce force, const Vector3d& push_impulse_W, double step_s,
+                           double clamp_n);
+
 }  // namespace hs

@@ -41,7 +41,9 @@ TEST(SendScheduleTest, TurnsNeverOverlap) {
         EXPECT_EQ(slice % 2, s->turn) << "rate " << rate << " message " << i;
         const double within = t - slice * 0.5;
         EXPECT_NEAR(within, static_cast<double>(i % s->PerSlice()) / rate, 2e-9);
-        if (i > 0) EXPECT_GT(s->At(i), s->At(i - 1));
+        if (i > 0) {
+          EXPECT_GT(s->At(i), s->At(i - 1));
+        }
       }
     }
   }

@@ -80,5 +80,25 @@ TEST(ToolForceTest, NoStretchNoMotionNoForce) {
   }
 }
 
+// A body that took J = (0, 0, -0.003) N s from the tool in a 1 ms step
+// pushes back with -J / dt = (0, 0, 3) N on top of the spring's 2 N; past
+// a 4 N clamp the sum (5 N) is scaled to 4 N. No impulse: unchanged.
+TEST(ToolForceTest, PushReactionAddsTheImpulseOverTheStep) {
+  ToolForce spring;
+  spring.force_W = Vector3d(0, 0, 2);
+  spring.torque_W = Vector3d(0, -0.02, 0);
+  const Vector3d impulse(0, 0, -0.003);
+  const ToolForce pushed = WithPushReaction(spring, impulse, 1e-3, 10);
+  EXPECT_NEAR(pushed.force_W.z(), 5.0, 1e-12);
+  EXPECT_EQ(pushed.torque_W, spring.torque_W);
+  EXPECT_FALSE(pushed.clamped);
+  const ToolForce clamped = WithPushReaction(spring, impulse, 1e-3, 4);
+  EXPECT_NEAR(clamped.force_W.z(), 4.0, 1e-12);
+  EXPECT_TRUE(clamped.clamped);
+  const ToolForce none = WithPushReaction(spring, Vector3d::Zero(), 1e-3, 1);
+  EXPECT_EQ(none.force_W, spring.force_W);
+  EXPECT_FALSE(none.clamped);
+}
+
 }  // namespace
 }  // namespace hs

@@ -1,6 +1,12 @@
+// The tool stage (tool_stage.h) through the scene's door: the halves of
+// every tool stepped on several threads give what one thread gives.
+#include "common/sim/tool_stage.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <utility>
+#include <vector>
 
 #include "common/model/procedural.h"
 #include "common/sim/scene.h"
@@ -38,7 +44,7 @@ Isometry3d DevicePose(int tool, int step) {
 
 // Stepping the tools on several threads gives bit-identical frames and the
 // same stage counts as stepping them one after the other.
-TEST(SceneThreadsTest, ThreadsGiveIdenticalFrames) {
+TEST(ToolStageTest, ThreadsGiveIdenticalFrames) {
   for (const int threads : {2, 3}) {
     std::unique_ptr<Scene> serial = MakeScene(1);
     std::unique_ptr<Scene> parallel = MakeScene(threads);
@@ -75,9 +81,44 @@ TEST(SceneThreadsTest, ThreadsGiveIdenticalFrames) {
   }
 }
 
+// Stepped directly: a device moved 1.5 cm into a floor leaves its proxy
+// on the floor (the probe's bottom at z = 0 within the tolerance), which
+// is what free bodies meet (ProxyMotionOf: the pose and the move from the
+// start); a step clears "moved", a new pose sets it again.
+TEST(ToolStageTest, ProxyStopsOnTheFloorAndReportsItsMove) {
+  SceneObjects objects;
+  HapticObject floor = *HapticObject::Create("floor", MakeBox(Vector3d(1, 1, 0.1)));
+  CollisionModel floor_model(floor, BvType::kObbRss, 1e-7);
+  objects.Add(std::move(floor), std::move(floor_model), ObjectKind::kFixed, At(0, 0, -0.05));
+  HapticObject probe = *HapticObject::Create("probe", MakeBox(Vector3d::Constant(0.02)));
+  CollisionModel probe_model(probe, BvType::kObbRss, 1e-7);
+  const ObjectId id =
+      objects.Add(std::move(probe), std::move(probe_model), ObjectKind::kTool, At(0, 0, 0.02));
+  const SceneOptions options;
+  ToolStage stage(options, objects);
+  stage.Add(id, At(0, 0, 0.02));
+  WorkerPool workers(1);
+  std::vector<ToolFrame> frames;
+  StageStatsTable stats{};
+  stage.Step(EffectSet::All(), workers, frames, stats);
+  EXPECT_FALSE(stage.AnyMoved());
+  stage.SetDevicePose(id, At(0, 0, 0.005));
+  EXPECT_TRUE(stage.AnyMoved());
+  stage.Step(EffectSet::All(), workers, frames, stats);
+  EXPECT_FALSE(stage.AnyMoved());
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].tool, id);
+  const ToolStage::ProxyMotion proxy = stage.ProxyMotionOf(id);
+  EXPECT_NEAR(proxy.X_WP.translation().z(), 0.01, 1e-6);
+  EXPECT_TRUE(proxy.X_WP.isApprox(frames[0].X_WP));
+  EXPECT_NEAR(proxy.motion_W.z(), 0.01 - 0.02, 1e-6);
+  EXPECT_GT(frames[0].force_W.z(), 0);
+  EXPECT_EQ(stats[static_cast<int>(Effect::kReversingVector)].runs, 2);
+}
+
 // The thread count is checked: 0 and 65 are refused, and the scene keeps
 // stepping on what it had.
-TEST(SceneThreadsTest, RejectsThreadCountOutOfRange) {
+TEST(ToolStageTest, RejectsThreadCountOutOfRange) {
   std::unique_ptr<Scene> scene = MakeScene(2);
   EXPECT_EQ(scene->SetThreads(0).code(), absl::StatusCode::kInvalidArgument);
   EXPECT_EQ(scene->SetThreads(65).code(), absl::StatusCode::kInvalidArgument);

@@ -1,0 +1,38 @@
+#pragma once
+// How a scene steps: its step length, the effects it allows, its contact
+// method and tolerances, the force clamp, gravity and damping of free
+// bodies, and whether a broad phase picks the pairs.
+
+#include "common/collision/bv_type.h"
+#include "common/contact/contact_set.h"
+#include "common/core/types.h"
+#include "common/sim/effects.h"
+
+namespace hs {
+
+struct SceneOptions {
+  /// Simulated time per step, seconds. Finite and > 0.
+  double step_s = 1e-3;
+  /// The effects this scene allows.
+  EffectSet enabled = EffectSet::All();
+  ContactMethod method = ContactMethod::kSweep3d;
+  BvType bv = BvType::kObbRss;
+  /// Touching tolerance relative to a pair's size (ContactQuery); <= 1e-6.
+  double relative_tolerance = 1e-9;
+  /// The largest force rendered on a tool, newtons. Finite and > 0.
+  double force_clamp_n = 10;
+  /// Acceleration of free bodies by gravity, world frame, m/s^2. Finite.
+  Vector3d gravity_W = Vector3d(0, 0, -9.81);
+  /// How fast a free body's spin dies while it touches something, 1/s
+  /// (w decays as exp(-rate t)); finite and >= 0. One impulse point per
+  /// contact leaves a body rocking on a face without it; free flight is
+  /// not damped.
+  double contact_angular_damping_per_s = 20;
+  /// Pick the pairs to test by their boxes: FCL's dynamic AABB tree
+  /// (BroadPhase) at the step's end poses, or the boxes swept along the
+  /// step when continuous collision or sub-stepping is on. False tests
+  /// every pair (same results, slower: the oracle of the tests).
+  bool broad_phase = true;
+};
+
+}  // namespace hs

@@ -1,0 +1,289 @@
+#include "common/sim/tool_stage.h"
+
+#include <algorithm>
+
+#include "common/sim/motion_bounds.h"
+#include "common/sim/proxy.h"
+#include "common/sim/stage_timer.h"
+#include "common/sim/tool_force.h"
+
+namespace hs {
+namespace {
+
+// A step is split into at most this many sub-steps: a tool moving farther
+// than this many shortest box edges in one step may pass through.
+constexpr int kMaxSubsteps = 256;
+
+void AddStats(StageStatsTable& to, StageStatsTable& from) {
+  for (int e = 0; e < kNumEffects; ++e) {
+    to[e].runs += from[e].runs;
+    to[e].total_ns += from[e].total_ns;
+  }
+  from = {};
+}
+
+}  // namespace
+
+void ToolStage::Add(ObjectId id, const Isometry3d& X_WO) {
+  if (static_cast<int>(index_.size()) <= id) index_.resize(id + 1, -1);
+  index_[id] = static_cast<int>(tools_.size());
+  tools_.push_back(Tool{id, X_WO, X_WO, X_WO, X_WO, true});
+  scratch_.emplace_back();
+}
+
+void ToolStage::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
+  Tool& tool = tools_[index_[id]];
+  tool.moved = tool.moved || !X_WD.isApprox(tool.X_WD, 0.0);
+  tool.X_WD = X_WD;
+}
+
+bool ToolStage::AnyMoved() const {
+  return std::any_of(tools_.begin(), tools_.end(), [](const Tool& t) { return t.moved; });
+}
+
+ToolStage::ProxyMotion ToolStage::ProxyMotionOf(ObjectId id) const {
+  const Tool& tool = tools_[index_[id]];
+  return {tool.X_WP, tool.X_WP.translation() - tool.X_WP_previous.translation()};
+}
+
+void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFrame>& frames,
+                     StageStatsTable& stats) {
+  for (const Tool& tool : tools_) {
+    if (tool.moved) objects_.PoseTool(tool.id, tool.X_WD);
+  }
+  // The broad phase's pairs at the device poses, for tools whose collision
+  // stage is neither continuous nor sub-stepped (those take swept boxes).
+  if (stages.Has(Effect::kCollision) && !stages.Has(Effect::kContinuousCollision) &&
+      options_.broad_phase && !tools_.empty()) {
+    objects_.FindCandidatePairs(broad_pairs_);
+  }
+  frames.resize(tools_.size());
+  for (size_t i = 0; i < tools_.size(); ++i) {
+    frames[i].tool = tools_[i].id;
+    frames[i].X_WD = tools_[i].X_WD;
+  }
+  // Each tool's step is two halves that read the same state and write apart
+  // (its contacts; its proxy and force), so they run at once too: a scene
+  // of one tool uses a second core as well. A half with no stage to run
+  // only clears its part of the frame, here, and takes no thread.
+  const bool contacts = stages.Has(Effect::kCollision) || stages.Has(Effect::kContactSet);
+  const bool proxy = stages.Has(Effect::kReversingVector);
+  halves_.clear();
+  for (int i = 0; i < static_cast<int>(tools_.size()); ++i) {
+    for (const bool is_contacts : {true, false}) {
+      if (is_contacts ? contacts : proxy) {
+        halves_.push_back({i, is_contacts});
+      } else {
+        StepHalf({i, is_contacts}, stages, frames);
+      }
+    }
+  }
+  workers.ForEach(static_cast<int>(halves_.size()),
+                  [&](int k) { StepHalf(halves_[k], stages, frames); });
+  for (size_t i = 0; i < tools_.size(); ++i) {
+    Tool& tool = tools_[i];
+    tool.X_WP_previous = tool.X_WP;
+    tool.X_WP = frames[i].X_WP;
+    tool.X_WD_previous = tool.X_WD;
+    tool.moved = false;
+    AddStats(stats, scratch_[i].contact_stats);
+    AddStats(stats, scratch_[i].proxy_stats);
+  }
+}
+
+void ToolStage::StepHalf(ToolHalf half, EffectSet stages, std::vector<ToolFrame>& frames) {
+  if (half.contacts) {
+    StepContacts(tools_[half.tool], stages, frames[half.tool], scratch_[half.tool]);
+  } else {
+    StepProxy(tools_[half.tool], stages, frames[half.tool], scratch_[half.tool]);
+  }
+}
+
+void ToolStage::FindCandidates(const Tool& tool, Candidates which, ToolScratch& scratch) const {
+  std::vector<int>& candidates = scratch.candidates;
+  candidates.clear();
+  if (which != Candidates::kAtDevicePose) {
+    const SceneObjects::Object& t = objects_[tool.id];
+    const AlignedBox3d box =
+        GrowBox(SweptBox(t.object, tool.X_WD_previous, tool.X_WD), t.model.margin_m());
+    const std::vector<AlignedBox3d>& boxes = objects_.target_boxes();
+    for (int k = 0; k < static_cast<int>(boxes.size()); ++k) {
+      if (which == Candidates::kEvery || box.intersects(boxes[k])) candidates.push_back(k);
+    }
+    return;
+  }
+  for (const auto& [a, b] : broad_pairs_) {
+    if (a != tool.id && b != tool.id) continue;
+    const int k = objects_.target_index(a == tool.id ? b : a);
+    if (k >= 0) candidates.push_back(k);
+  }
+  std::sort(candidates.begin(), candidates.end());
+}
+
+void ToolStage::FindProxyObstacles(const Tool& tool, ToolScratch& scratch) const {
+  scratch.proxy_obstacles.clear();
+  scratch.proxy_obstacle_ids.clear();
+  const SceneObjects::Object& t = objects_[tool.id];
+  // The proxy only moves toward the device: every pose it takes lies within
+  // the device's distance of the device pose (plus a stand-off per slide,
+  // far under the margin added here).
+  const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
+                       1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
+  const AlignedBox3d box = GrowBox(WorldBox(t.object, tool.X_WD), reach);
+  const std::vector<ObjectId>& ids = objects_.obstacle_ids();
+  for (size_t k = 0; k < ids.size(); ++k) {
+    if (options_.broad_phase &&
+        !box.intersects(objects_.target_boxes()[objects_.target_index(ids[k])])) {
+      continue;
+    }
+    scratch.proxy_obstacles.push_back(objects_.obstacles()[k]);
+    scratch.proxy_obstacle_ids.push_back(ids[k]);
+  }
+}
+
+void ToolStage::FindContacts(const Tool& tool, bool continuous, ToolFrame& frame,
+                             ToolScratch& scratch) const {
+  const HapticObject& t = objects_[tool.id].object;
+  const std::vector<PosedObject>& targets = objects_.targets();
+  const Isometry3d& from = tool.X_WD_previous;
+  const Isometry3d& to = tool.X_WD;
+  // Without continuous collision, a step longer than the shortest box edge
+  // of the objects it may meet is split so that none is passed through
+  // (paper s.4, fig. 3 c). Which objects it may meet: the swept boxes.
+  if (!continuous) {
+    FindCandidates(tool, Candidates::kSwept, scratch);
+    double edge = t.smallest_box_edge();
+    for (const int k : scratch.candidates)
+      edge = std::min(edge, targets[k].object->smallest_box_edge());
+    frame.substeps = SubstepCount(Travel(t, from, to), edge, kMaxSubsteps);
+  }
+  const bool swept = continuous || frame.substeps > 1;
+  const Candidates which = !options_.broad_phase ? Candidates::kEvery
+                           : swept               ? Candidates::kSwept
+                                                 : Candidates::kAtDevicePose;
+  if (continuous || which != Candidates::kSwept) FindCandidates(tool, which, scratch);
+  const Vector3d motion = to.translation() - from.translation();
+  const PosedObject device = objects_.Posed(tool.id, to);
+  for (const int k : scratch.candidates) {
+    int substep = frame.substeps;
+    auto colliding_at = [&](const PosedObject& moving) {
+      const absl::StatusOr<bool> colliding =
+          AreColliding(moving, targets[k], options_.relative_tolerance,
+                       continuous ? std::optional<Vector3d>(motion) : std::nullopt);
+      return colliding.ok() && *colliding;
+    };
+    // At the device pose first; if not there, at the first sub-step that touches.
+    bool found = colliding_at(device);
+    for (int i = 1; !found && i < frame.substeps; ++i) {
+      found = colliding_at(objects_.Posed(
+          tool.id, InterpolatePose(from, to, static_cast<double>(i) / frame.substeps)));
+      substep = i;
+    }
+    if (!found) continue;
+    PairContact& pair = frame.contacts.emplace_back();
+    pair.object = objects_.target_ids()[k];
+    pair.substep = substep;
+    pair.contact = ContactSet{};
+    pair.contact.colliding = true;
+  }
+}
+
+void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& frame,
+                             ToolScratch& scratch) const {
+  const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
+  const bool continuous = stages.Has(Effect::kContinuousCollision);
+  StageStatsTable& stats = scratch.contact_stats;
+  frame.contacts.clear();
+  frame.substeps = 1;
+  // Continuous collision runs inside the collision stage: its runs are
+  // counted here, its time is the collision stage's.
+  if (continuous && stages.Has(Effect::kCollision)) {
+    ++stats[static_cast<int>(Effect::kContinuousCollision)].runs;
+  }
+  if (stages.Has(Effect::kCollision)) {
+    StageTimer timer(stats[static_cast<int>(Effect::kCollision)]);
+    FindContacts(tool, continuous, frame, scratch);
+  }
+  if (!stages.Has(Effect::kContactSet)) return;
+  StageTimer timer(stats[static_cast<int>(Effect::kContactSet)]);
+  const PosedObject device = objects_.Posed(tool.id, tool.X_WD);
+  // D is the device's way in from its proxy, which the last step left
+  // outside every object: reversing it ends at the surface the device
+  // went through. The device's own motion is tangent to the surface while
+  // it slides, and reversing that would travel far inside the object.
+  const Vector3d from_proxy = tool.X_WD.translation() - tool.X_WP.translation();
+  // The proxy stood outside at its distance from the device: the exact
+  // method searches that far at once.
+  const ContactQuery at_device{.direction_W = from_proxy.squaredNorm() > 0 ? from_proxy : motion,
+                               .method = options_.method,
+                               .relative_tolerance = options_.relative_tolerance,
+                               .depth_hint_m = from_proxy.norm()};
+  // A device that passed through an object in this step (the collision
+  // stage's swept query caught it) is reconstructed at its first touch
+  // along the step; the swept query is not paid for when the device is in.
+  ContactQuery along_motion = at_device;
+  along_motion.direction_W = motion;
+  along_motion.depth_hint_m = 0;
+  ContactQuery along_step = along_motion;
+  along_step.continuous = true;
+  for (PairContact& pair : frame.contacts) {
+    const SceneObjects::Object& o = objects_[pair.object];
+    const PosedObject other = objects_.Posed(pair.object, o.X_WO);
+    // A pair found at an earlier sub-step is reported at that sub-step's
+    // pose, along the motion: the tool passed through and no longer
+    // touches at the end.
+    const bool at_end = pair.substep == frame.substeps;
+    const PosedObject at =
+        at_end ? device
+               : objects_.Posed(tool.id, InterpolatePose(tool.X_WD_previous, tool.X_WD,
+                                                         static_cast<double>(pair.substep) /
+                                                             frame.substeps));
+    absl::StatusOr<ContactSet> contact = ComputeContact(at, other, at_end ? at_device : along_motion);
+    if (continuous && contact.ok() && !contact->colliding) {
+      contact = ComputeContact(device, other, along_step);
+    }
+    if (contact.ok()) pair.contact = *std::move(contact);
+  }
+}
+
+void ToolStage::StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
+                          ToolScratch& scratch) const {
+  const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
+  StageStatsTable& stats = scratch.proxy_stats;
+  frame.X_WP = tool.X_WD;
+  frame.force_W.setZero();
+  frame.torque_W.setZero();
+  frame.force_clamped = false;
+  // Friction runs inside the proxy stage: its runs are counted here, its
+  // time is the proxy's.
+  if (stages.Has(Effect::kFriction)) ++stats[static_cast<int>(Effect::kFriction)].runs;
+  if (!stages.Has(Effect::kReversingVector)) return;
+  ProxyState proxy;
+  {
+    StageTimer timer(stats[static_cast<int>(Effect::kReversingVector)]);
+    const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
+                               .friction = stages.Has(Effect::kFriction)};
+    FindProxyObstacles(tool, scratch);
+    absl::StatusOr<ProxyState> moved = MoveProxy(objects_.Posed(tool.id, tool.X_WD), tool.X_WP,
+                                                 tool.X_WD, scratch.proxy_obstacles, options);
+    proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
+    if (proxy.touching) proxy.obstacle = scratch.proxy_obstacle_ids[proxy.obstacle];
+    frame.X_WP = proxy.X_WP;
+  }
+  if (stages.Has(Effect::kForce) && proxy.touching) {
+    StageTimer timer(stats[static_cast<int>(Effect::kForce)]);
+    const ToolForce force =
+        SpringDamperForce(objects_[proxy.obstacle].object.face_material(proxy.face),
+                          ToolContact{.p_WD = tool.X_WD.translation(),
+                                      .p_WP = proxy.X_WP.translation(),
+                                      .v_WD = motion / options_.step_s,
+                                      .normal_W = proxy.normal_W,
+                                      .p_WC = proxy.p_WC},
+                          options_.force_clamp_n);
+    frame.force_W = force.force_W;
+    frame.torque_W = force.torque_W;
+    frame.force_clamped = force.clamped;
+  }
+}
+
+}  // namespace hs

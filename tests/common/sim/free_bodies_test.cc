@@ -1,0 +1,141 @@
+// Free bodies (free_bodies.h) through the scene's door: falling, resting,
+// pushed by a tool, sub-stepped, stacked, deterministic.
+#include "common/sim/free_bodies.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "common/model/procedural.h"
+#include "common/sim/scene.h"
+#include "tests/common/sim/at_pose.h"
+#include "tests/common/sim/scene_rig.h"
+
+namespace hs {
+namespace {
+
+// With nothing under it, a free body falls on the analytic trajectory
+// x0 + v0 t + g t^2 / 2, within semi-implicit Euler's lag g dt t / 2.
+TEST(FreeBodiesTest, FreeFallMatchesAnalytic) {
+  std::unique_ptr<Scene> scene = *Scene::Create({});
+  const Vector3d v0(0.2, 0, 1);
+  const ObjectId cube = AddCube(*scene, 1, 0, {.v_W = v0});
+  const Vector3d x0 = At(0, 0.05, 1.01).translation();
+  const Vector3d g = scene->options().gravity_W;
+  const double dt = scene->options().step_s;
+  for (int i = 1; i <= 300; ++i) {
+    const StepFrame& frame = scene->Step();
+    ASSERT_EQ(frame.bodies.size(), 1u);
+    EXPECT_EQ(frame.bodies[0].body, cube);
+    const double t = i * dt;
+    const Vector3d analytic = x0 + v0 * t + g * t * t / 2;
+    EXPECT_LE((frame.bodies[0].X_WO.translation() - analytic).norm(), g.norm() * dt * t / 2 + 1e-12)
+        << "step " << i;
+  }
+  EXPECT_GT(scene->stats()[static_cast<int>(Effect::kFreeBodyMotion)].runs, 0);
+}
+
+// A free cube dropped 1 cm onto the fixed floor comes to rest on it: from
+// then on it penetrates less than the pair's touching tolerance plus one
+// step of gravity's fall (g dt^2), and it stays put.
+TEST(FreeBodiesTest, FreeBodyRestsOnFixedBox) {
+  Rig rig = MakeRig();
+  AddCube(*rig.scene, 0.01);
+  const double dt = rig.scene->options().step_s;
+  for (int i = 0; i < 300; ++i) rig.scene->Step();
+  const Isometry3d rest = rig.scene->Step().bodies[0].X_WO;
+  const double allowance = 1e-6 + 9.81 * dt * dt;
+  for (int i = 0; i < 500; ++i) {
+    const BodyFrame& body = rig.scene->Step().bodies[0];
+    const double bottom = body.X_WO.translation().z() - 0.01;
+    EXPECT_GT(bottom, -allowance) << "step " << i;
+    EXPECT_LT(bottom, allowance) << "step " << i;
+    EXPECT_GT(body.contacts, 0);
+  }
+  const Isometry3d after = rig.scene->Step().bodies[0].X_WO;
+  EXPECT_LT((after.translation() - rest.translation()).norm(), 1e-6);
+  EXPECT_TRUE(after.linear().isApprox(Matrix3d::Identity(), 1e-6));
+}
+
+// The probe pushes a resting free cube sideways: the cube moves along with
+// it, ahead of it, and stays on the floor; the device feels it resist.
+TEST(FreeBodiesTest, ToolPushesFreeBody) {
+  Rig rig = MakeRig();
+  // The cube sits on the floor at x = 0.3; the probe, level with it, starts
+  // 1 cm to its left and moves 1 mm per step to the right for 60 steps.
+  const ObjectId cube = AddCube(*rig.scene, 0);
+  for (int i = 0; i < 50; ++i) rig.scene->Step();
+  const double x_start = rig.scene->Step().bodies[0].X_WO.translation().x();
+  const double probe_x0 = 0.3 - 0.03;
+  double push_back = 0;  // the most negative force along the push
+  for (int i = 0; i <= 60; ++i) {
+    ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(probe_x0 + 0.001 * i, 0.05, 0.0101)).ok());
+    const ToolFrame& tool = rig.scene->Step().tools[0];
+    push_back = std::min(push_back, tool.force_W.x());
+    EXPECT_LE(tool.force_W.norm(), rig.scene->options().force_clamp_n + 1e-12);
+  }
+  // The device feels the cube resist: the impulse it gave, over the step.
+  EXPECT_LT(push_back, 0);
+  const StepFrame& frame = rig.scene->Step();
+  const BodyFrame& body = frame.bodies[0];
+  EXPECT_EQ(body.body, cube);
+  // The probe's right face is at probe_x0 + 0.06 + 0.01 at the end; the
+  // cube's left face (x - 0.01) must be at or beyond it.
+  const double probe_face = probe_x0 + 0.06 + 0.01;
+  EXPECT_GT(body.X_WO.translation().x() - 0.01, probe_face - 1e-6);
+  EXPECT_GT(body.X_WO.translation().x() - x_start, 0.04);
+  EXPECT_NEAR(body.X_WO.translation().z(), 0.01, 1e-4);
+}
+
+// A cube thrown down at 30 m/s (3 cm a step, beyond the 5 mm plate's
+// thickness) moves in sub-steps under 5 mm and lands on the plate instead
+// of passing through it.
+TEST(FreeBodiesTest, FastFreeBodySubstepsOntoThinPlate) {
+  Rig rig = MakeRig({}, 0.005);
+  AddCube(*rig.scene, 0.05, 0.3, {.v_W = Vector3d(0, 0, -30)});
+  const BodyFrame& first = rig.scene->Step().bodies[0];
+  // 3 cm over the shortest edge (5 mm): 1 + floor(0.03 / 0.005) sub-steps.
+  EXPECT_EQ(first.substeps, 7);
+  for (int i = 0; i < 20; ++i) rig.scene->Step();
+  const BodyFrame& landed = rig.scene->Step().bodies[0];
+  EXPECT_NEAR(landed.X_WO.translation().z(), 0.01, 1e-4);  // bottom on the plate's top
+  EXPECT_GT(landed.contacts, 0);
+}
+
+// A cube dropped onto a cube resting on the floor: the stack holds its
+// height (each within 0.1 mm: the bodies part by inverse mass, and a body
+// pushed in by the one above is measured out along the floor's normal).
+TEST(FreeBodiesTest, StackOfTwoFreeBodiesHolds) {
+  Rig rig = MakeRig();
+  AddCube(*rig.scene, 0.0, 0.3);
+  AddCube(*rig.scene, 0.03, 0.305);
+  for (int i = 0; i < 500; ++i) rig.scene->Step();
+  const StepFrame& frame = rig.scene->Step();
+  EXPECT_NEAR(frame.bodies[0].X_WO.translation().z(), 0.01, 1e-4);
+  EXPECT_NEAR(frame.bodies[1].X_WO.translation().z(), 0.03, 1e-4);
+}
+
+// Free bodies move identically, to the bit, for identical inputs.
+TEST(FreeBodiesTest, FreeBodiesDeterministic) {
+  auto run = [] {
+    Rig rig = MakeRig();
+    AddCube(*rig.scene, 0.01, 0.1, {.w_W = Vector3d(1, 2, 0)});
+    AddCube(*rig.scene, 0.05, 0.105);
+    std::vector<Isometry3d> poses;
+    for (const Isometry3d& X : PressAndSlide()) {
+      EXPECT_TRUE(rig.scene->SetDevicePose(rig.probe, X).ok());
+      for (const BodyFrame& b : rig.scene->Step().bodies) poses.push_back(b.X_WO);
+    }
+    return poses;
+  };
+  const std::vector<Isometry3d> a = run(), b = run();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 16), 0) << i;
+  }
+}
+
+}  // namespace
+}  // namespace hs
