@@ -166,7 +166,7 @@ class Locator {
       if (feature.kind == FeatureKind::kFace) faces[side].push_back(feature.id);
     };
     for (const Entry& e : points_) {
-      out.points.push_back(ContactPoint{e.p, e.features.first, e.features.second});
+      out.points.push_back(ContactPointF{e.p, e.features.first, e.features.second});
       collect(0, e.features.first);
       collect(1, e.features.second);
     }

@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "common/contact/contact_context.h"
-#include "common/contact/contact_set.h"
+#include "common/contact/contact_set_f.h"
 
 namespace hs {
 
 struct LocatedContacts {
   /// Points in F's frame, one per distinct (moving feature, fixed feature).
-  std::vector<ContactPoint> points;
+  std::vector<ContactPointF> points;
   SideContact moving;
   SideContact fixed;
   /// Unit normal in F's frame from F toward M: the mean of the points'

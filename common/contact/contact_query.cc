@@ -9,6 +9,7 @@
 #include "common/collision/triangle_sat.h"
 #include "common/contact/contact_context.h"
 #include "common/contact/contact_features.h"
+#include "common/contact/contact_set_f.h"
 #include "common/contact/paper_method.h"
 #include "common/contact/sweep_method.h"
 #include "common/core/check.h"
@@ -58,15 +59,6 @@ void MeetingAt(ContactContext& c, std::span<const TrianglePair> swept) {
       c.pairs.push_back(pair);
     }
   }
-}
-
-ContactSet ToWorld(ContactSet set, const Isometry3d& X_WF) {
-  const Matrix3d R = X_WF.linear();
-  set.direction_W = R * set.direction_W;
-  set.reversing_vector_W = R * set.reversing_vector_W;
-  set.normal_W = R * set.normal_W;
-  for (ContactPoint& p : set.points) p.p_WC = X_WF * p.p_WC;
-  return set;
 }
 
 }  // namespace
@@ -174,8 +166,7 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
   touch.time = *touch_time;
   touch.normal_W = fixed.X_WO.linear() * located.normal_F;
   touch.fixed = located.fixed;
-  touch.points = located.points;
-  for (ContactPoint& p : touch.points) p.p_WC = fixed.X_WO * p.p_WC;
+  PointsToWorld(located.points, fixed.X_WO, touch.points);
   return touch;
 }
 
@@ -221,17 +212,43 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
     return set;
   }
   context.direction_F = no_direction ? FallbackDirection(context) : direction_F.normalized();
-  set = query.method == ContactMethod::kPaper2d ? ReconstructByProjection(context)
-                                                : ReconstructBySweep(context);
+  ContactSetF found = query.method == ContactMethod::kPaper2d ? ReconstructByProjection(context)
+                                                              : ReconstructBySweep(context);
   const double extra = back * direction_F.norm();
-  set.depth_m += extra;
-  set.reversing_vector_W -= extra * context.direction_F;
-  set.penetrating = set.penetrating || extra > tolerance;
+  found.depth_m += extra;
+  found.reversing_vector_F -= extra * context.direction_F;
+  found.penetrating = found.penetrating || extra > tolerance;
+  found.fallback = found.fallback || no_direction;
+  set = ToWorld(std::move(found), fixed.X_WO);
   set.time_of_impact = time_of_impact;
   set.method = query.method;
   set.tolerance_m = tolerance;
-  set.fallback = set.fallback || no_direction;
-  return ToWorld(std::move(set), fixed.X_WO);
+  return set;
+}
+
+void PointsToWorld(std::span<const ContactPointF> points, const Isometry3d& X_WF,
+                   std::vector<ContactPoint>& out) {
+  out.clear();
+  out.reserve(points.size());
+  for (const ContactPointF& p : points) out.push_back({X_WF * p.p_FC, p.moving, p.fixed});
+}
+
+ContactSet ToWorld(ContactSetF found, const Isometry3d& X_WF) {
+  const Matrix3d R = X_WF.linear();
+  ContactSet set;
+  set.colliding = found.colliding;
+  set.penetrating = found.penetrating;
+  set.depth_m = found.depth_m;
+  set.direction_W = R * found.direction_F;
+  set.reversing_vector_W = R * found.reversing_vector_F;
+  set.normal_W = R * found.normal_F;
+  set.moving = std::move(found.moving);
+  set.fixed = std::move(found.fixed);
+  PointsToWorld(found.points, X_WF, set.points);
+  set.singular_case = found.singular_case;
+  set.fallback = found.fallback;
+  set.plane_depths_m = found.plane_depths_m;
+  return set;
 }
 
 }  // namespace hs

@@ -51,7 +51,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // plane cannot separate anything along D anyway: the projections barely move.
 constexpr double kMinProjectedDirection = 1e-6;
 
-// The two coordinates each plane keeps, in ContactSet::plane_depths_m order:
+// The two coordinates each plane keeps, in ContactSetF::plane_depths_m order:
 // xy drops z, yz drops x, xz drops y.
 constexpr int kPlaneAxes[3][2] = {{0, 1}, {1, 2}, {0, 2}};
 
@@ -472,7 +472,7 @@ std::vector<EdgeId> TouchedEdges(const PassResult& pass, const Candidates& edge_
 
 }  // namespace
 
-ContactSet ReconstructByProjection(const ContactContext& context,
+ContactSetF ReconstructByProjection(const ContactContext& context,
                                    const ProjectionOptions& options) {
   const double tol = context.tolerance_m;
   const Vector3d& D = context.direction_F;
@@ -494,14 +494,13 @@ ContactSet ReconstructByProjection(const ContactContext& context,
     return Vector3d(context.fixed.position(v) - anchor);
   });
 
-  ContactSet set;
-  set.method = ContactMethod::kPaper2d;
+  ContactSetF set;
   // The caller only reconstructs pairs that intersect or touch.
   set.colliding = true;
-  set.direction_W = D;
+  set.direction_F = D;
   // The paper defines no contact normal; the reversing direction -D is the
   // direction it pushes M out of F, so it stands in for one.
-  set.normal_W = -D;
+  set.normal_F = -D;
 
   // The planes in order of preference: where D projects longest first (its
   // t divides by the largest |D_p|, so it is the best conditioned), then
@@ -577,7 +576,7 @@ ContactSet ReconstructByProjection(const ContactContext& context,
   const PlaneResult& r = planes[chosen];
   set.depth_m = r.t;
   set.penetrating = set.depth_m > tol;
-  set.reversing_vector_W = -set.depth_m * D;
+  set.reversing_vector_F = -set.depth_m * D;
   // Within tol, both passes reach d_plane and both report their vertices;
   // the singular case is when only F's vertices decide the depth.
   set.singular_case = r.fixed.d_max > r.moving.d_max + tol;
@@ -604,7 +603,7 @@ ContactSet ReconstructByProjection(const ContactContext& context,
   return set;
 }
 
-ContactSet ReconstructByProjection(const ContactContext& context) {
+ContactSetF ReconstructByProjection(const ContactContext& context) {
   return ReconstructByProjection(context, ProjectionOptions{});
 }
 

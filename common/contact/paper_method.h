@@ -4,12 +4,11 @@
 // shared/ALGORITHM.md reads it.
 
 #include "common/contact/contact_context.h"
-#include "common/contact/contact_set.h"
+#include "common/contact/contact_set_f.h"
 
 namespace hs {
 
-/// Runs the paper's method on `context` and returns its ContactSet with every
-/// vector and point in F's frame (the caller maps them to world).
-ContactSet ReconstructByProjection(const ContactContext& context);
+/// Runs the paper's method on `context`: its contact in F's frame.
+ContactSetF ReconstructByProjection(const ContactContext& context);
 
 }  // namespace hs

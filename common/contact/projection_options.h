@@ -31,13 +31,13 @@ struct ProjectionOptions {
   /// which computes every crossing).
   bool skip_shallow_crossings = true;
   /// Run every plane in full. Otherwise a plane that cannot change the
-  /// answer stops early, and ContactSet::plane_depths_m holds for it a
+  /// answer stops early, and ContactSetF::plane_depths_m holds for it a
   /// lower bound of its depth (a speed-up with the same answer).
   bool exact_plane_depths = false;
 };
 
 /// ReconstructByProjection (paper_method.h) with explicit options; the result
 /// is in F's frame.
-ContactSet ReconstructByProjection(const ContactContext& context, const ProjectionOptions& options);
+ContactSetF ReconstructByProjection(const ContactContext& context, const ProjectionOptions& options);
 
 }  // namespace hs

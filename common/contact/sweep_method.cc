@@ -156,7 +156,7 @@ bool Penetrating(const ContactContext& c) {
 
 }  // namespace
 
-ContactSet ReconstructBySweep(const ContactContext& c) {
+ContactSetF ReconstructBySweep(const ContactContext& c) {
   const Vector3d& D = c.direction_F;
   // t* = the end of the run of sweep intervals that covers t = 0, where
   // pair (a, b) intersects over the interval of t in which a - t D meets b.
@@ -222,18 +222,18 @@ ContactSet ReconstructBySweep(const ContactContext& c) {
     }
   }
 
-  ContactSet set;
+  ContactSetF set;
   set.colliding = true;
   set.depth_m = t_star;
   set.penetrating = t_star > c.tolerance_m;
-  set.direction_W = D;
-  set.reversing_vector_W = -t_star * D;
+  set.direction_F = D;
+  set.reversing_vector_F = -t_star * D;
   set.fallback = !settled;
   const LocatedContacts located = LocateContacts(c, MovedBack(c, t_star), at_t_star);
   set.moving = located.moving;
   set.fixed = located.fixed;
   set.points = located.points;
-  set.normal_W = located.normal_F;
+  set.normal_F = located.normal_F;
   return set;
 }
 

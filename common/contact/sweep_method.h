@@ -3,12 +3,11 @@
 // sweep intervals by the separating axis theorem.
 
 #include "common/contact/contact_context.h"
-#include "common/contact/contact_set.h"
+#include "common/contact/contact_set_f.h"
 
 namespace hs {
 
-/// Runs the 3D sweep method on `context` and returns its ContactSet with
-/// every vector and point in F's frame (the caller maps them to world).
-ContactSet ReconstructBySweep(const ContactContext& context);
+/// Runs the 3D sweep method on `context`: its contact in F's frame.
+ContactSetF ReconstructBySweep(const ContactContext& context);
 
 }  // namespace hs

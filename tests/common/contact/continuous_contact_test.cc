@@ -111,7 +111,7 @@ TEST(ContinuousContactTest, FirstTouchFeaturesMatchBruteForceAtTouch) {
     EXPECT_EQ(touch->fixed.faces, expected.fixed.faces) << trial;
     ASSERT_EQ(touch->points.size(), expected.points.size()) << trial;
     for (size_t i = 0; i < expected.points.size(); ++i) {
-      EXPECT_LT((touch->points[i].p_WC - expected.points[i].p_WC).norm(), 1e-12) << trial;
+      EXPECT_LT((touch->points[i].p_WC - expected.points[i].p_FC).norm(), 1e-12) << trial;
     }
   }
   // Most steps reach the torus: the test is not vacuous.

@@ -155,7 +155,7 @@ ContactSet RunContext(const Body& m, const Isometry3d& X_FM, const Body& f, cons
                               context.pairs);
   }
   EXPECT_FALSE(context.pairs.empty());
-  ContactSet set = ReconstructByProjection(context, options);
+  ContactSet set = ToWorld(ReconstructByProjection(context, options), Isometry3d::Identity());
   set.tolerance_m = tol;
   return set;
 }
@@ -854,12 +854,12 @@ TEST(PaperMethodTest, DegenerateTrianglesInTheInput) {
     context.pairs.push_back({kSliver, context.pairs[i].b});
     context.pairs.push_back({context.pairs[i].a, kSliver});
   }
-  const ContactSet forced = ReconstructByProjection(context);
+  const ContactSetF forced = ReconstructByProjection(context);
   EXPECT_NEAR(forced.depth_m, kDelta, kDepthTol);
   EXPECT_EQ(forced.moving.faces, (std::vector<FaceId>{0, 1}));
   EXPECT_EQ(forced.moving.vertices, Ids({0, 1, 2, 3}));
-  for (const ContactPoint& p : forced.points) EXPECT_TRUE(p.p_WC.allFinite());
-  EXPECT_TRUE(forced.reversing_vector_W.allFinite());
+  for (const ContactPointF& p : forced.points) EXPECT_TRUE(p.p_FC.allFinite());
+  EXPECT_TRUE(forced.reversing_vector_F.allFinite());
   for (double t : forced.plane_depths_m) EXPECT_FALSE(std::isnan(t));
 }
 
