@@ -365,28 +365,5 @@ TEST(SweepMethodTest, ScalesLinearly) {
   }
 }
 
-// Bad input is rejected before it reaches the collision library.
-TEST(SweepMethodTest, RejectsNonFiniteAndNonRigidInput) {
-  const auto cube = MakeBody(MakeBox(Vector3d(1, 1, 1)));
-  const auto floor = Floor();
-  auto status = [&](const Vector3d& d) {
-    return ComputeContact(cube->posed(), floor->posed(), ContactQuery{.direction_W = d})
-        .status()
-        .code();
-  };
-  EXPECT_EQ(status(Vector3d(NAN, 0, 0)), absl::StatusCode::kInvalidArgument);
-  EXPECT_EQ(status(Vector3d(INFINITY, 0, 0)), absl::StatusCode::kInvalidArgument);
-  cube->X_WO.linear() *= 2;
-  EXPECT_EQ(status(kDown), absl::StatusCode::kInvalidArgument);
-  cube->X_WO = Translation(NAN, 0, 0);
-  EXPECT_EQ(status(kDown), absl::StatusCode::kInvalidArgument);
-  cube->X_WO = Isometry3d::Identity();
-  EXPECT_EQ(ComputeContact(cube->posed(), floor->posed(),
-                           ContactQuery{.direction_W = kDown, .relative_tolerance = 1e-3})
-                .status()
-                .code(),
-            absl::StatusCode::kInvalidArgument);
-}
-
 }  // namespace
 }  // namespace hs

@@ -1,0 +1,114 @@
+// The doors of common/contact (contact_query.h): what they refuse, and
+// that their answers are in the world whatever F's pose.
+#include "common/contact/contact_query.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "common/model/procedural.h"
+#include "tests/common/contact/contact_test_bodies.h"
+
+namespace hs {
+namespace {
+
+using testing_bodies::MakeBody;
+using testing_bodies::Translation;
+
+const Vector3d kDown(0, 0, -1);
+
+// F (a 4 m x 4 m x 1 m floor, top face at its z = 0.5) turned a quarter
+// about x and moved: its top faces -y in the world, at y = -0.5 - 2. A
+// 1 m cube 1 cm into it along +y. By hand, in the world: direction
+// (0, 1, 0), reversing vector (0, -0.01, 0), normal from F toward M
+// (0, -1, 0), contact points on the plane y = -2.5 once moved back. In F's
+// frame each would read otherwise (the reversing vector (0, 0, 0.01)).
+TEST(ContactQueryTest, AnswersAreInTheWorld) {
+  Isometry3d X_WF = Translation(0.3, -2, 0.7);
+  X_WF.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX()).toRotationMatrix();
+  const auto floor = MakeBody(MakeBox(Vector3d(4, 4, 1)), X_WF);
+  // The floor's top (its +z) is the world's -y side, at y = -2 - 0.5.
+  const auto cube = MakeBody(MakeBox(Vector3d(1, 1, 1)), Translation(0.3, -3.0 + 0.01, 0.7));
+  for (const ContactMethod method : {ContactMethod::kSweep3d, ContactMethod::kPaper2d}) {
+    const absl::StatusOr<ContactSet> set = ComputeContact(
+        cube->posed(), floor->posed(), {.direction_W = Vector3d(0, 1, 0), .method = method});
+    ASSERT_TRUE(set.ok()) << set.status();
+    ASSERT_TRUE(set->colliding);
+    EXPECT_NEAR(set->depth_m, 0.01, 1e-9);
+    EXPECT_LT((set->reversing_vector_W - Vector3d(0, -0.01, 0)).norm(), 1e-9);
+    EXPECT_LT((set->direction_W - Vector3d(0, 1, 0)).norm(), 1e-12);
+    EXPECT_LT((set->normal_W - Vector3d(0, -1, 0)).norm(), 1e-9);
+    ASSERT_FALSE(set->points.empty());
+    for (const ContactPoint& p : set->points) {
+      EXPECT_NEAR(p.p_WC.y(), -2.5, 1e-9);
+      EXPECT_LE(std::abs(p.p_WC.x() - 0.3), 0.5 + 1e-9);
+    }
+  }
+}
+
+// Apart: no contact, the query's direction (normalized) and nothing else.
+TEST(ContactQueryTest, ApartIsNoContact) {
+  const auto floor = MakeBody(MakeBox(Vector3d(4, 4, 1)), Translation(0, 0, -0.5));
+  const auto cube = MakeBody(MakeBox(Vector3d(1, 1, 1)), Translation(0, 0, 0.6));
+  const ContactSet set = *ComputeContact(cube->posed(), floor->posed(), {.direction_W = 3 * kDown});
+  EXPECT_FALSE(set.colliding);
+  EXPECT_EQ(set.depth_m, 0);
+  EXPECT_EQ(set.direction_W, kDown);
+  EXPECT_TRUE(set.points.empty());
+  EXPECT_FALSE(*AreColliding(cube->posed(), floor->posed(), 1e-9));
+}
+
+// AreColliding: touching within the tolerance counts; a step through a
+// 1 mm plate counts with the step and not without it; FindFirstTouch finds
+// the touch at the fraction of the step the gap gives (0.1 of 2 m: 0.05).
+TEST(ContactQueryTest, CollidingAndFirstTouchByHand) {
+  const auto plate = MakeBody(MakeBox(Vector3d(4, 4, 0.001)), Translation(0, 0, -0.0005));
+  const auto touching = MakeBody(MakeBox(Vector3d(1, 1, 1)), Translation(0, 0, 0.5));
+  EXPECT_TRUE(*AreColliding(touching->posed(), plate->posed(), 1e-9));
+  // Started with its bottom 0.1 m over the plate, moved 2 m down: below it.
+  const auto through = MakeBody(MakeBox(Vector3d(1, 1, 1)), Translation(0, 0, 0.6 - 2.0));
+  const Vector3d step = 2 * kDown;
+  EXPECT_FALSE(*AreColliding(through->posed(), plate->posed(), 1e-9));
+  EXPECT_TRUE(*AreColliding(through->posed(), plate->posed(), 1e-9, step));
+  const std::optional<FirstTouch> touch =
+      *FindFirstTouch(through->posed(), plate->posed(), step, 1e-9);
+  ASSERT_TRUE(touch.has_value());
+  EXPECT_NEAR(touch->time, 0.05, 1e-9);
+  EXPECT_LT((touch->normal_W - Vector3d::UnitZ()).norm(), 1e-9);
+}
+
+// Bad input is refused before it reaches the collision library: non-finite
+// directions, poses or hints, rotations that are not rotations, tolerances
+// out of range, models of different bounding volumes.
+TEST(ContactQueryTest, RejectsNonFiniteAndNonRigidInput) {
+  const auto cube = MakeBody(MakeBox(Vector3d(1, 1, 1)));
+  const auto floor = MakeBody(MakeBox(Vector3d(4, 4, 1)), Translation(0, 0, -0.5));
+  auto code = [&](const ContactQuery& query) {
+    return ComputeContact(cube->posed(), floor->posed(), query).status().code();
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  constexpr auto kInvalid = absl::StatusCode::kInvalidArgument;
+  EXPECT_EQ(code({.direction_W = Vector3d(nan, 0, 0)}), kInvalid);
+  EXPECT_EQ(code({.direction_W = Vector3d(inf, 0, 0)}), kInvalid);
+  EXPECT_EQ(code({.direction_W = kDown, .relative_tolerance = 1e-3}), kInvalid);
+  EXPECT_EQ(code({.direction_W = kDown, .relative_tolerance = -1e-9}), kInvalid);
+  for (const double hint : {-1e-3, inf, nan}) {
+    EXPECT_EQ(code({.direction_W = kDown, .depth_hint_m = hint}), kInvalid) << hint;
+  }
+  cube->X_WO.linear() *= 2;
+  EXPECT_EQ(code({.direction_W = kDown}), kInvalid);
+  cube->X_WO = Translation(nan, 0, 0);
+  EXPECT_EQ(code({.direction_W = kDown}), kInvalid);
+  cube->X_WO = Isometry3d::Identity();
+  EXPECT_TRUE(ComputeContact(cube->posed(), floor->posed(), {.direction_W = kDown}).ok());
+  const auto aabb_floor = MakeBody(MakeBox(Vector3d(4, 4, 1)), Translation(0, 0, -0.5),
+                                   BvType::kAabb);
+  EXPECT_EQ(
+      ComputeContact(cube->posed(), aabb_floor->posed(), {.direction_W = kDown}).status().code(),
+      kInvalid);
+}
+
+}  // namespace
+}  // namespace hs
