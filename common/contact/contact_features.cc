@@ -72,7 +72,13 @@ Feature FeatureHolding(const PosedFace& face, const Vector3d& p, double toleranc
 
 class Locator {
  public:
-  Locator(const ContactContext& c, const Isometry3d& X_FM) : c_(c), X_FM_(X_FM) {}
+  // Takes this thread's storage (one locator at a time per thread), empty.
+  Locator(const ContactContext& c, const Isometry3d& X_FM)
+      : c_(c), X_FM_(X_FM), s_(storage()), points_(s_.points) {
+    s_.Reset();
+  }
+  Locator(const Locator&) = delete;
+  Locator& operator=(const Locator&) = delete;
 
   void AddPair(const TrianglePair& pair) {
     const auto& mv = c_.moving.face(pair.a).vertices;
@@ -95,7 +101,7 @@ class Locator {
     // (corner, face) is located once.
     for (int i = 0; i < 3; ++i) {
       const Vector3d& p = m.corners[i];
-      if (std::abs(m_off[i]) > tol || !located_.insert(CornerKey(0, m.vertex(i), f.id)).second) {
+      if (std::abs(m_off[i]) > tol || !s_.Locate(CornerKey(0, m.vertex(i), f.id))) {
         continue;
       }
       const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
@@ -105,7 +111,7 @@ class Locator {
     }
     for (int j = 0; j < 3; ++j) {
       const Vector3d& p = f.corners[j];
-      if (std::abs(f_off[j]) > tol || !located_.insert(CornerKey(1, f.vertex(j), m.id)).second) {
+      if (std::abs(f_off[j]) > tol || !s_.Locate(CornerKey(1, f.vertex(j), m.id))) {
         continue;
       }
       const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
@@ -143,7 +149,7 @@ class Locator {
     }
   }
 
-  LocatedContacts Finish() {
+  void Finish(LocatedContacts& out) {
     // Every entry counts toward the normal, those of one feature pair too:
     // a vertex on an edge meets the faces on both sides of it (once each),
     // and keeping one of them would tilt the normal toward that face.
@@ -156,10 +162,10 @@ class Locator {
         std::unique(points_.begin(), points_.end(),
                     [](const Entry& x, const Entry& y) { return x.features == y.features; }),
         points_.end());
-    LocatedContacts out;
-    std::vector<VertexId> vertices[2];
-    std::vector<EdgeId> edges[2];
-    std::vector<FaceId> faces[2];
+    out.points.clear();
+    std::vector<VertexId>(&vertices)[2] = s_.vertices;
+    std::vector<EdgeId>(&edges)[2] = s_.edges;
+    std::vector<FaceId>(&faces)[2] = s_.faces;
     auto collect = [&](int side, const Feature& feature) {
       if (feature.kind == FeatureKind::kVertex) vertices[side].push_back(feature.id);
       if (feature.kind == FeatureKind::kEdge) edges[side].push_back(feature.id);
@@ -170,8 +176,8 @@ class Locator {
       collect(0, e.features.first);
       collect(1, e.features.second);
     }
-    out.moving = AggregateSide(c_.moving, vertices[0], edges[0], faces[0]);
-    out.fixed = AggregateSide(c_.fixed, vertices[1], edges[1], faces[1]);
+    AggregateSide(c_.moving, vertices[0], edges[0], faces[0], out.moving);
+    AggregateSide(c_.fixed, vertices[1], edges[1], faces[1], out.fixed);
     // A face contact's own faces give its normal: corner and edge entries
     // of aligned faces also meet the side faces at the rim, whose normals
     // would tilt the sum.
@@ -182,7 +188,7 @@ class Locator {
     }
     out.normal_F = normal_sum.squaredNorm() > 1e-24 ? Oriented(normal_sum.normalized(), normal_sum)
                                                     : -c_.direction_F;
-    return out;
+    
   }
 
  private:
@@ -231,19 +237,52 @@ class Locator {
            static_cast<uint64_t>(side);
   }
 
+  // A thread's buffers, kept from one query to the next so that a steady
+  // stream of queries does not allocate.
+  struct Storage {
+    std::vector<Entry> points;
+    // CornerKeys located so far: a set emptied key by key (its clear()
+    // gives a large table back), with the keys in order of insertion.
+    absl::flat_hash_set<uint64_t> located;
+    std::vector<uint64_t> located_keys;
+    std::vector<VertexId> vertices[2];
+    std::vector<EdgeId> edges[2];
+    std::vector<FaceId> faces[2];
+
+    bool Locate(uint64_t key) {
+      if (!located.insert(key).second) return false;
+      located_keys.push_back(key);
+      return true;
+    }
+    void Reset() {
+      for (const uint64_t key : located_keys) located.erase(key);
+      located_keys.clear();
+      points.clear();
+      for (int side = 0; side < 2; ++side) {
+        vertices[side].clear();
+        edges[side].clear();
+        faces[side].clear();
+      }
+    }
+  };
+  static Storage& storage() {
+    thread_local Storage s;
+    return s;
+  }
+
   const ContactContext& c_;
   const Isometry3d X_FM_;
-  std::vector<Entry> points_;
-  absl::flat_hash_set<uint64_t> located_;  // CornerKeys
+  Storage& s_;
+  std::vector<Entry>& points_;
 };
 
 }  // namespace
 
-LocatedContacts LocateContacts(const ContactContext& context, const Isometry3d& X_FM,
-                               std::span<const TrianglePair> pairs) {
+void LocateContacts(const ContactContext& context, const Isometry3d& X_FM,
+                    std::span<const TrianglePair> pairs, LocatedContacts& out) {
   Locator locator(context, X_FM);
   for (const TrianglePair& pair : pairs) locator.AddPair(pair);
-  return locator.Finish();
+  locator.Finish(out);
 }
 
 }  // namespace hs

@@ -29,8 +29,8 @@ struct LocatedContacts {
 /// the tolerance of one, else its edge if within the tolerance of one, else
 /// its face. An edge that only splits one polygon of the source model
 /// (the diagonal of a triangulated quad) counts as the face: it is no edge
-/// of the shape.
-LocatedContacts LocateContacts(const ContactContext& context, const Isometry3d& X_FM,
-                               std::span<const TrianglePair> pairs);
+/// of the shape. Writes `out` over, keeping its vectors' storage.
+void LocateContacts(const ContactContext& context, const Isometry3d& X_FM,
+                    std::span<const TrianglePair> pairs, LocatedContacts& out);
 
 }  // namespace hs

@@ -4,6 +4,7 @@
 #include <span>
 #include <vector>
 
+#include "absl/cleanup/cleanup.h"
 #include "absl/strings/str_cat.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/collision/triangle_sat.h"
@@ -127,17 +128,21 @@ absl::StatusOr<bool> AreColliding(const PosedObject& moving, const PosedObject& 
                           fixed.X_WO, tolerance);
 }
 
-absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& moving,
-                                                         const PosedObject& fixed,
-                                                         const Vector3d& step_W,
-                                                         double relative_tolerance) {
+absl::StatusOr<bool> FindFirstTouch(const PosedObject& moving, const PosedObject& fixed,
+                                    const Vector3d& step_W, double relative_tolerance,
+                                    FirstTouch& touch) {
   HS_ASSIGN_OR_RETURN(const double tolerance,
                       PairTolerance(moving, fixed, step_W, relative_tolerance));
   const Isometry3d X_FW = fixed.X_WO.inverse();
   const Vector3d step_F = X_FW.linear() * step_W;
-  if (!(step_F.squaredNorm() > 1e-300)) return std::nullopt;
+  if (!(step_F.squaredNorm() > 1e-300)) return false;
   ContactContext context{*moving.object,     *moving.model,       *fixed.object, *fixed.model,
                          X_FW * moving.X_WO, step_F.normalized(), tolerance,     {}};
+  // This thread's buffers, reused: a steady stream of queries allocates
+  // nothing once they are large enough.
+  thread_local std::vector<TrianglePair> swept;
+  thread_local LocatedContacts located;
+  swept.clear();
   // The step is swept in pieces from its start, and the first piece that
   // touches holds the first touch. A proxy resting on a surface touches it
   // early in its step, and a short piece's swept volume meets few faces.
@@ -145,7 +150,6 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
   const Isometry3d X_FM_end = context.X_FM;
   double piece_start = 0;
   std::optional<double> touch_time;
-  std::vector<TrianglePair> swept;
   for (const double piece_end : kPieceEnds) {
     const Vector3d piece_F = (piece_end - piece_start) * step_F;
     context.X_FM = X_FM_end;
@@ -157,21 +161,31 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
     }
     piece_start = piece_end;
   }
-  if (!touch_time) return std::nullopt;
+  if (!touch_time) return false;
   // The swept pairs hold every pair within the tolerance at the touch, and
   // LocateContacts keeps only features within the tolerance: the contacts
   // are those of a pair query there, without its traversal or leaf tests.
-  const LocatedContacts located = LocateContacts(context, context.X_FM, swept);
-  FirstTouch touch;
+  LocateContacts(context, context.X_FM, swept, located);
   touch.time = *touch_time;
   touch.normal_W = fixed.X_WO.linear() * located.normal_F;
   touch.fixed = located.fixed;
   PointsToWorld(located.points, fixed.X_WO, touch.points);
+  return true;
+}
+
+absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& moving,
+                                                         const PosedObject& fixed,
+                                                         const Vector3d& step_W,
+                                                         double relative_tolerance) {
+  FirstTouch touch;
+  HS_ASSIGN_OR_RETURN(const bool touched,
+                      FindFirstTouch(moving, fixed, step_W, relative_tolerance, touch));
+  if (!touched) return std::nullopt;
   return touch;
 }
 
-absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
-                                          const ContactQuery& query) {
+absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
+                            const ContactQuery& query, ContactSet& set) {
   HS_ASSIGN_OR_RETURN(const double tolerance,
                       PairTolerance(moving, fixed, query.direction_W, query.relative_tolerance));
   if (!(std::isfinite(query.depth_hint_m) && query.depth_hint_m >= 0)) {
@@ -181,18 +195,25 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   const Isometry3d X_FW = fixed.X_WO.inverse();
   ContactContext context{*moving.object,     *moving.model,    *fixed.object, *fixed.model,
                          X_FW * moving.X_WO, Vector3d::Zero(), tolerance,     {}};
+  // This thread's buffers, reused: a steady stream of queries allocates
+  // nothing once they are large enough. The context's pairs borrow theirs.
+  thread_local std::vector<TrianglePair> pairs, swept;
+  thread_local ContactSetF found;
+  context.pairs.swap(pairs);
+  absl::Cleanup give_back = [&] { context.pairs.swap(pairs); };
+  context.pairs.clear();
+  swept.clear();
   FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
                             tolerance, context.pairs);
   const Vector3d direction_F = X_FW.linear() * query.direction_W;
   // Shorter than this, the square of the length underflows: no direction.
   const bool no_direction = !(direction_F.squaredNorm() > 1e-300);
-  ContactSet set;
+  ClearContactSet(set);
   set.method = query.method;
   set.tolerance_m = tolerance;
   // Continuous: look along the whole step for a first touch.
   double back = 0;  // fraction of the step to move back to the first touch
   std::optional<double> time_of_impact;
-  std::vector<TrianglePair> swept;
   if (query.continuous && !no_direction) {
     if (const std::optional<double> latest = LatestTouchBack(context, direction_F, swept)) {
       back = *latest;
@@ -209,20 +230,28 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
   }
   if (context.pairs.empty()) {
     set.direction_W = no_direction ? Vector3d::Zero() : query.direction_W.normalized();
-    return set;
+    return absl::OkStatus();
   }
   context.direction_F = no_direction ? FallbackDirection(context) : direction_F.normalized();
-  ContactSetF found = query.method == ContactMethod::kPaper2d ? ReconstructByProjection(context)
-                                                              : ReconstructBySweep(context);
+  if (query.method == ContactMethod::kPaper2d) {
+    found = ReconstructByProjection(context);
+  } else {
+    ReconstructBySweep(context, found);
+  }
   const double extra = back * direction_F.norm();
   found.depth_m += extra;
   found.reversing_vector_F -= extra * context.direction_F;
   found.penetrating = found.penetrating || extra > tolerance;
   found.fallback = found.fallback || no_direction;
-  set = ToWorld(std::move(found), fixed.X_WO);
+  ToWorld(found, fixed.X_WO, set);
   set.time_of_impact = time_of_impact;
-  set.method = query.method;
-  set.tolerance_m = tolerance;
+  return absl::OkStatus();
+}
+
+absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
+                                          const ContactQuery& query) {
+  ContactSet set;
+  HS_RETURN_IF_ERROR(ComputeContact(moving, fixed, query, set));
   return set;
 }
 
@@ -233,22 +262,20 @@ void PointsToWorld(std::span<const ContactPointF> points, const Isometry3d& X_WF
   for (const ContactPointF& p : points) out.push_back({X_WF * p.p_FC, p.moving, p.fixed});
 }
 
-ContactSet ToWorld(ContactSetF found, const Isometry3d& X_WF) {
+void ToWorld(const ContactSetF& found, const Isometry3d& X_WF, ContactSet& set) {
   const Matrix3d R = X_WF.linear();
-  ContactSet set;
   set.colliding = found.colliding;
   set.penetrating = found.penetrating;
   set.depth_m = found.depth_m;
   set.direction_W = R * found.direction_F;
   set.reversing_vector_W = R * found.reversing_vector_F;
   set.normal_W = R * found.normal_F;
-  set.moving = std::move(found.moving);
-  set.fixed = std::move(found.fixed);
+  set.moving = found.moving;
+  set.fixed = found.fixed;
   PointsToWorld(found.points, X_WF, set.points);
   set.singular_case = found.singular_case;
   set.fallback = found.fallback;
   set.plane_depths_m = found.plane_depths_m;
-  return set;
 }
 
 }  // namespace hs

@@ -49,6 +49,11 @@ struct ContactQuery {
 /// not share a bounding volume type.
 absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
                                           const ContactQuery& query);
+/// The same, written over `set` (every field; its vectors' storage is kept,
+/// so that a caller reusing `set` step after step allocates nothing once it
+/// is large enough, with the sweep3d method). On error `set` is unspecified.
+absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
+                            const ContactQuery& query, ContactSet& set);
 
 /// Whether `moving` touches or penetrates `fixed` within the tolerance, or,
 /// with `step_W` (the last step's motion, world frame, metres), did so
@@ -80,5 +85,10 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
                                                          const PosedObject& fixed,
                                                          const Vector3d& step_W,
                                                          double relative_tolerance);
+/// The same, written over `touch` when they touch (true), keeping its
+/// vectors' storage; `touch` is unchanged when they do not (false).
+absl::StatusOr<bool> FindFirstTouch(const PosedObject& moving, const PosedObject& fixed,
+                                    const Vector3d& step_W, double relative_tolerance,
+                                    FirstTouch& touch);
 
 }  // namespace hs

@@ -97,4 +97,21 @@ struct ContactSet {
                                           std::numeric_limits<double>::infinity()};
 };
 
+/// Makes `set` a default ContactSet again, keeping its vectors' storage.
+inline void ClearContactSet(ContactSet& set) {
+  SideContact moving = std::move(set.moving), fixed = std::move(set.fixed);
+  std::vector<ContactPoint> points = std::move(set.points);
+  set = ContactSet{};
+  for (SideContact* side : {&moving, &fixed}) {
+    side->kind = FeatureKind::kNone;
+    side->vertices.clear();
+    side->edges.clear();
+    side->faces.clear();
+  }
+  points.clear();
+  set.moving = std::move(moving);
+  set.fixed = std::move(fixed);
+  set.points = std::move(points);
+}
+
 }  // namespace hs

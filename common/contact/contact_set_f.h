@@ -40,10 +40,10 @@ struct ContactSetF {
                                           std::numeric_limits<double>::infinity()};
 };
 
-/// `found` in the world, F posed at X_WF: the one place a contact leaves F's
-/// frame (ComputeContact's last step). Method, tolerance and time of impact
-/// stay unset.
-ContactSet ToWorld(ContactSetF found, const Isometry3d& X_WF);
+/// `found` in the world, F posed at X_WF, written over `set`: the one place
+/// a contact leaves F's frame (ComputeContact's last step). Method,
+/// tolerance and time of impact are left as they are.
+void ToWorld(const ContactSetF& found, const Isometry3d& X_WF, ContactSet& set);
 
 /// `points` in the world, F posed at X_WF, into `out` (cleared first).
 void PointsToWorld(std::span<const ContactPointF> points, const Isometry3d& X_WF,

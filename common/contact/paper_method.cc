@@ -583,10 +583,10 @@ ContactSetF ReconstructByProjection(const ContactContext& context,
 
   const PassContacts m = Contacts(r.moving, moving, r.d_plane, tol);
   const PassContacts f = Contacts(r.fixed, fixed, r.d_plane, tol);
-  set.moving = AggregateSide(context.moving, m.vertices,
-                             TouchedEdges(r.fixed, moving, m.vertices, r.d_plane, tol), {});
-  set.fixed = AggregateSide(context.fixed, f.vertices,
-                            TouchedEdges(r.moving, fixed, f.vertices, r.d_plane, tol), {});
+  AggregateSide(context.moving, m.vertices,
+                TouchedEdges(r.fixed, moving, m.vertices, r.d_plane, tol), {}, set.moving);
+  AggregateSide(context.fixed, f.vertices, TouchedEdges(r.moving, fixed, f.vertices, r.d_plane, tol),
+                {}, set.fixed);
 
   set.points.reserve(m.vertex_edge.size() + f.vertex_edge.size());
   for (const auto& [i, j] : m.vertex_edge) {

@@ -15,10 +15,9 @@ void SortUnique(std::vector<T>& v) {
 
 }  // namespace
 
-SideContact AggregateSide(const HapticObject& object, std::span<const VertexId> vertices,
-                          std::span<const EdgeId> touched_edges,
-                          std::span<const FaceId> touched_faces) {
-  SideContact side;
+void AggregateSide(const HapticObject& object, std::span<const VertexId> vertices,
+                   std::span<const EdgeId> touched_edges, std::span<const FaceId> touched_faces,
+                   SideContact& side) {
   side.vertices.assign(vertices.begin(), vertices.end());
   SortUnique(side.vertices);
   side.edges.assign(touched_edges.begin(), touched_edges.end());
@@ -47,7 +46,6 @@ SideContact AggregateSide(const HapticObject& object, std::span<const VertexId> 
               : !side.edges.empty()    ? FeatureKind::kEdge
               : !side.vertices.empty() ? FeatureKind::kVertex
                                        : FeatureKind::kNone;
-  return side;
 }
 
 }  // namespace hs

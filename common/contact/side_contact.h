@@ -13,9 +13,10 @@ namespace hs {
 /// The SideContact of `object` given its contact vertices and the edges and
 /// faces touched inside. Adds every edge whose two ends are contact
 /// vertices and every face whose three corners are, sorts, removes repeats,
-/// and sets kind to the highest dimension present.
-SideContact AggregateSide(const HapticObject& object, std::span<const VertexId> vertices,
-                          std::span<const EdgeId> touched_edges,
-                          std::span<const FaceId> touched_faces);
+/// and sets kind to the highest dimension present. Writes `side` over,
+/// keeping its vectors' storage (no allocation once they are large enough).
+void AggregateSide(const HapticObject& object, std::span<const VertexId> vertices,
+                   std::span<const EdgeId> touched_edges, std::span<const FaceId> touched_faces,
+                   SideContact& side);
 
 }  // namespace hs

@@ -1,6 +1,7 @@
 #include "common/contact/sweep_method.h"
 
 #include <algorithm>
+#include <iterator>
 #include <limits>
 #include <span>
 
@@ -30,13 +31,26 @@ Isometry3d MovedBack(const ContactContext& c, double t) {
 // the other object's plane well before the run ends.
 class KnownPairs {
  public:
-  explicit KnownPairs(const ContactContext& c) : c_(c) {}
+  // Takes this thread's storage (one at a time per thread), empty.
+  explicit KnownPairs(const ContactContext& c)
+      : c_(c),
+        s_(storage()),
+        known_(s_.known),
+        pairs_(s_.pairs),
+        scratch_(s_.scratch),
+        reaching_(s_.reaching) {
+    s_.Clear();
+  }
+  KnownPairs(const KnownPairs&) = delete;
+  KnownPairs& operator=(const KnownPairs&) = delete;
 
   /// Every pair known, sorted: what later queries need not find again.
   std::span<const TrianglePair> pairs() const { return pairs_; }
 
   // Adds the pairs not known yet.
-  void Add(std::vector<TrianglePair> pairs) {
+  void Add(std::span<const TrianglePair> found) {
+    std::vector<TrianglePair>& pairs = s_.sorted;
+    pairs.assign(found.begin(), found.end());
     std::sort(pairs.begin(), pairs.end());
     const size_t old_size = known_.size();
     Triangle3d moving;  // of the last pair's face of M: pairs sorted by it come in runs
@@ -54,7 +68,11 @@ class KnownPairs {
                         .computed = false,
                         .exact = {}});
     }
-    std::inplace_merge(known_.begin(), known_.begin() + old_size, known_.end());
+    // Merged through a second buffer: std::inplace_merge would allocate one.
+    s_.merged.clear();
+    std::merge(known_.begin(), known_.begin() + old_size, known_.begin() + old_size, known_.end(),
+               std::back_inserter(s_.merged));
+    known_.swap(s_.merged);
     pairs_.clear();
     for (const KnownPair& k : known_) pairs_.push_back(k.pair);
   }
@@ -87,12 +105,11 @@ class KnownPairs {
   // Every pair within the tolerance of each other at `t`, among others
   // whose bound holds `t` only: locating contacts tests each pair itself,
   // and one that does not touch adds nothing.
-  std::vector<TrianglePair> MayTouchAt(double t) const {
-    std::vector<TrianglePair> pairs;
+  void MayTouchAt(double t, std::vector<TrianglePair>& pairs) const {
+    pairs.clear();
     for (const KnownPair& k : known_) {
       if (k.bounds.within_margin.Contains(t)) pairs.push_back(k.pair);
     }
-    return pairs;
   }
 
  private:
@@ -127,11 +144,31 @@ class KnownPairs {
     k.computed = true;
   }
 
+  // A thread's buffers, kept from one query to the next so that a steady
+  // stream of queries does not allocate.
+  struct Storage {
+    std::vector<KnownPair> known;
+    std::vector<KnownPair> merged;
+    std::vector<TrianglePair> pairs;  // known's pairs, for pairs()
+    std::vector<TrianglePair> sorted;
+    std::vector<Interval> scratch;
+    std::vector<KnownPair*> reaching;
+    void Clear() {
+      known.clear();
+      pairs.clear();
+    }
+  };
+  static Storage& storage() {
+    thread_local Storage s;
+    return s;
+  }
+
   const ContactContext& c_;
-  std::vector<KnownPair> known_;
-  std::vector<TrianglePair> pairs_;  // known_'s pairs, for pairs()
-  std::vector<Interval> scratch_;
-  std::vector<KnownPair*> reaching_;
+  Storage& s_;
+  std::vector<KnownPair>& known_;
+  std::vector<TrianglePair>& pairs_;
+  std::vector<Interval>& scratch_;
+  std::vector<KnownPair*>& reaching_;
 };
 
 // Whether M and F overlap by more than the tolerance rather than touch.
@@ -156,7 +193,7 @@ bool Penetrating(const ContactContext& c) {
 
 }  // namespace
 
-ContactSetF ReconstructBySweep(const ContactContext& c) {
+void ReconstructBySweep(const ContactContext& c, ContactSetF& set) {
   const Vector3d& D = c.direction_F;
   // t* = the end of the run of sweep intervals that covers t = 0, where
   // pair (a, b) intersects over the interval of t in which a - t D meets b.
@@ -169,7 +206,10 @@ ContactSetF ReconstructBySweep(const ContactContext& c) {
   // the touching faces would otherwise chain across their whole overlap.
   const bool penetrating = Penetrating(c);
   double t_star = 0;
-  std::vector<TrianglePair> at_t_star = c.pairs;
+  // This thread's buffers, reused (no allocation once large enough).
+  thread_local std::vector<TrianglePair> at_t_star, found_at_t1, swept;
+  thread_local LocatedContacts located;
+  at_t_star.assign(c.pairs.begin(), c.pairs.end());
   bool settled = !penetrating;
   if (!settled) {
     t_star = known.ExtendRun(t_star);
@@ -177,7 +217,7 @@ ContactSetF ReconstructBySweep(const ContactContext& c) {
     // Given a depth where M is expected to be apart, past t1: the first
     // swept stretch below reaches it at once, and brings the pairs at t1.
     const bool hinted = c.depth_hint_m > t1 + 2 * c.tolerance_m;
-    std::vector<TrianglePair> found_at_t1;  // new pairs the query at t1 found
+    found_at_t1.clear();  // new pairs the query at t1 found
     double stretch;
     if (hinted) {
       stretch = c.depth_hint_m - t1;
@@ -202,11 +242,11 @@ ContactSetF ReconstructBySweep(const ContactContext& c) {
     double covered = t1;
     for (int round = 0; round < kMaxRounds && !settled; ++round, stretch *= 2) {
       const double reach = std::max(t_star + 2 * c.tolerance_m, covered + stretch);
-      std::vector<TrianglePair> swept;
+      swept.clear();
       FindSweptTrianglePairs(c.moving_model, MovedBack(c, covered), (reach - covered) * D,
                              c.fixed_model, Isometry3d::Identity(), c.tolerance_m, swept,
                              known.pairs());
-      known.Add(std::move(swept));
+      known.Add(swept);
       covered = reach;
       t_star = known.ExtendRun(t_star);
       settled = t_star + c.tolerance_m <= covered;
@@ -214,7 +254,7 @@ ContactSetF ReconstructBySweep(const ContactContext& c) {
     // The pairs that may touch at t*: all known, since [t1, covered] holds
     // t*; those the query at t1 found (t* = t1) stand whatever their
     // bounds' rounding says.
-    at_t_star = known.MayTouchAt(t_star);
+    known.MayTouchAt(t_star, at_t_star);
     if (t_star == t1 && !found_at_t1.empty()) {
       at_t_star.insert(at_t_star.end(), found_at_t1.begin(), found_at_t1.end());
       std::sort(at_t_star.begin(), at_t_star.end());
@@ -222,19 +262,19 @@ ContactSetF ReconstructBySweep(const ContactContext& c) {
     }
   }
 
-  ContactSetF set;
   set.colliding = true;
   set.depth_m = t_star;
   set.penetrating = t_star > c.tolerance_m;
   set.direction_F = D;
   set.reversing_vector_F = -t_star * D;
   set.fallback = !settled;
-  const LocatedContacts located = LocateContacts(c, MovedBack(c, t_star), at_t_star);
+  set.singular_case = false;
+  set.plane_depths_m.fill(std::numeric_limits<double>::infinity());
+  LocateContacts(c, MovedBack(c, t_star), at_t_star, located);
   set.moving = located.moving;
   set.fixed = located.fixed;
   set.points = located.points;
   set.normal_F = located.normal_F;
-  return set;
 }
 
 }  // namespace hs

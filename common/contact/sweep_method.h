@@ -7,7 +7,8 @@
 
 namespace hs {
 
-/// Runs the 3D sweep method on `context`: its contact in F's frame.
-ContactSetF ReconstructBySweep(const ContactContext& context);
+/// Runs the 3D sweep method on `context`: its contact in F's frame, written
+/// over `set` (every field; its vectors' storage is kept).
+void ReconstructBySweep(const ContactContext& context, ContactSetF& set);
 
 }  // namespace hs

@@ -1,34 +1,36 @@
 #include "common/sim/proxy.h"
 
+#include <utility>
+
 #include "common/core/status_macros.h"
 #include "common/sim/touched_face.h"
 
 namespace hs {
 namespace {
 
-struct EarliestTouch {
-  int obstacle = -1;
-  FirstTouch touch;
-};
-
-// The earliest touch of the tool (orientation R) moving from p to p + v.
-absl::StatusOr<EarliestTouch> FindEarliestTouch(const PosedObject& tool, const Matrix3d& R,
-                                                const Vector3d& p, const Vector3d& v,
-                                                std::span<const PosedObject> obstacles,
-                                                const ProxyOptions& options) {
+// The earliest touch of the tool (orientation R) moving from p to p + v,
+// into `earliest` (kept storage); returns the obstacle touched, -1 for none.
+absl::StatusOr<int> FindEarliestTouch(const PosedObject& tool, const Matrix3d& R,
+                                      const Vector3d& p, const Vector3d& v,
+                                      std::span<const PosedObject> obstacles,
+                                      const ProxyOptions& options, FirstTouch& earliest) {
   Isometry3d X_end = Isometry3d::Identity();
   X_end.linear() = R;
   X_end.translation() = p + v;
-  EarliestTouch earliest;
+  // This thread's buffer for each obstacle's touch, swapped with the
+  // earliest so far: no allocation once both are large enough.
+  thread_local FirstTouch touch;
+  int obstacle = -1;
   for (int i = 0; i < static_cast<int>(obstacles.size()); ++i) {
-    HS_ASSIGN_OR_RETURN(std::optional<FirstTouch> touch,
+    HS_ASSIGN_OR_RETURN(const bool touched,
                         FindFirstTouch({tool.object, tool.model, X_end}, obstacles[i], v,
-                                       options.relative_tolerance));
-    if (touch && (earliest.obstacle < 0 || touch->time < earliest.touch.time)) {
-      earliest = {i, *std::move(touch)};
+                                       options.relative_tolerance, touch));
+    if (touched && (obstacle < 0 || touch.time < earliest.time)) {
+      std::swap(earliest, touch);
+      obstacle = i;
     }
   }
-  return earliest;
+  return obstacle;
 }
 
 }  // namespace
@@ -44,21 +46,21 @@ absl::StatusOr<ProxyState> MoveProxy(const PosedObject& tool, const Isometry3d& 
   Vector3d p = X_WP_before.translation();
   Vector3d goal = device;
   ProxyState state;
+  thread_local FirstTouch touch;  // the earliest touch of a slide, storage kept
   for (int slide = 0; slide <= options.max_slides; ++slide) {
     const Vector3d v = goal - p;
     if (v.norm() <= stand_off * 1e-3) break;
-    HS_ASSIGN_OR_RETURN(const EarliestTouch earliest,
-                        FindEarliestTouch(tool, R, p, v, obstacles, options));
-    if (earliest.obstacle < 0) {
+    HS_ASSIGN_OR_RETURN(const int obstacle,
+                        FindEarliestTouch(tool, R, p, v, obstacles, options, touch));
+    if (obstacle < 0) {
       p = goal;
       break;
     }
-    const FirstTouch& touch = earliest.touch;
     const Vector3d& n = touch.normal_W;
     p += touch.time * v + stand_off * n;
-    const HapticObject& object = *obstacles[earliest.obstacle].object;
+    const HapticObject& object = *obstacles[obstacle].object;
     state.touching = true;
-    state.obstacle = earliest.obstacle;
+    state.obstacle = obstacle;
     state.face = TouchedFace(object, touch.fixed);
     state.normal_W = n;
     state.p_WC = touch.points.empty() ? p : touch.points.front().p_WC;

@@ -183,7 +183,11 @@ void ToolStage::FindContacts(const Tool& tool, bool continuous, ToolFrame& frame
     PairContact& pair = frame.contacts.emplace_back();
     pair.object = objects_.target_ids()[k];
     pair.substep = substep;
-    pair.contact = ContactSet{};
+    if (!scratch.spare_contacts.empty()) {
+      pair.contact = std::move(scratch.spare_contacts.back());
+      scratch.spare_contacts.pop_back();
+    }
+    ClearContactSet(pair.contact);
     pair.contact.colliding = true;
   }
 }
@@ -193,6 +197,7 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
   const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
   const bool continuous = stages.Has(Effect::kContinuousCollision);
   StageStatsTable& stats = scratch.contact_stats;
+  for (PairContact& pair : frame.contacts) scratch.spare_contacts.push_back(std::move(pair.contact));
   frame.contacts.clear();
   frame.substeps = 1;
   // Continuous collision runs inside the collision stage: its runs are
@@ -238,11 +243,15 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
                : objects_.Posed(tool.id, InterpolatePose(tool.X_WD_previous, tool.X_WD,
                                                          static_cast<double>(pair.substep) /
                                                              frame.substeps));
-    absl::StatusOr<ContactSet> contact = ComputeContact(at, other, at_end ? at_device : along_motion);
-    if (continuous && contact.ok() && !contact->colliding) {
-      contact = ComputeContact(device, other, along_step);
+    absl::Status status =
+        ComputeContact(at, other, at_end ? at_device : along_motion, pair.contact);
+    if (continuous && status.ok() && !pair.contact.colliding) {
+      status = ComputeContact(device, other, along_step, pair.contact);
     }
-    if (contact.ok()) pair.contact = *std::move(contact);
+    if (!status.ok()) {  // as the collision stage left it
+      ClearContactSet(pair.contact);
+      pair.contact.colliding = true;
+    }
   }
 }
 

@@ -64,6 +64,10 @@ class ToolStage {
     // order, and their ids.
     std::vector<PosedObject> proxy_obstacles;
     std::vector<ObjectId> proxy_obstacle_ids;
+    // The contacts half: the contact sets of the last step's pairs, their
+    // storage kept for this step's (a step allocates nothing once the
+    // vectors are large enough).
+    std::vector<ContactSet> spare_contacts;
     // Each half's stages' runs and times of this step, added to the
     // scene's after it.
     StageStatsTable contact_stats{};

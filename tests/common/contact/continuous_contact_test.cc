@@ -104,7 +104,8 @@ TEST(ContinuousContactTest, FirstTouchFeaturesMatchBruteForceAtTouch) {
         }
       }
     }
-    const LocatedContacts expected = LocateContacts(context, context.X_FM, context.pairs);
+    LocatedContacts expected;
+    LocateContacts(context, context.X_FM, context.pairs, expected);
     EXPECT_EQ(touch->fixed.kind, expected.fixed.kind) << trial;
     EXPECT_EQ(touch->fixed.vertices, expected.fixed.vertices) << trial;
     EXPECT_EQ(touch->fixed.edges, expected.fixed.edges) << trial;

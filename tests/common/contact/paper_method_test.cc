@@ -155,7 +155,8 @@ ContactSet RunContext(const Body& m, const Isometry3d& X_FM, const Body& f, cons
                               context.pairs);
   }
   EXPECT_FALSE(context.pairs.empty());
-  ContactSet set = ToWorld(ReconstructByProjection(context, options), Isometry3d::Identity());
+  ContactSet set;
+  ToWorld(ReconstructByProjection(context, options), Isometry3d::Identity(), set);
   set.tolerance_m = tol;
   return set;
 }
