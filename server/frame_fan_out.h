@@ -3,8 +3,8 @@
 // of its own (scene-frames): a stream's write can wait on gRPC's locks for
 // milliseconds, and a step must not.
 
+#include <boost/circular_buffer.hpp>
 #include <condition_variable>
-#include <deque>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -46,7 +46,8 @@ class FrameFanOut {
   Metrics& metrics_;
   PriorityInheritingMutex mu_;
   std::condition_variable_any cv_;
-  std::deque<std::shared_ptr<const StepSnapshot>> queue_;
+  // Fixed storage (boost::circular_buffer): no allocation per frame.
+  boost::circular_buffer<std::shared_ptr<const StepSnapshot>> queue_{kMaxQueuedFrames};
   bool stop_ = false;
   // Held while a frame is offered, so that WaitForOffers (and the
   // registry's lock, which the stepping thread needs) is never held across

@@ -4,7 +4,9 @@
 
 namespace hs {
 
-FrameOutbox::FrameOutbox(size_t capacity) : capacity_(capacity) { HS_CHECK(capacity >= 1); }
+FrameOutbox::FrameOutbox(size_t capacity) : capacity_(capacity), waiting_(capacity) {
+  HS_CHECK(capacity >= 1);
+}
 
 bool FrameOutbox::Push(std::shared_ptr<const StepSnapshot> snapshot) {
   std::lock_guard lock(mu_);

@@ -4,8 +4,8 @@
 // counted, so a slow reader never holds up the scene or grows memory. With
 // capacity 1 it is latest-wins (device streams).
 
+#include <boost/circular_buffer.hpp>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <mutex>
 
@@ -52,7 +52,8 @@ class FrameOutbox {
  private:
   const size_t capacity_;
   mutable std::mutex mu_;
-  std::deque<std::shared_ptr<const StepSnapshot>> waiting_;
+  // Fixed storage: no allocation per frame.
+  boost::circular_buffer<std::shared_ptr<const StepSnapshot>> waiting_;
   uint64_t dropped_ = 0;
   bool writing_ = false;
   bool closed_ = false;

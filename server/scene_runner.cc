@@ -7,6 +7,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/core/check.h"
+#include "common/sim/frame_storage.h"
 #include "server/step_pacer.h"
 #include "server/thread_priority.h"
 
@@ -117,12 +118,13 @@ void SceneRunner::Run(int realtime_priority) {
 
 int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   const EffectSet needs = streams_.TakeFreshPoses(fresh_);
-  auto snapshot = std::make_shared<StepSnapshot>();
+  SnapshotPool::Slot& slot = snapshots_.Take();
+  StepSnapshot* snapshot = slot.snapshot.get();
   int64_t step_ns = 0;
   {
     std::lock_guard lock(scene_mu_);
     Scene& scene = *loaded_.scene;
-    for (const auto& [tool, pose] : fresh_) {
+    for (const auto& [tool, pose] : fresh_.taken()) {
       const ObjectId id = FindTool(loaded_, tool);
       // Poses are validated at the edge; a tool removed meanwhile is skipped.
       if (id < 0 || !scene.SetDevicePose(id, pose.X_WD).ok()) continue;
@@ -135,8 +137,9 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     snapshot->step_ns = step_ns;
     snapshot->step = ++step_;
     snapshot->time_s = static_cast<double>(step_) * step_s_;
-    snapshot->frame = frame;
+    CopyFrame(frame, snapshot->frame, slot.storage);
     snapshot->names = names_;
+    snapshot->applied.clear();
     for (const ToolFrame& t : frame.tools) {
       const auto it = applied_.find(loaded_.names[t.tool]);
       snapshot->applied.push_back(it == applied_.end() ? AppliedPose{} : it->second.stamp);
@@ -152,7 +155,7 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   snapshot->start_lag_ns = start_lag_ns;
   snapshot->missed_steps = missed_steps_;
   snapshot->missed_steps_off_cpu = missed_steps_off_cpu_;
-  fan_out_.Push(std::move(snapshot));
+  fan_out_.Push(slot.snapshot);
   return step_ns;
 }
 

@@ -22,6 +22,7 @@
 #include "server/frame_fan_out.h"
 #include "server/metrics.h"
 #include "server/priority_inheriting_mutex.h"
+#include "server/snapshot_pool.h"
 #include "server/step_snapshot.h"
 #include "server/stream_registry.h"
 
@@ -109,7 +110,8 @@ class SceneRunner {
   absl::Status stop_status_;
   int64_t missed_steps_ = 0;                                // runner thread only
   int64_t missed_steps_off_cpu_ = 0;                        // runner thread only
-  std::vector<std::pair<std::string, PendingPose>> fresh_;  // runner thread only
+  FreshPoses fresh_;         // runner thread only
+  SnapshotPool snapshots_;  // runner thread only
 
   StreamRegistry streams_;
   FrameFanOut fan_out_;

@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/api/proto_convert.h"
+#include "server/frame_message.h"
 #include "server/frame_outbox.h"
 #include "server/grpc_status.h"
 #include "server/raw_message.h"
@@ -137,8 +138,9 @@ class FrameStream : public Base, public FrameSink {
   void Pump() {
     FrameOutbox::Next next = outbox_.TakeNext();
     if (next.kind == FrameOutbox::Next::kWrite) {
-      Fill(*next.snapshot, next.dropped);
-      if (absl::Status s = SerializeMessage(frame_, bytes_); !s.ok()) {
+      haptics::v1::Frame& frame = frame_.Start();
+      FillFrameMessage(*next.snapshot, parts_, tool_, next.dropped, UnixNanoseconds(), frame);
+      if (absl::Status s = SerializeMessage(frame, bytes_); !s.ok()) {
         End(s, /*abort=*/true);
         return;
       }
@@ -149,32 +151,13 @@ class FrameStream : public Base, public FrameSink {
     }
   }
 
-  void Fill(const StepSnapshot& s, uint64_t dropped) {
-    frame_.Clear();
-    frame_.set_step(s.step);
-    frame_.set_time_s(s.time_s);
-    StepFrameToProto(s.frame, *s.names, parts_, &frame_);
-    for (size_t i = 0; i < s.frame.tools.size() && !tool_.empty(); ++i) {
-      if ((*s.names)[s.frame.tools[i].tool] != tool_) continue;
-      frame_.set_last_pose_sequence(s.applied[i].sequence);
-      frame_.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
-    }
-    pb::ServerTimings* timings = frame_.mutable_timings();
-    timings->set_step_ns(s.step_ns);
-    timings->set_start_lag_ns(s.start_lag_ns);
-    timings->set_sent_unix_ns(UnixNanoseconds());
-    frame_.set_dropped_frames(dropped);
-    frame_.set_missed_steps(s.missed_steps);
-    frame_.set_missed_steps_off_cpu(s.missed_steps_off_cpu);
-  }
-
   const AccessPolicy& access_;
   const grpc::CallbackServerContext& context_;
   FrameOutbox outbox_;
   std::mutex finish_mu_;
   bool counted_ = false;
   std::string caller_;      // set once its stream quota is taken
-  pb::Frame frame_;         // the frame of the write in flight
+  FrameMessageArena frame_;  // the frame of the write in flight, until serialized
   grpc::ByteBuffer bytes_;  // frame_, serialized: the write in flight
 };
 

@@ -42,12 +42,15 @@ void StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD, const Appl
   if (DevicesFreshLocked()) devices_fresh_(true);
 }
 
-EffectSet StreamRegistry::TakeFreshPoses(std::vector<std::pair<std::string, PendingPose>>& fresh) {
-  fresh.clear();
+EffectSet StreamRegistry::TakeFreshPoses(FreshPoses& fresh) {
+  fresh.count = 0;
   std::lock_guard lock(mu_);
   for (auto& [tool, pose] : pending_) {
     if (!pose.fresh) continue;
-    fresh.emplace_back(tool, pose);
+    if (fresh.count == fresh.entries.size()) fresh.entries.emplace_back();
+    fresh.entries[fresh.count].first = tool;  // keeps the string's storage
+    fresh.entries[fresh.count].second = pose;
+    ++fresh.count;
     pose.fresh = false;
   }
   EffectSet needs;

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <map>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,17 @@ struct PendingPose {
   Isometry3d X_WD = Isometry3d::Identity();
   AppliedPose stamp;
   bool fresh = false;
+};
+
+/// The device poses one step takes: (tool, pose) entries [0, count); the
+/// entries past them keep their storage (tool names included) for later
+/// steps, so that taking poses allocates nothing once warm.
+struct FreshPoses {
+  std::vector<std::pair<std::string, PendingPose>> entries;
+  size_t count = 0;
+  std::span<const std::pair<std::string, PendingPose>> taken() const {
+    return {entries.data(), count};
+  }
 };
 
 class StreamRegistry {
@@ -48,9 +60,9 @@ class StreamRegistry {
   /// The pose of `sink`'s tool for the next step (latest wins); ignored
   /// for a viewer or a stream not attached.
   void SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp);
-  /// Moves the poses not taken before into `fresh` (tool, pose) and
-  /// returns what the streams need, at one instant.
-  EffectSet TakeFreshPoses(std::vector<std::pair<std::string, PendingPose>>& fresh);
+  /// Moves the poses not taken before into `fresh` and returns what the
+  /// streams need, at one instant.
+  EffectSet TakeFreshPoses(FreshPoses& fresh);
 
   /// The attached streams, into `out` (cleared first).
   void ListSinks(std::vector<FrameSink*>& out) const;

@@ -1,6 +1,7 @@
 #include "common/contact/contact_features.h"
 
 #include <algorithm>
+#include <tuple>
 #include <array>
 #include <cstdint>
 
@@ -155,9 +156,12 @@ class Locator {
     // and keeping one of them would tilt the normal toward that face.
     Vector3d normal_sum = Vector3d::Zero();
     for (const Entry& e : points_) normal_sum += e.normal;
-    // One entry per feature pair, in feature order, the first one added kept.
-    std::stable_sort(points_.begin(), points_.end(),
-                     [](const Entry& x, const Entry& y) { return x.features < y.features; });
+    // One entry per feature pair, in feature order, the first one added kept
+    // (a sort by order of addition within a pair: std::stable_sort would
+    // allocate a buffer).
+    std::sort(points_.begin(), points_.end(), [](const Entry& x, const Entry& y) {
+      return std::tie(x.features, x.order) < std::tie(y.features, y.order);
+    });
     points_.erase(
         std::unique(points_.begin(), points_.end(),
                     [](const Entry& x, const Entry& y) { return x.features == y.features; }),
@@ -210,7 +214,8 @@ class Locator {
   // Records a contact point with its normal, oriented.
   void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, const Vector3d& normal,
            const Vector3d& outward) {
-    points_.push_back({{moving, fixed}, p, Oriented(normal, outward)});
+    points_.push_back(
+        {{moving, fixed}, p, Oriented(normal, outward), static_cast<int>(points_.size())});
   }
 
   // The sum of the unit normals of `faces` of `object` posed at X_FO.
@@ -229,6 +234,7 @@ class Locator {
     std::pair<Feature, Feature> features;
     Vector3d p;
     Vector3d normal;
+    int order;  // of addition
   };
 
   // A corner of one side (0: moving, 1: fixed) against a face of the other.

@@ -88,7 +88,7 @@ FreeBodies::Counterpart FreeBodies::CounterpartOf(ObjectId id, const ToolStage& 
 
 double FreeBodies::SeparationAlongNormal(ObjectId self, const Isometry3d& X_WO, ObjectId that,
                                          const Isometry3d& X_WO_other, const ContactSet& contact,
-                                         const Vector3d& motion_W, const Vector3d& n) const {
+                                         const Vector3d& motion_W, const Vector3d& n) {
   // A motion that goes into the surface: the reversing vector's normal
   // share is the depth along the normal.
   const double into = -motion_W.normalized().dot(n);
@@ -100,10 +100,11 @@ double FreeBodies::SeparationAlongNormal(ObjectId self, const Isometry3d& X_WO, 
   const ContactQuery along_normal{.direction_W = -n,
                                   .method = options_.method,
                                   .relative_tolerance = options_.relative_tolerance};
-  const absl::StatusOr<ContactSet> again =
-      ComputeContact(objects_.Posed(self, X_WO), objects_.Posed(that, X_WO_other), along_normal);
-  if (!again.ok() || !again->penetrating) return std::max(0.0, separation);
-  return std::max(0.0, again->reversing_vector_W.dot(n));
+  ContactSet& again = along_normal_;
+  const absl::Status status = ComputeContact(objects_.Posed(self, X_WO),
+                                             objects_.Posed(that, X_WO_other), along_normal, again);
+  if (!status.ok() || !again.penetrating) return std::max(0.0, separation);
+  return std::max(0.0, again.reversing_vector_W.dot(n));
 }
 
 bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId other,
@@ -122,26 +123,27 @@ bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectI
       .direction_W = body.state.X_WO.translation() - X_WO_from.translation() - c.motion_W,
       .method = options_.method,
       .relative_tolerance = options_.relative_tolerance};
-  const absl::StatusOr<ContactSet> contact = ComputeContact(
-      objects_.Posed(body.id, body.state.X_WO), objects_.Posed(other, c.X_WO), query);
-  if (!contact.ok() || !contact->colliding || contact->normal_W.isZero()) return false;
+  const absl::Status status = ComputeContact(objects_.Posed(body.id, body.state.X_WO),
+                                             objects_.Posed(other, c.X_WO), query, contact_);
+  const ContactSet& contact = contact_;
+  if (!status.ok() || !contact.colliding || contact.normal_W.isZero()) return false;
   BodyContact response;
-  response.normal_W = FaceSideNormal(that, contact->fixed, c.X_WO);
-  if (response.normal_W.isZero()) response.normal_W = contact->normal_W;
+  response.normal_W = FaceSideNormal(that, contact.fixed, c.X_WO);
+  if (response.normal_W.isZero()) response.normal_W = contact.normal_W;
   // The normal share of the reversing vector: moving back along the whole
   // vector would also undo the body's sliding along the surface.
-  if (contact->penetrating) {
+  if (contact.penetrating) {
     response.separation_m = SeparationAlongNormal(body.id, body.state.X_WO, other, c.X_WO,
-                                                  *contact, query.direction_W, response.normal_W);
+                                                  contact, query.direction_W, response.normal_W);
   }
   response.p_WC = CentreOfMass(body.mass, body.state);
-  if (!contact->points.empty()) {
+  if (!contact.points.empty()) {
     Vector3d sum = Vector3d::Zero();
-    for (const ContactPoint& p : contact->points) sum += p.p_WC;
-    response.p_WC = sum / static_cast<double>(contact->points.size());
+    for (const ContactPoint& p : contact.points) sum += p.p_WC;
+    response.p_WC = sum / static_cast<double>(contact.points.size());
   }
   response.v_other_W = c.v_W;
-  response.friction = that.face_material(TouchedFace(that, contact->fixed)).dynamic_friction;
+  response.friction = that.face_material(TouchedFace(that, contact.fixed)).dynamic_friction;
   const Vector3d impulse = RespondToContact(body.mass, response, body.state, c.body);
   if (objects_[other].kind == ObjectKind::kTool) push_impulse_W_[other] += impulse;
   return true;

@@ -60,7 +60,7 @@ class FreeBodies {
   // penetrating object `that`, from `contact` found along `motion_W`.
   double SeparationAlongNormal(ObjectId self, const Isometry3d& X_WO, ObjectId that,
                                const Isometry3d& X_WO_other, const ContactSet& contact,
-                               const Vector3d& motion_W, const Vector3d& n) const;
+                               const Vector3d& motion_W, const Vector3d& n);
 
   const SceneOptions& options_;
   SceneObjects& objects_;
@@ -69,6 +69,10 @@ class FreeBodies {
   std::vector<int> index_;
   // Per object id: the impulse the bodies took from it this step (tools).
   std::vector<Vector3d> push_impulse_W_;
+  // A contact and its depth along the normal, rewritten per query (their
+  // storage kept: a step allocates nothing once they are large enough).
+  ContactSet contact_;
+  ContactSet along_normal_;
 };
 
 }  // namespace hs

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/sim/frame_storage.h"
 #include "common/sim/motion_bounds.h"
 #include "common/sim/proxy.h"
 #include "common/sim/stage_timer.h"
@@ -180,14 +181,9 @@ void ToolStage::FindContacts(const Tool& tool, bool continuous, ToolFrame& frame
       substep = i;
     }
     if (!found) continue;
-    PairContact& pair = frame.contacts.emplace_back();
+    PairContact& pair = AddPairContact(frame.contacts, scratch.spare_contacts);
     pair.object = objects_.target_ids()[k];
     pair.substep = substep;
-    if (!scratch.spare_contacts.empty()) {
-      pair.contact = std::move(scratch.spare_contacts.back());
-      scratch.spare_contacts.pop_back();
-    }
-    ClearContactSet(pair.contact);
     pair.contact.colliding = true;
   }
 }
@@ -197,8 +193,7 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
   const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
   const bool continuous = stages.Has(Effect::kContinuousCollision);
   StageStatsTable& stats = scratch.contact_stats;
-  for (PairContact& pair : frame.contacts) scratch.spare_contacts.push_back(std::move(pair.contact));
-  frame.contacts.clear();
+  ClearPairContacts(frame.contacts, scratch.spare_contacts);
   frame.substeps = 1;
   // Continuous collision runs inside the collision stage: its runs are
   // counted here, its time is the collision stage's.

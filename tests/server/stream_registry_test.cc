@@ -45,7 +45,7 @@ TEST(StreamRegistryTest, ToolsAreHeldByOneDevice) {
 // The scene computes the union of what the streams need.
 TEST(StreamRegistryTest, NeedsAreTheUnion) {
   StreamRegistry streams([](bool) {});
-  std::vector<std::pair<std::string, PendingPose>> fresh;
+  FreshPoses fresh;
   EXPECT_EQ(streams.TakeFreshPoses(fresh), EffectSet());
   RecordingSink device, viewer;
   ASSERT_TRUE(streams.AttachDevice(&device, "probe", EffectSet{Effect::kForce}, AnyTool).ok());
@@ -71,16 +71,16 @@ TEST(StreamRegistryTest, DevicesFreshOnceEveryDeviceSent) {
   streams.SetPose(&b, At(3), {1, 30});
   EXPECT_EQ(told, std::vector<bool>{true});
 
-  std::vector<std::pair<std::string, PendingPose>> fresh;
+  FreshPoses fresh;
   streams.TakeFreshPoses(fresh);
   EXPECT_EQ(told.back(), false);
-  ASSERT_EQ(fresh.size(), 2u);
-  EXPECT_EQ(fresh[0].first, "left");
-  EXPECT_EQ(fresh[0].second.stamp.sequence, 2u);
-  EXPECT_EQ(fresh[0].second.X_WD.translation().x(), 2);
-  EXPECT_EQ(fresh[1].first, "right");
+  ASSERT_EQ(fresh.taken().size(), 2u);
+  EXPECT_EQ(fresh.taken()[0].first, "left");
+  EXPECT_EQ(fresh.taken()[0].second.stamp.sequence, 2u);
+  EXPECT_EQ(fresh.taken()[0].second.X_WD.translation().x(), 2);
+  EXPECT_EQ(fresh.taken()[1].first, "right");
   streams.TakeFreshPoses(fresh);
-  EXPECT_TRUE(fresh.empty());
+  EXPECT_TRUE(fresh.taken().empty());
 
   told.clear();
   streams.SetPose(&a, At(4), {3, 40});

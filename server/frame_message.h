@@ -1,0 +1,42 @@
+#pragma once
+// The message a stream writes for one step: the snapshot's frame (the
+// parts the stream asked for) with the server's extras (the device's last
+// applied pose, timings, drops and misses).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/api/proto_convert.h"
+#include "google/protobuf/arena.h"
+#include "haptics/v1/session_service.pb.h"
+#include "server/step_snapshot.h"
+
+namespace hs {
+
+/// Writes `s` over `frame` (cleared first). `tool` is the device's tool ("" for a
+/// viewer), `dropped` the frames the stream dropped so far, `sent_unix_ns`
+/// the wall clock at sending.
+void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const std::string& tool,
+                      uint64_t dropped, int64_t sent_unix_ns, haptics::v1::Frame& frame);
+
+/// A stream's message for one step, built on an arena whose first block is
+/// the stream's own and reset each step: building a frame allocates
+/// nothing once the block holds the largest frame so far (a plain message
+/// reused through Clear() would delete and allocate its sub-messages).
+class FrameMessageArena {
+ public:
+  FrameMessageArena();
+  /// An empty Frame on the arena, valid until the next Start. Grows the
+  /// block first when the last frame overflowed it.
+  haptics::v1::Frame& Start();
+
+ private:
+  void MakeArena();
+
+  std::vector<char> block_;
+  std::optional<google::protobuf::Arena> arena_;
+};
+
+}  // namespace hs
