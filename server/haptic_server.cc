@@ -39,6 +39,20 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
     server->access_ = *std::move(access);
   }
   std::string model_dir = options.model_dir;
+  std::unique_ptr<SceneCatalogue> catalogue;
+  if (!options.state_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(options.state_dir, error);
+    if (error) {
+      return absl::UnavailableError(
+          absl::StrCat("cannot make the state folder ", options.state_dir, ": ", error.message()));
+    }
+    if (model_dir.empty()) model_dir = (std::filesystem::path(options.state_dir) / "models").string();
+    absl::StatusOr<std::unique_ptr<SceneCatalogue>> opened =
+        SceneCatalogue::Open((std::filesystem::path(options.state_dir) / "scenes.db").string());
+    if (!opened.ok()) return opened.status();
+    catalogue = *std::move(opened);
+  }
   if (model_dir.empty()) {
     std::string pattern =
         (std::filesystem::temp_directory_path() / "haptic-models-XXXXXX").string();
@@ -47,7 +61,10 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
     }
     model_dir = server->temporary_model_dir_ = pattern;
   }
-  server->registry_ = std::make_unique<SceneRegistry>(options.limits, model_dir, metrics);
+  server->registry_ =
+      std::make_unique<SceneRegistry>(options.limits, model_dir, metrics, std::move(catalogue));
+  // Before the port opens: no client sees the server without its scenes.
+  if (absl::Status s = server->registry_->RestoreScenes(); !s.ok()) return s;
   server->scene_service_ = std::make_unique<SceneServiceImpl>(*server->registry_, *server->access_);
   server->session_service_ =
       std::make_unique<SessionServiceImpl>(*server->registry_, *server->access_);

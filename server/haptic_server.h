@@ -28,9 +28,13 @@ struct ServerOptions {
   /// caller may do anything.
   std::string tokens_file;
   ServerLimits limits;
-  /// Folder for uploaded models; empty: a fresh temporary folder, removed
-  /// when the server is destroyed.
+  /// Folder for uploaded models; empty: state_dir/models with a state
+  /// folder, else a fresh temporary folder, removed when the server is
+  /// destroyed.
   std::string model_dir;
+  /// Folder of the state kept across restarts (scenes.db, the scene
+  /// catalogue, and models/); empty: scenes live in memory only.
+  std::string state_dir;
   /// Largest message received, bytes (model chunks, scene specs).
   int max_receive_bytes = 16 << 20;
 };
@@ -41,7 +45,9 @@ class HapticServer {
   /// INVALID_ARGUMENT for unusable TLS files (MakeServerCredentials) or
   /// tokens file (TokenTable::Read);
   /// FAILED_PRECONDITION when options.listen is reachable from other
-  /// machines without TLS and insecure_listen is not set.
+  /// machines without TLS and insecure_listen is not set, or when the
+  /// state folder's catalogue is foreign or damaged or one of its scenes
+  /// does not start (SceneRegistry::RestoreScenes): never on half a state.
   /// `metrics` outlives the server.
   static absl::StatusOr<std::unique_ptr<HapticServer>> Start(const ServerOptions& options,
                                                              Metrics& metrics);

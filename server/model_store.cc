@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/sandbox/sandboxed_import.h"
 #include "server/sha256.h"
+#include "server/state/durable_file.h"
 
 namespace hs {
 namespace {
@@ -68,7 +69,11 @@ ModelStore::ModelStore(std::string dir, int max_models)
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator(dir_, error)) {
     const std::string id = entry.path().filename().string();
-    if (!entry.is_regular_file() || id.starts_with(".")) continue;
+    if (!entry.is_regular_file()) continue;
+    if (id.starts_with(".")) {  // an upload a crash cut short
+      std::filesystem::remove(entry.path(), error);
+      continue;
+    }
     std::ifstream in(entry.path(), std::ios::binary);
     std::ostringstream bytes;
     bytes << in.rdbuf();
@@ -96,16 +101,12 @@ absl::StatusOr<StoredModel> ModelStore::Store(const ModelUpload& upload) {
   }
   std::error_code error;
   std::filesystem::create_directories(dir_, error);
-  // Written under a hidden name first: BuildScene never sees a model that
-  // failed to import.
+  // Written under a hidden name first, whole and on the disk: BuildScene
+  // never sees a model that failed to import, and a crash leaves a hidden
+  // file that the next start removes.
   const std::filesystem::path staged = std::filesystem::path(dir_) / ("." + id);
-  {
-    std::ofstream out(staged, std::ios::binary);
-    out.write(upload.data().data(), static_cast<std::streamsize>(upload.data().size()));
-    if (!out) {
-      std::filesystem::remove(staged, error);
-      return absl::InternalError(absl::StrCat("cannot write ", staged.string()));
-    }
+  if (absl::Status s = WriteFileDurably(staged.string(), upload.data()); !s.ok()) {
+    return absl::InternalError(s.message());
   }
   absl::StatusOr<ImportedModel> model = SandboxedImport(staged.string(), ImportOptions{});
   if (!model.ok()) {
@@ -118,6 +119,8 @@ absl::StatusOr<StoredModel> ModelStore::Store(const ModelUpload& upload) {
     std::filesystem::remove(staged, error);
     return absl::InternalError(absl::StrCat("cannot keep model: ", error.message()));
   }
+  // Acknowledged only once the rename is on the disk too.
+  if (absl::Status s = SyncFolder(dir_); !s.ok()) return absl::InternalError(s.message());
   sha256_by_id_[id] = upload.header().sha256();
   return StoredModel{id, model->object.num_vertices(), model->object.num_faces()};
 }

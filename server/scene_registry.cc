@@ -10,11 +10,13 @@ namespace hs {
 
 namespace pb = haptics::v1;
 
-SceneRegistry::SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics)
+SceneRegistry::SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics,
+                             std::unique_ptr<SceneCatalogue> catalogue)
     : limits_(limits),
       metrics_(metrics),
       models_(std::move(model_dir), limits.max_models),
-      quotas_(limits.per_caller) {}
+      quotas_(limits.per_caller),
+      catalogue_(std::move(catalogue)) {}
 
 SceneRegistry::~SceneRegistry() { StopAll(absl::UnavailableError("the server is stopping")); }
 
@@ -55,7 +57,7 @@ absl::StatusOr<LoadedScene> SceneRegistry::BuildChecked(const pb::SceneSpec& spe
 }
 
 absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::string& base_dir,
-                                                 Deadline deadline) {
+                                                 Deadline deadline, bool keep) {
   std::lock_guard edit(edit_mu_);
   HS_RETURN_IF_ERROR(ValidateName(spec.name()));
   {
@@ -70,6 +72,7 @@ absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::
   }
   AbsoluteModelPaths(base_dir, spec);
   HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildChecked(spec, base_dir, deadline));
+  if (keep && catalogue_) HS_RETURN_IF_ERROR(catalogue_->Put(spec));
   auto runner =
       std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_, limits_.realtime_priority);
   std::lock_guard lock(mu_);
@@ -85,7 +88,18 @@ absl::StatusOr<RunnerInfo> SceneRegistry::Edit(const std::string& name, const Sp
   HS_RETURN_IF_ERROR(edit(spec));
   if (spec.name() != name) return absl::InvalidArgumentError("a scene cannot be renamed");
   HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildChecked(spec, "", deadline));
-  HS_RETURN_IF_ERROR(runner->Replace(std::move(spec), std::move(loaded)));
+  if (!catalogue_) {
+    HS_RETURN_IF_ERROR(runner->Replace(std::move(spec), std::move(loaded)));
+    return runner->Info();
+  }
+  // Kept first, so that nothing is acknowledged that a crash would lose;
+  // a swap that fails puts the old spec back.
+  const pb::SceneSpec before = runner->spec();
+  HS_RETURN_IF_ERROR(catalogue_->Put(spec));
+  if (absl::Status s = runner->Replace(std::move(spec), std::move(loaded)); !s.ok()) {
+    (void)catalogue_->Put(before);
+    return s;
+  }
   return runner->Info();
 }
 
@@ -96,10 +110,27 @@ absl::Status SceneRegistry::Delete(const std::string& name) {
     std::lock_guard lock(mu_);
     const auto it = scenes_.find(name);
     if (it == scenes_.end()) return absl::NotFoundError(absl::StrCat("no scene '", name, "'"));
+    if (catalogue_) HS_RETURN_IF_ERROR(catalogue_->Remove(name));
     runner = std::move(it->second);
     scenes_.erase(it);
   }
   runner->Stop(absl::UnavailableError(absl::StrCat("scene '", name, "' was deleted")));
+  return absl::OkStatus();
+}
+
+absl::Status SceneRegistry::RestoreScenes() {
+  if (!catalogue_) return absl::OkStatus();
+  HS_ASSIGN_OR_RETURN(std::vector<pb::SceneSpec> specs, catalogue_->LoadAll());
+  for (pb::SceneSpec& spec : specs) {
+    const std::string name = spec.name();
+    absl::StatusOr<RunnerInfo> started =
+        Create(std::move(spec), "", Deadline::max(), /*keep=*/false);
+    if (!started.ok()) {
+      return absl::FailedPreconditionError(absl::StrCat("scene '", name, "' of ",
+                                                        catalogue_->path(),
+                                                        " does not start: ", started.status().message()));
+    }
+  }
   return absl::OkStatus();
 }
 

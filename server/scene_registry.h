@@ -17,6 +17,7 @@
 #include "server/metrics.h"
 #include "server/model_store.h"
 #include "server/scene_runner.h"
+#include "server/state/scene_catalogue.h"
 
 namespace hs {
 
@@ -55,22 +56,34 @@ class SceneRegistry {
   using Deadline = std::chrono::system_clock::time_point;
   using SpecEdit = std::function<absl::Status(haptics::v1::SceneSpec&)>;
 
-  /// Uploaded models live in `model_dir`.
-  SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics);
+  /// Uploaded models live in `model_dir`. With a `catalogue`, scenes
+  /// created or changed are kept in it before the change is acknowledged
+  /// (RestoreScenes starts them again); without, they live in memory.
+  SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics,
+                std::unique_ptr<SceneCatalogue> catalogue = nullptr);
   ~SceneRegistry();
 
   /// Builds and starts a scene. `base_dir` resolves relative model paths
   /// (made absolute in the kept spec). INVALID_ARGUMENT for a bad spec,
   /// ALREADY_EXISTS for a taken name, RESOURCE_EXHAUSTED past the limits,
-  /// DEADLINE_EXCEEDED when building outlasted `deadline` (nothing kept).
+  /// DEADLINE_EXCEEDED when building outlasted `deadline`, UNAVAILABLE
+  /// when the catalogue cannot keep it (nothing kept). `keep`: false for a
+  /// scene of a --scene file, which is read again at each start (an edit
+  /// over the API keeps it from then on).
   absl::StatusOr<RunnerInfo> Create(haptics::v1::SceneSpec spec, const std::string& base_dir,
-                                    Deadline deadline = Deadline::max());
-  /// Applies `edit` to scene `name`'s spec and swaps in the rebuilt scene.
-  /// NOT_FOUND for an unknown scene; else as `edit`, Create and
-  /// SceneRunner::Replace.
+                                    Deadline deadline = Deadline::max(), bool keep = true);
+  /// Starts every scene of the catalogue, as of its last kept change.
+  /// FAILED_PRECONDITION naming the catalogue and the scene when one does
+  /// not start (a missing model file, a spec this server refuses): the
+  /// server must not start on half its state. No-op without a catalogue.
+  absl::Status RestoreScenes();
+  /// Applies `edit` to scene `name`'s spec and swaps in the rebuilt scene
+  /// (kept in the catalogue first). NOT_FOUND for an unknown scene; else as
+  /// `edit`, Create and SceneRunner::Replace.
   absl::StatusOr<RunnerInfo> Edit(const std::string& name, const SpecEdit& edit,
                                   Deadline deadline = Deadline::max());
-  /// Stops scene `name` (its streams end with UNAVAILABLE). NOT_FOUND.
+  /// Stops scene `name` (its streams end with UNAVAILABLE) and forgets it
+  /// in the catalogue. NOT_FOUND; UNAVAILABLE when the catalogue cannot.
   absl::Status Delete(const std::string& name);
   /// Deletes uploaded model `id`. FAILED_PRECONDITION naming a scene that
   /// uses it (no scene can start using it meanwhile); NOT_FOUND.
@@ -101,6 +114,7 @@ class SceneRegistry {
   Metrics& metrics_;
   ModelStore models_;
   CallerQuotas quotas_;
+  std::unique_ptr<SceneCatalogue> catalogue_;  // null: scenes in memory only
   // Changes run one at a time (builds included); lookups only take mu_.
   std::mutex edit_mu_;
   mutable std::mutex mu_;

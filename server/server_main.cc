@@ -37,7 +37,11 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--metrics", metrics_address, "host:port to serve Prometheus /metrics on");
   app.add_option("--model-dir", options.model_dir,
-                 "Folder for uploaded models (default: a temporary folder)");
+                 "Folder for uploaded models (default: STATE_DIR/models, else a temporary folder)");
+  app.add_option("--state-dir", options.state_dir,
+                 "Keep scenes created or changed over the API (scenes.db, SQLite) and uploaded "
+                 "models (models/) in this folder across restarts; without it they live in "
+                 "memory");
   app.add_option("--max-scenes", options.limits.max_scenes)->capture_default_str();
   app.add_option("--max-clients", options.limits.max_clients)->capture_default_str();
   app.add_option("--max-objects", options.limits.max_objects_per_scene)->capture_default_str();
@@ -98,9 +102,16 @@ int main(int argc, char** argv) {
   }
   for (const std::string& file : scene_files) {
     absl::StatusOr<haptics::v1::SceneSpec> spec = hs::ReadSceneFile(file);
+    if (spec.ok() && (*server)->registry().Find(spec->name()).ok()) {
+      std::cerr << "haptic-server: scene '" << spec->name() << "' restored from "
+                << options.state_dir << ", as last changed over the API; " << file
+                << " not loaded\n";
+      continue;
+    }
     absl::StatusOr<hs::RunnerInfo> info =
-        spec.ok() ? (*server)->registry().Create(*spec,
-                                                 std::filesystem::path(file).parent_path().string())
+        spec.ok() ? (*server)->registry().Create(
+                        *spec, std::filesystem::path(file).parent_path().string(),
+                        hs::SceneRegistry::Deadline::max(), /*keep=*/false)
                   : absl::StatusOr<hs::RunnerInfo>(spec.status());
     if (!info.ok()) {
       std::cerr << "haptic-server: " << file << ": " << info.status().message() << "\n";
@@ -114,6 +125,13 @@ int main(int argc, char** argv) {
   }
   if (options.tokens_file.empty()) {
     std::cerr << "haptic-server: no --tokens: open to every client that reaches it\n";
+  }
+  if (options.state_dir.empty()) {
+    std::cerr << "haptic-server: no --state-dir: scenes created over the API and uploaded "
+                 "models are lost when it stops\n";
+  } else {
+    std::cerr << "haptic-server: state kept in " << options.state_dir << " ("
+              << (*server)->registry().List().size() << " scenes running)\n";
   }
   std::cerr << "haptic-server: listening on port " << (*server)->port() << std::endl;
 

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -15,6 +16,7 @@
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "server/sha256.h"
+#include "tests/server/test_server.h"
 #include "tests/common/scratch_dir.h"
 
 namespace hs {
@@ -49,6 +51,7 @@ class ServerProcess {
     // "haptic-server: listening on port N"
     char line[512];
     while (port_ == 0 && fgets(line, sizeof line, stderr_) != nullptr) {
+      startup_ += line;
       if (const char* at = strstr(line, "listening on port ")) port_ = atoi(at + 18);
     }
   }
@@ -60,6 +63,8 @@ class ServerProcess {
     if (stderr_ != nullptr) fclose(stderr_);
   }
   int port() const { return port_; }
+  // What it wrote to stderr until it listened (or ended).
+  const std::string& startup() const { return startup_; }
   // The next line of its stderr that holds `text`; empty at its end.
   std::string LineWith(const char* text) {
     char line[512];
@@ -83,6 +88,7 @@ class ServerProcess {
   FILE* stderr_ = nullptr;
   int port_ = 0;
   bool waited_ = false;
+  std::string startup_;
 };
 
 // The binary serves the scene given with --scene on the port it picked,
@@ -118,6 +124,68 @@ TEST(ServerMainTest, ServesSceneAndStopsGracefullyOnSigterm) {
   EXPECT_EQ(server.StopWith(SIGTERM), 0);
   reader.join();
   EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
+}
+
+std::unique_ptr<pb::SceneService::Stub> SceneStub(int port) {
+  return pb::SceneService::NewStub(
+      grpc::CreateChannel("127.0.0.1:" + std::to_string(port), grpc::InsecureChannelCredentials()));
+}
+
+grpc::Status GetScene(pb::SceneService::Stub& stub, const std::string& name, pb::SceneInfo& info) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  pb::GetSceneRequest get;
+  get.set_scene(name);
+  return stub.GetScene(&context, get, &info);
+}
+
+// With --state-dir, a scene created and then changed over the API is there
+// again, as last changed, after the server is killed (SIGKILL: no chance
+// to save anything) and started again on the same folder; the --scene
+// file's scene is loaded as before. Without --state-dir the server says
+// its scenes are lost when it stops.
+TEST(ServerMainTest, ScenesSurviveAKill) {
+  const std::string state = ScratchDir("state").string();
+  {
+    ServerProcess server({"--state-dir", state});
+    ASSERT_GT(server.port(), 0) << server.startup();
+    auto stub = SceneStub(server.port());
+    grpc::ClientContext create_context;
+    pb::CreateSceneRequest create;
+    *create.mutable_spec() = testing::SmallScene("kept", /*second_tool=*/false);
+    pb::SceneInfo info;
+    ASSERT_TRUE(stub->CreateScene(&create_context, create, &info).ok());
+    grpc::ClientContext edit_context;
+    pb::SetEffectsRequest edit;
+    edit.set_scene("kept");
+    edit.add_effects(pb::EFFECT_COLLISION);
+    ASSERT_TRUE(stub->SetEffects(&edit_context, edit, &info).ok());
+    server.StopWith(SIGKILL);
+  }
+  ServerProcess again({"--state-dir", state});
+  ASSERT_GT(again.port(), 0) << again.startup();
+  auto stub = SceneStub(again.port());
+  pb::SceneInfo info;
+  ASSERT_TRUE(GetScene(*stub, "kept", info).ok());
+  ASSERT_EQ(info.spec().effects_size(), 1);
+  EXPECT_EQ(info.spec().effects(0), pb::EFFECT_COLLISION);
+  EXPECT_EQ(info.spec().objects_size(), 2);
+  EXPECT_TRUE(GetScene(*stub, "probe on torus", info).ok());
+
+  ServerProcess in_memory;
+  EXPECT_NE(in_memory.startup().find("no --state-dir"), std::string::npos) << in_memory.startup();
+}
+
+// A state folder whose catalogue is not one (another file under its name)
+// stops the start, naming the file: never a server on half a state.
+TEST(ServerMainTest, ForeignCatalogueStopsTheStart) {
+  const std::filesystem::path state = ScratchDir("foreign");
+  std::ofstream(state / "scenes.db") << "not a database, though long enough to be read as one";
+  ServerProcess server({"--state-dir", state.string()});
+  EXPECT_EQ(server.port(), 0);
+  EXPECT_NE(server.startup().find((state / "scenes.db").string()), std::string::npos)
+      << server.startup();
+  EXPECT_EQ(server.StopWith(0), 1);
 }
 
 // The status of GetScene("probe on torus") with bearer token `token`.
