@@ -11,6 +11,7 @@
 #include "common/collision/obb_overlap.h"
 #include "common/collision/placed_faces.h"
 #include "common/core/check.h"
+#include "common/core/scratch.h"
 
 namespace hs {
 namespace {
@@ -93,10 +94,10 @@ class VolumeTest {
 
  private:
   static constexpr bool kFast = std::is_same_v<BV, fcl::OBBd> || std::is_same_v<BV, fcl::OBBRSSd>;
-  static PlacedBoxCache& cache() {
-    thread_local PlacedBoxCache c;
-    return c;
-  }
+  struct Cache {  // one per volume type
+    PlacedBoxCache boxes;
+  };
+  static PlacedBoxCache& cache() { return Scratch<Cache>().boxes; }
 
   const Matrix3d R_;
   const Vector3d T_;
@@ -115,19 +116,45 @@ class VolumeTest {
 // #4: 12.3M against 11.7M).
 constexpr int kBucketFaces = 32;
 
+// What a query asks, beside the models and their poses.
+struct Query {
+  const Vector3d* sweep_W;  // A's motion (world frame), or none for a static query
+  double margin_m;
+  bool first_only;  // stop at the first pair found
+  SweptFaceTest face_test;
+  std::span<const TrianglePair> skip;
+};
+
+// The faces of B placed in A's frame, kept from query to query.
+struct PlacedFacesOfB {
+  PlacedFaces faces;
+};
+// Where each face of A starts in a query's `skip`.
+struct SkipStarts {
+  std::vector<int> begin;
+};
+
 // The faces of both objects in A's frame, for the leaf buckets.
 class BucketTest {
  public:
   template <typename BV>
   BucketTest(const CollisionModel::Impl& ia, const fcl::BVHModel<BV>& mb,
              const CollisionModel::Impl& ib, const Isometry3d& X_AB, const Vector3d* sweep_A,
-             double margin, std::span<const TrianglePair> skip)
-      : ia_(ia), ib_(ib), sweep_A_(sweep_A), margin_(margin), skip_(skip) {
-    faces_b().Start(mb.vertices, mb.tri_indices, mb.num_tris, X_AB);
-    if (!skip.empty()) {  // where each face of A starts in `skip`, sorted by A's face
-      std::vector<int>& begin = skip_begin();
+             const Query& query)
+      : ia_(ia),
+        ib_(ib),
+        sweep_A_(sweep_A),
+        margin_(query.margin_m),
+        planes_only_(query.face_test == SweptFaceTest::kPlanesOnly),
+        skip_(query.skip),
+        faces_b_(Scratch<PlacedFacesOfB>().faces),
+        skip_begin_(Scratch<SkipStarts>().begin),
+        buffers_(Scratch<RunBuffers>()) {
+    faces_b_.Start(mb.vertices, mb.tri_indices, mb.num_tris, X_AB);
+    if (!skip_.empty()) {  // where each face of A starts in `skip`, sorted by A's face
+      std::vector<int>& begin = skip_begin_;
       begin.assign(ia.leaf_faces.size() + 1, 0);
-      for (const TrianglePair& p : skip) ++begin[p.a + 1];
+      for (const TrianglePair& p : skip_) ++begin[p.a + 1];
       std::partial_sum(begin.begin(), begin.end(), begin.begin());
     }
   }
@@ -139,12 +166,12 @@ class BucketTest {
   /// (swept: grown by the sweep, which moves every face alike).
   template <typename Node>
   void Run(const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
-    thread_local std::vector<Entry> list_b;
+    std::vector<Entry>& list_b = buffers_.list_b;
     Vector3d lo_b, hi_b;
     StartList(list_b, lo_b, hi_b);
     for (int i = nb.first_primitive; i < nb.first_primitive + nb.num_primitives; ++i) {
       const int f = ib_.leaf_faces[i];
-      if (!ib_.degenerate[f]) AddEntry(f, &faces_b().Get(f), list_b, lo_b, hi_b);
+      if (!ib_.degenerate[f]) AddEntry(f, &faces_b_.Get(f), list_b, lo_b, hi_b);
     }
     const int first = na.first_primitive, count = na.num_primitives;
     double grow_lo[3] = {0, 0, 0}, grow_hi[3] = {0, 0, 0};
@@ -179,7 +206,7 @@ class BucketTest {
       faces_a &= meets;
     }
     Crop(list_b, lo, hi);
-    thread_local BucketBoxes boxes_b;
+    BucketBoxes& boxes_b = buffers_.boxes_b;
     boxes_b.Set(list_b, margin_);
     for (; faces_a != 0; faces_a &= faces_a - 1) {
       const int i = first + std::countr_zero(faces_a);
@@ -243,6 +270,12 @@ class BucketTest {
   };
   static_assert(kBucketFaces <= 32, "one bit per face of a bucket");
 
+  // Run's lists, kept from bucket to bucket.
+  struct RunBuffers {
+    std::vector<Entry> list_b;
+    BucketBoxes boxes_b;
+  };
+
   // Whether face a, moved by -t sweep for some t in [0, 1], meets face b.
   // The plane tests first: SweptIntersection builds every axis before its
   // first, and most pairs whose boxes meet stay on one side of a plane all
@@ -253,6 +286,9 @@ class BucketTest {
         BeyondFacePlane(b, a.triangle, margin_, -b.normal.dot(*sweep_A_))) {
       return false;
     }
+    if (planes_only_) {
+      return SweptPlanesMeet(a.triangle, a.normal, b.triangle, b.normal, *sweep_A_, margin_, {0, 1});
+    }
     return !SweptIntersection(a.triangle, a.normal, b.triangle, b.normal, *sweep_A_, margin_,
                               {0, 1})
                 .empty();
@@ -261,14 +297,10 @@ class BucketTest {
   // The pairs of `skip_` with A's face `a`.
   std::span<const TrianglePair> Skipped(int a) const {
     if (skip_.empty()) return {};
-    const std::vector<int>& begin = skip_begin();
+    const std::vector<int>& begin = skip_begin_;
     return skip_.subspan(begin[a], begin[a + 1] - begin[a]);
   }
 
-  static std::vector<int>& skip_begin() {
-    thread_local std::vector<int> begin;
-    return begin;
-  }
 
   static void StartList(std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {
     list.clear();
@@ -298,16 +330,16 @@ class BucketTest {
     list.resize(kept);
   }
 
-  static PlacedFaces& faces_b() {
-    thread_local PlacedFaces faces;
-    return faces;
-  }
 
   const CollisionModel::Impl& ia_;
   const CollisionModel::Impl& ib_;
   const Vector3d* sweep_A_;
   const double margin_;
+  const bool planes_only_;
   const std::span<const TrianglePair> skip_;
+  PlacedFaces& faces_b_;
+  std::vector<int>& skip_begin_;
+  RunBuffers& buffers_;
 };
 
 // FCL's traversal nodes dispatch every test through virtual calls and, for
@@ -317,19 +349,24 @@ class BucketTest {
 // bottom. With a `sweep_A` (A's motion in A's frame), A's volumes are swept
 // along it and the face test asks whether the sweep interval meets the
 // motion.
+// The node pairs a traversal has still to visit.
+struct TraversalStack {
+  std::vector<std::pair<int, int>> pairs;
+};
+
 template <typename BV>
 int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
                  const fcl::BVHModel<BV>& mb, const CollisionModel::Impl& ib,
-                 const Isometry3d& X_AB, const Vector3d* sweep_A, double margin, bool first_only,
-                 std::span<const TrianglePair> skip, std::vector<TrianglePair>& pairs) {
+                 const Isometry3d& X_AB, const Vector3d* sweep_A, const Query& query,
+                 std::vector<TrianglePair>& pairs) {
   const Matrix3d R = X_AB.linear();
   const Vector3d T = X_AB.translation();
   const VolumeTest<BV> volumes(mb, R, T, sweep_A);
-  const BucketTest buckets(ia, mb, ib, X_AB, sweep_A, margin, skip);
+  const BucketTest buckets(ia, mb, ib, X_AB, sweep_A, query);
   int64_t tests = 0;
   const size_t pairs_before = pairs.size();
-  // Reused across calls so that a steady stream of queries does not allocate.
-  thread_local std::vector<std::pair<int, int>> stack;
+  // Kept across calls so that a steady stream of queries does not allocate.
+  std::vector<std::pair<int, int>>& stack = Scratch<TraversalStack>().pairs;
   stack.clear();
   stack.emplace_back(0, 0);
   while (!stack.empty()) {
@@ -343,7 +380,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     const bool small_b = nb.num_primitives <= kBucketFaces;
     if (small_a && small_b) {
       buckets.Run(na, nb, pairs);
-      if (first_only && pairs.size() > pairs_before) break;
+      if (query.first_only && pairs.size() > pairs_before) break;
     } else if (small_b || (!small_a && na.bv.size() >= nb.bv.size())) {
       stack.emplace_back(na.leftChild(), j);
       stack.emplace_back(na.rightChild(), j);
@@ -355,38 +392,44 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
   return tests;
 }
 
-int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const Vector3d* sweep_W,
-             const CollisionModel& b, const Isometry3d& X_WB, double margin_m, bool first_only,
-             std::span<const TrianglePair> skip, std::vector<TrianglePair>& pairs) {
+// A query's `skip` with its pairs turned round.
+struct SkipTurnedRound {
+  std::vector<TrianglePair> pairs;
+};
+
+int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const CollisionModel& b,
+             const Isometry3d& X_WB, const Query& query, std::vector<TrianglePair>& pairs) {
   HS_CHECK(a.bv_type() == b.bv_type());
-  HS_CHECK(margin_m <= a.margin_m() + b.margin_m());
+  HS_CHECK(query.margin_m <= a.margin_m() + b.margin_m());
   // The traversal works in its first object's frame, whose faces come ready
   // placed (leaf_order_faces), and maps the other's into it: let the larger
   // mesh go first. A moved by -t sweep meets B where B moved by +t sweep
   // meets A, so the sweep turns round, and so do the pairs found.
   if (b.impl().leaf_faces.size() > a.impl().leaf_faces.size()) {
-    const Vector3d sweep_back = sweep_W ? Vector3d(-*sweep_W) : Vector3d();
+    const Vector3d sweep_back = query.sweep_W ? Vector3d(-*query.sweep_W) : Vector3d();
     // Once turned round, A is the larger: no second turn reuses this.
-    thread_local std::vector<TrianglePair> skip_back;
+    std::vector<TrianglePair>& skip_back = Scratch<SkipTurnedRound>().pairs;
     skip_back.clear();
-    for (const TrianglePair& p : skip) skip_back.push_back({p.b, p.a});
+    for (const TrianglePair& p : query.skip) skip_back.push_back({p.b, p.a});
     std::ranges::sort(skip_back);
+    Query back = query;
+    back.sweep_W = query.sweep_W ? &sweep_back : nullptr;
+    back.skip = skip_back;
     const size_t first = pairs.size();
-    const int64_t tests = Find(b, X_WB, sweep_W ? &sweep_back : nullptr, a, X_WA, margin_m,
-                               first_only, skip_back, pairs);
+    const int64_t tests = Find(b, X_WB, a, X_WA, back, pairs);
     for (size_t i = first; i < pairs.size(); ++i) std::swap(pairs[i].a, pairs[i].b);
     return tests;
   }
   const Isometry3d X_AB = X_WA.inverse() * X_WB;
-  const Vector3d sweep_A = sweep_W ? Vector3d(X_WA.linear().transpose() * *sweep_W) : Vector3d();
+  const Vector3d sweep_A =
+      query.sweep_W ? Vector3d(X_WA.linear().transpose() * *query.sweep_W) : Vector3d();
   const CollisionModel::Impl& ia = a.impl();
   const CollisionModel::Impl& ib = b.impl();
   return std::visit(
       [&](const auto& ma) -> int64_t {
         using Model = typename std::decay_t<decltype(ma)>::element_type;
         const auto& mb = std::get<std::shared_ptr<Model>>(ib.bvh);
-        return Traverse(*ma, ia, *mb, ib, X_AB, sweep_W ? &sweep_A : nullptr, margin_m, first_only,
-                        skip, pairs);
+        return Traverse(*ma, ia, *mb, ib, X_AB, query.sweep_W ? &sweep_A : nullptr, query, pairs);
       },
       ia.bvh);
 }
@@ -397,23 +440,48 @@ int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_W
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
                                   std::vector<TrianglePair>& pairs,
                                   std::span<const TrianglePair> skip) {
-  return Find(a, X_WA, nullptr, b, X_WB, margin_m, /*first_only=*/false, skip, pairs);
+  return Find(a, X_WA, b, X_WB,
+              {.sweep_W = nullptr,
+               .margin_m = margin_m,
+               .first_only = false,
+               .face_test = SweptFaceTest::kEveryAxis,
+               .skip = skip},
+              pairs);
 }
 
 int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,
                                const Isometry3d& X_WB, double margin_m,
                                std::vector<TrianglePair>& pairs,
-                               std::span<const TrianglePair> skip) {
-  return Find(a, X_WA, &sweep_W, b, X_WB, margin_m, /*first_only=*/false, skip, pairs);
+                               std::span<const TrianglePair> skip, SweptFaceTest face_test) {
+  return Find(a, X_WA, b, X_WB,
+              {.sweep_W = &sweep_W,
+               .margin_m = margin_m,
+               .first_only = false,
+               .face_test = face_test,
+               .skip = skip},
+              pairs);
 }
+
+namespace {
+// Where AnyTrianglesMeet's query puts the pair it stops at.
+struct FirstPair {
+  std::vector<TrianglePair> pairs;
+};
+}  // namespace
 
 bool AnyTrianglesMeet(const CollisionModel& a, const Isometry3d& X_WA,
                       const std::optional<Vector3d>& sweep_W, const CollisionModel& b,
                       const Isometry3d& X_WB, double margin_m) {
-  thread_local std::vector<TrianglePair> pairs;
+  std::vector<TrianglePair>& pairs = Scratch<FirstPair>().pairs;
   pairs.clear();
-  Find(a, X_WA, sweep_W ? &*sweep_W : nullptr, b, X_WB, margin_m, /*first_only=*/true, {}, pairs);
+  Find(a, X_WA, b, X_WB,
+       {.sweep_W = sweep_W ? &*sweep_W : nullptr,
+        .margin_m = margin_m,
+        .first_only = true,
+        .face_test = SweptFaceTest::kEveryAxis,
+        .skip = {}},
+       pairs);
   return !pairs.empty();
 }
 

@@ -30,18 +30,28 @@ int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_W
                                   std::vector<TrianglePair>& pairs,
                                   std::span<const TrianglePair> skip = {});
 
+/// What a swept query's face test asks of a pair whose boxes meet.
+enum class SweptFaceTest {
+  kEveryAxis,   // that the faces meet: exactly the pairs that do
+  kPlanesOnly,  // that neither face stays beyond the other's plane all along:
+                // a superset, for callers that find each pair's exact
+                // interval themselves and would only repeat the axes
+};
+
 /// Like FindIntersectingTriangles for a translating A: appends every face
 /// pair that intersects (within `margin_m`) at some instant while A moves in
 /// a straight line from X_WA translated by -sweep_W to X_WA (sweep_W: world
 /// frame, metres). Exact for the motion, so a thin object passed through in
-/// one step is found. Leaves out the pairs in `skip` (sorted; faces of `a`
-/// and `b`), untested.
+/// one step is found; with SweptFaceTest::kPlanesOnly, those and others
+/// whose planes do not rule them out. Leaves out the pairs in `skip`
+/// (sorted; faces of `a` and `b`), untested.
 /// Returns the number of bounding-volume tests made.
 int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,
                                const Isometry3d& X_WB, double margin_m,
                                std::vector<TrianglePair>& pairs,
-                               std::span<const TrianglePair> skip = {});
+                               std::span<const TrianglePair> skip = {},
+                               SweptFaceTest face_test = SweptFaceTest::kEveryAxis);
 
 /// Whether FindIntersectingTriangles (no `sweep_W`) or FindSweptTrianglePairs
 /// would find any pair: the same test, stopped at the first pair found.

@@ -278,6 +278,14 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
   return result[0];
 }
 
+bool SweptPlanesMeet(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                     const Vector3d& normal_b, const Vector3d& direction, double margin,
+                     Interval within) {
+  std::array<Interval, 1> result = {within};
+  CutToSweep<true>(a, normal_a, b, normal_b, direction, {margin}, result);
+  return !result[0].empty();
+}
+
 SweptIntervals SweptPlaneBounds(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
                                 double margin, Interval within) {
   std::array<Interval, 2> result = {within, within};

@@ -59,6 +59,13 @@ Interval SweptIntersection(const Triangle3d& a, const Vector3d& normal_a, const 
                            const Vector3d& normal_b, const Vector3d& direction, double margin,
                            Interval within);
 
+/// Whether the cut of `within` along the two face normals alone (the
+/// bound SweptPlaneBounds gives at `margin`) is not empty: where the
+/// planes rule a pair out, so would every axis.
+bool SweptPlanesMeet(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                     const Vector3d& normal_b, const Vector3d& direction, double margin,
+                     Interval within);
+
 /// Sweep intervals of one pair at zero margin and at a margin.
 struct SweptIntervals {
   Interval exact;          // margin 0

@@ -9,6 +9,7 @@
 
 #include "common/contact/closest_points.h"
 #include "common/contact/side_contact.h"
+#include "common/core/scratch.h"
 
 namespace hs {
 namespace {
@@ -73,7 +74,8 @@ Feature FeatureHolding(const PosedFace& face, const Vector3d& p, double toleranc
 
 class Locator {
  public:
-  // Takes this thread's storage (one locator at a time per thread), empty.
+  // Takes the current scratch space's storage (one locator at a time per
+  // space), empty.
   Locator(const ContactContext& c, const Isometry3d& X_FM)
       : c_(c), X_FM_(X_FM), s_(storage()), points_(s_.points) {
     s_.Reset();
@@ -243,8 +245,8 @@ class Locator {
            static_cast<uint64_t>(side);
   }
 
-  // A thread's buffers, kept from one query to the next so that a steady
-  // stream of queries does not allocate.
+  // Buffers kept from one query to the next (common/core/scratch.h) so
+  // that a steady stream of queries does not allocate.
   struct Storage {
     std::vector<Entry> points;
     // CornerKeys located so far: a set emptied key by key (its clear()
@@ -271,10 +273,7 @@ class Locator {
       }
     }
   };
-  static Storage& storage() {
-    thread_local Storage s;
-    return s;
-  }
+  static Storage& storage() { return Scratch<Storage>(); }
 
   const ContactContext& c_;
   const Isometry3d X_FM_;

@@ -15,6 +15,7 @@
 #include "common/contact/sweep_method.h"
 #include "common/core/check.h"
 #include "common/core/rigid_pose.h"
+#include "common/core/scratch.h"
 #include "common/core/status_macros.h"
 
 namespace hs {
@@ -85,6 +86,17 @@ Vector3d ContactContext::TouchedFixedNormals() const {
 
 namespace {
 
+// Buffers kept from query to query (common/core/scratch.h): FindFirstTouch's,
+// and ComputeContact's.
+struct FirstTouchBuffers {
+  std::vector<TrianglePair> swept;
+  LocatedContacts located;
+};
+struct ContactBuffers {
+  std::vector<TrianglePair> pairs, swept;
+  ContactSetF found;
+};
+
 // Validates a pair query and returns its touching tolerance in metres.
 absl::StatusOr<double> PairTolerance(const PosedObject& moving, const PosedObject& fixed,
                                      const Vector3d& direction_W, double relative_tolerance) {
@@ -138,10 +150,11 @@ absl::StatusOr<bool> FindFirstTouch(const PosedObject& moving, const PosedObject
   if (!(step_F.squaredNorm() > 1e-300)) return false;
   ContactContext context{*moving.object,     *moving.model,       *fixed.object, *fixed.model,
                          X_FW * moving.X_WO, step_F.normalized(), tolerance,     {}};
-  // This thread's buffers, reused: a steady stream of queries allocates
-  // nothing once they are large enough.
-  thread_local std::vector<TrianglePair> swept;
-  thread_local LocatedContacts located;
+  // Buffers reused: a steady stream of queries allocates nothing once they
+  // are large enough.
+  FirstTouchBuffers& buffers = Scratch<FirstTouchBuffers>();
+  std::vector<TrianglePair>& swept = buffers.swept;
+  LocatedContacts& located = buffers.located;
   swept.clear();
   // The step is swept in pieces from its start, and the first piece that
   // touches holds the first touch. A proxy resting on a surface touches it
@@ -195,10 +208,12 @@ absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
   const Isometry3d X_FW = fixed.X_WO.inverse();
   ContactContext context{*moving.object,     *moving.model,    *fixed.object, *fixed.model,
                          X_FW * moving.X_WO, Vector3d::Zero(), tolerance,     {}};
-  // This thread's buffers, reused: a steady stream of queries allocates
-  // nothing once they are large enough. The context's pairs borrow theirs.
-  thread_local std::vector<TrianglePair> pairs, swept;
-  thread_local ContactSetF found;
+  // Buffers reused: a steady stream of queries allocates nothing once they
+  // are large enough. The context's pairs borrow theirs.
+  ContactBuffers& buffers = Scratch<ContactBuffers>();
+  std::vector<TrianglePair>& pairs = buffers.pairs;
+  std::vector<TrianglePair>& swept = buffers.swept;
+  ContactSetF& found = buffers.found;
   context.pairs.swap(pairs);
   absl::Cleanup give_back = [&] { context.pairs.swap(pairs); };
   context.pairs.clear();

@@ -4,8 +4,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/core/scratch.h"
+
 namespace hs {
 namespace {
+
+// AggregateSide's marks, kept from call to call.
+struct ContactMarks {
+  std::vector<uint8_t> is_contact;
+};
 
 template <typename T>
 void SortUnique(std::vector<T>& v) {
@@ -24,7 +31,7 @@ void AggregateSide(const HapticObject& object, std::span<const VertexId> vertice
   side.faces.assign(touched_faces.begin(), touched_faces.end());
   // One mark per vertex of the object, set for the contact vertices and
   // cleared on the way out: a lookup per neighbour, whatever their number.
-  thread_local std::vector<uint8_t> is_contact;
+  std::vector<uint8_t>& is_contact = Scratch<ContactMarks>().is_contact;
   if (is_contact.size() < static_cast<size_t>(object.num_vertices())) {
     is_contact.resize(object.num_vertices(), 0);
   }

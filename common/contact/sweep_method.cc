@@ -7,6 +7,7 @@
 
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_features.h"
+#include "common/core/scratch.h"
 
 namespace hs {
 namespace {
@@ -31,7 +32,8 @@ Isometry3d MovedBack(const ContactContext& c, double t) {
 // the other object's plane well before the run ends.
 class KnownPairs {
  public:
-  // Takes this thread's storage (one at a time per thread), empty.
+  // Takes the current scratch space's storage (one at a time per space),
+  // empty.
   explicit KnownPairs(const ContactContext& c)
       : c_(c),
         s_(storage()),
@@ -83,23 +85,24 @@ class KnownPairs {
   // nor bridge a gap inside it: the pairs bound to reach furthest are
   // computed first, in batches that double, until none of the rest can.
   double ExtendRun(double t_star) {
+    double run = Chain(t_star);
     std::vector<KnownPair*>& reaching = reaching_;
-    for (size_t batch = 8;; batch *= 2) {
-      const double run = Chain(t_star);
-      reaching.clear();
-      for (KnownPair& k : known_) {
-        if (!k.computed && k.bounds.exact.hi > run) reaching.push_back(&k);
-      }
-      if (reaching.empty()) return run;
-      if (reaching.size() > batch) {
-        std::nth_element(reaching.begin(), reaching.begin() + batch, reaching.end(),
-                         [](const KnownPair* x, const KnownPair* y) {
-                           return x->bounds.exact.hi > y->bounds.exact.hi;
-                         });
-        reaching.resize(batch);
-      }
-      for (KnownPair* k : reaching) Compute(*k);
+    reaching.clear();
+    for (KnownPair& k : known_) {
+      if (!k.computed && k.bounds.exact.hi > run) reaching.push_back(&k);
     }
+    std::sort(reaching.begin(), reaching.end(), [](const KnownPair* x, const KnownPair* y) {
+      return x->bounds.exact.hi > y->bounds.exact.hi;
+    });
+    size_t next = 0;
+    for (size_t batch = 8; next < reaching.size() && reaching[next]->bounds.exact.hi > run;
+         batch *= 2) {
+      for (const size_t end = std::min(reaching.size(), next + batch); next < end; ++next) {
+        Compute(*reaching[next]);
+      }
+      run = Chain(t_star);
+    }
+    return run;
   }
 
   // Every pair within the tolerance of each other at `t`, among others
@@ -128,7 +131,8 @@ class KnownPairs {
     std::vector<Interval>& exact = scratch_;
     exact.clear();
     for (const KnownPair& k : known_) {
-      if (k.computed && !k.exact.empty()) exact.push_back(k.exact);
+      // One that ends by t* cannot extend a run from it.
+      if (k.computed && !k.exact.empty() && k.exact.hi > t_star) exact.push_back(k.exact);
     }
     std::sort(exact.begin(), exact.end(),
               [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
@@ -144,8 +148,8 @@ class KnownPairs {
     k.computed = true;
   }
 
-  // A thread's buffers, kept from one query to the next so that a steady
-  // stream of queries does not allocate.
+  // Buffers kept from one query to the next (common/core/scratch.h) so
+  // that a steady stream of queries does not allocate.
   struct Storage {
     std::vector<KnownPair> known;
     std::vector<KnownPair> merged;
@@ -158,10 +162,7 @@ class KnownPairs {
       pairs.clear();
     }
   };
-  static Storage& storage() {
-    thread_local Storage s;
-    return s;
-  }
+  static Storage& storage() { return Scratch<Storage>(); }
 
   const ContactContext& c_;
   Storage& s_;
@@ -191,6 +192,12 @@ bool Penetrating(const ContactContext& c) {
                           c.tolerance_m);
 }
 
+// ReconstructBySweep's pair lists and located contacts.
+struct SweepBuffers {
+  std::vector<TrianglePair> at_t_star, found_at_t1, swept;
+  LocatedContacts located;
+};
+
 }  // namespace
 
 void ReconstructBySweep(const ContactContext& c, ContactSetF& set) {
@@ -206,9 +213,12 @@ void ReconstructBySweep(const ContactContext& c, ContactSetF& set) {
   // the touching faces would otherwise chain across their whole overlap.
   const bool penetrating = Penetrating(c);
   double t_star = 0;
-  // This thread's buffers, reused (no allocation once large enough).
-  thread_local std::vector<TrianglePair> at_t_star, found_at_t1, swept;
-  thread_local LocatedContacts located;
+  // Buffers reused from query to query (no allocation once large enough).
+  SweepBuffers& buffers = Scratch<SweepBuffers>();
+  std::vector<TrianglePair>& at_t_star = buffers.at_t_star;
+  std::vector<TrianglePair>& found_at_t1 = buffers.found_at_t1;
+  std::vector<TrianglePair>& swept = buffers.swept;
+  LocatedContacts& located = buffers.located;
   at_t_star.assign(c.pairs.begin(), c.pairs.end());
   bool settled = !penetrating;
   if (!settled) {
@@ -243,9 +253,11 @@ void ReconstructBySweep(const ContactContext& c, ContactSetF& set) {
     for (int round = 0; round < kMaxRounds && !settled; ++round, stretch *= 2) {
       const double reach = std::max(t_star + 2 * c.tolerance_m, covered + stretch);
       swept.clear();
+      // Planes only: ExtendRun finds the exact interval of each pair whose
+      // bound could extend the run, and those that cannot need none.
       FindSweptTrianglePairs(c.moving_model, MovedBack(c, covered), (reach - covered) * D,
                              c.fixed_model, Isometry3d::Identity(), c.tolerance_m, swept,
-                             known.pairs());
+                             known.pairs(), SweptFaceTest::kPlanesOnly);
       known.Add(swept);
       covered = reach;
       t_star = known.ExtendRun(t_star);

@@ -2,11 +2,21 @@
 
 #include <utility>
 
+#include "common/core/scratch.h"
 #include "common/core/status_macros.h"
 #include "common/sim/touched_face.h"
 
 namespace hs {
 namespace {
+
+// Touches kept from step to step (common/core/scratch.h): each obstacle's,
+// and the earliest of a slide.
+struct ObstacleTouch {
+  FirstTouch touch;
+};
+struct SlideTouch {
+  FirstTouch touch;
+};
 
 // The earliest touch of the tool (orientation R) moving from p to p + v,
 // into `earliest` (kept storage); returns the obstacle touched, -1 for none.
@@ -17,9 +27,9 @@ absl::StatusOr<int> FindEarliestTouch(const PosedObject& tool, const Matrix3d& R
   Isometry3d X_end = Isometry3d::Identity();
   X_end.linear() = R;
   X_end.translation() = p + v;
-  // This thread's buffer for each obstacle's touch, swapped with the
-  // earliest so far: no allocation once both are large enough.
-  thread_local FirstTouch touch;
+  // A buffer for each obstacle's touch, swapped with the earliest so far:
+  // no allocation once both are large enough.
+  FirstTouch& touch = Scratch<ObstacleTouch>().touch;
   int obstacle = -1;
   for (int i = 0; i < static_cast<int>(obstacles.size()); ++i) {
     HS_ASSIGN_OR_RETURN(const bool touched,
@@ -46,7 +56,7 @@ absl::StatusOr<ProxyState> MoveProxy(const PosedObject& tool, const Isometry3d& 
   Vector3d p = X_WP_before.translation();
   Vector3d goal = device;
   ProxyState state;
-  thread_local FirstTouch touch;  // the earliest touch of a slide, storage kept
+  FirstTouch& touch = Scratch<SlideTouch>().touch;  // the earliest touch of a slide
   for (int slide = 0; slide <= options.max_slides; ++slide) {
     const Vector3d v = goal - p;
     if (v.norm() <= stand_off * 1e-3) break;

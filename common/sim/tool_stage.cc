@@ -93,10 +93,12 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
 }
 
 void ToolStage::StepHalf(ToolHalf half, EffectSet stages, std::vector<ToolFrame>& frames) {
+  ToolScratch& scratch = scratch_[half.tool];
+  const ScratchScope scope(half.contacts ? scratch.contacts_space : scratch.proxy_space);
   if (half.contacts) {
-    StepContacts(tools_[half.tool], stages, frames[half.tool], scratch_[half.tool]);
+    StepContacts(tools_[half.tool], stages, frames[half.tool], scratch);
   } else {
-    StepProxy(tools_[half.tool], stages, frames[half.tool], scratch_[half.tool]);
+    StepProxy(tools_[half.tool], stages, frames[half.tool], scratch);
   }
 }
 

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/core/scratch.h"
 #include "common/sim/scene_objects.h"
 #include "common/sim/scene_options.h"
 #include "common/sim/step_frame.h"
@@ -72,6 +73,10 @@ class ToolStage {
     // scene's after it.
     StageStatsTable contact_stats{};
     StageStatsTable proxy_stats{};
+    // Each half's query buffers: the same ones whichever worker runs it,
+    // so that they stop growing once each half has met its largest contact.
+    ScratchSpace contacts_space;
+    ScratchSpace proxy_space;
   };
   // One half of tool `tool`'s step (an index into tools_).
   struct ToolHalf {

@@ -19,8 +19,8 @@ volatile const void* sink = nullptr;
 // After warm-up, steps that move a tool (with every effect on, sub-steps
 // and the broad phase) and free bodies in free fall allocate nothing:
 // frames, candidate lists and scratch are reused. No pair comes within
-// the boxes' reach here, so no contact query of common/contact (whose
-// results still allocate, see docs/simulation.md) runs.
+// the boxes' reach here: the steps with contacts are step_bench's and
+// tests/server/step_allocation_test.cc's.
 TEST(SceneAllocationTest, SteadyStateStepAllocatesNothing) {
   {
     // The counter sees allocations: the test cannot pass for want of it.
