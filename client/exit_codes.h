@@ -24,5 +24,8 @@ inline constexpr int kExitRefused = 4;
 inline constexpr int kExitNotFound = 5;
 /// `health`: the server answered but is not SERVING.
 inline constexpr int kExitNotServing = 6;
+/// `replay`: the recording replayed, and a frame differs from the
+/// recorded one (or steps could not be re-run).
+inline constexpr int kExitDiverged = 7;
 
 }  // namespace hs::cli

@@ -12,6 +12,8 @@
 #include "client/inspect_command.h"
 #include "client/loadtest/loadtest_command.h"
 #include "client/objects_command.h"
+#include "client/recording_command.h"
+#include "client/replay_command.h"
 #include "client/scenes_command.h"
 #include "client/simulate_command.h"
 #include "client/upload_command.h"
@@ -32,6 +34,8 @@ int main(int argc, char** argv) {
   hs::cli::AddWatchCommand(app, exit_code);
   hs::cli::AddDriveCommand(app, exit_code);
   hs::cli::AddLoadtestCommand(app, exit_code);
+  hs::cli::AddRecordingCommand(app, exit_code);
+  hs::cli::AddReplayCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {

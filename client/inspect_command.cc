@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "client/exit_codes.h"
+#include "client/json_text.h"
 #include "common/hds/mesh_report.h"
 #include "common/model/import.h"
 #include "common/sandbox/sandboxed_import.h"
@@ -55,22 +56,6 @@ nlohmann::ordered_json Summary(const std::string& file, const ImportedModel& mod
   };
 }
 
-// Text form: one "key: value" line per field, nested objects flattened with dots.
-void PrintText(const nlohmann::ordered_json& j, const std::string& prefix, std::ostream& out) {
-  for (const auto& [key, value] : j.items()) {
-    if (value.is_object()) {
-      PrintText(value, prefix + key + ".", out);
-    } else if (value.is_array() && !value.empty() && value.front().is_object()) {
-      for (size_t i = 0; i < value.size(); ++i) {
-        PrintText(value[i], prefix + key + "[" + std::to_string(i) + "].", out);
-      }
-    } else {
-      out << prefix << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump())
-          << "\n";
-    }
-  }
-}
-
 }  // namespace
 
 int RunInspect(const InspectArgs& args, std::ostream& out, std::ostream& err) {
@@ -88,7 +73,7 @@ int RunInspect(const InspectArgs& args, std::ostream& out, std::ostream& err) {
   if (args.json) {
     out << summary.dump() << "\n";
   } else {
-    PrintText(summary, "", out);
+    PrintJsonAsText(summary, "", out);
   }
   return kExitOk;
 }

@@ -11,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/core/status_macros.h"
 #include "common/net/address.h"
+#include "server/recording/recording_folder.h"
 #include "server/thread_priority.h"
 
 namespace hs {
@@ -61,8 +62,11 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
     }
     model_dir = server->temporary_model_dir_ = pattern;
   }
-  server->registry_ =
-      std::make_unique<SceneRegistry>(options.limits, model_dir, metrics, std::move(catalogue));
+  if (!options.recording.dir.empty()) {
+    if (absl::Status s = PrepareRecordingFolder(options.recording.dir); !s.ok()) return s;
+  }
+  server->registry_ = std::make_unique<SceneRegistry>(options.limits, model_dir, metrics,
+                                                      std::move(catalogue), options.recording);
   // Before the port opens: no client sees the server without its scenes.
   if (absl::Status s = server->registry_->RestoreScenes(); !s.ok()) return s;
   server->scene_service_ = std::make_unique<SceneServiceImpl>(*server->registry_, *server->access_);

@@ -35,6 +35,8 @@ struct ServerOptions {
   /// Folder of the state kept across restarts (scenes.db, the scene
   /// catalogue, and models/); empty: scenes live in memory only.
   std::string state_dir;
+  /// Session recording (--record-dir and its flags); off without a dir.
+  RecordingOptions recording;
   /// Largest message received, bytes (model chunks, scene specs).
   int max_receive_bytes = 16 << 20;
 };

@@ -58,6 +58,17 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
                          .Help("Frames dropped because a stream read too slowly")
                          .Register(*registry_)
                          .Add({});
+  recorded_bytes_ = &BuildCounter()
+                         .Name("hs_recorded_bytes_total")
+                         .Help("Bytes written to session recordings")
+                         .Register(*registry_)
+                         .Add({});
+  recording_skipped_steps_ = &BuildCounter()
+                                  .Name("hs_recording_skipped_steps_total")
+                                  .Help("Steps left out of recordings: the recorder's queue was "
+                                        "full or the disk refused")
+                                  .Register(*registry_)
+                                  .Add({});
   rejected_ = &BuildCounter()
                    .Name("hs_rejected_requests_total")
                    .Help("Requests that failed, by method and status code")
@@ -97,6 +108,12 @@ void Metrics::AddClients(bool device, int delta) {
 void Metrics::AddFramesSent(int64_t n) { frames_sent_->Increment(static_cast<double>(n)); }
 
 void Metrics::AddFramesDropped(int64_t n) { frames_dropped_->Increment(static_cast<double>(n)); }
+
+void Metrics::AddRecordedBytes(int64_t n) { recorded_bytes_->Increment(static_cast<double>(n)); }
+
+void Metrics::AddRecordingSkippedSteps(int64_t n) {
+  recording_skipped_steps_->Increment(static_cast<double>(n));
+}
 
 void Metrics::AddRejected(const std::string& method, const std::string& code) {
   rejected_->Add({{"method", method}, {"code", code}}).Increment();

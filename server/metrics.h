@@ -42,6 +42,10 @@ class Metrics {
   void AddClients(bool device, int delta);
   void AddFramesSent(int64_t n);
   void AddFramesDropped(int64_t n);
+  /// Recording: bytes written, and steps the recorder skipped (queue full
+  /// or the disk refused).
+  void AddRecordedBytes(int64_t n);
+  void AddRecordingSkippedSteps(int64_t n);
   /// A request of `method` failed with status `code` (a gRPC code name).
   void AddRejected(const std::string& method, const std::string& code);
 
@@ -60,6 +64,8 @@ class Metrics {
   prometheus::Gauge* viewers_;
   prometheus::Counter* frames_sent_;
   prometheus::Counter* frames_dropped_;
+  prometheus::Counter* recorded_bytes_;
+  prometheus::Counter* recording_skipped_steps_;
   prometheus::Family<prometheus::Counter>* rejected_;
 };
 

@@ -6,7 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/sandbox/sandboxed_import.h"
-#include "server/sha256.h"
+#include "common/hash/sha256.h"
 #include "server/state/durable_file.h"
 
 namespace hs {

@@ -11,12 +11,13 @@ namespace hs {
 namespace pb = haptics::v1;
 
 SceneRegistry::SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics,
-                             std::unique_ptr<SceneCatalogue> catalogue)
+                             std::unique_ptr<SceneCatalogue> catalogue, RecordingOptions recording)
     : limits_(limits),
       metrics_(metrics),
       models_(std::move(model_dir), limits.max_models),
       quotas_(limits.per_caller),
-      catalogue_(std::move(catalogue)) {}
+      catalogue_(std::move(catalogue)),
+      recording_(std::move(recording)) {}
 
 SceneRegistry::~SceneRegistry() { StopAll(absl::UnavailableError("the server is stopping")); }
 
@@ -72,9 +73,20 @@ absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::
   }
   AbsoluteModelPaths(base_dir, spec);
   HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildChecked(spec, base_dir, deadline));
+  std::unique_ptr<SessionRecorder> recorder;
+  if (!recording_.dir.empty()) {
+    absl::StatusOr<std::unique_ptr<SessionRecorder>> started = SessionRecorder::Start(
+        recording_,
+        {spec.name(), spec, 0, loaded.scene->options().step_s, models_.dir()}, metrics_);
+    if (!started.ok()) {
+      return absl::UnavailableError(
+          absl::StrCat("cannot record the scene: ", started.status().message()));
+    }
+    recorder = *std::move(started);
+  }
   if (keep && catalogue_) HS_RETURN_IF_ERROR(catalogue_->Put(spec));
-  auto runner =
-      std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_, limits_.realtime_priority);
+  auto runner = std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_,
+                                              limits_.realtime_priority, std::move(recorder));
   std::lock_guard lock(mu_);
   scenes_[spec.name()] = runner;
   return runner->Info();

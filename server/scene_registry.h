@@ -59,8 +59,10 @@ class SceneRegistry {
   /// Uploaded models live in `model_dir`. With a `catalogue`, scenes
   /// created or changed are kept in it before the change is acknowledged
   /// (RestoreScenes starts them again); without, they live in memory.
+  /// With a `recording` dir, every scene started records its session.
   SceneRegistry(const ServerLimits& limits, std::string model_dir, Metrics& metrics,
-                std::unique_ptr<SceneCatalogue> catalogue = nullptr);
+                std::unique_ptr<SceneCatalogue> catalogue = nullptr,
+                RecordingOptions recording = {});
   ~SceneRegistry();
 
   /// Builds and starts a scene. `base_dir` resolves relative model paths
@@ -115,6 +117,7 @@ class SceneRegistry {
   ModelStore models_;
   CallerQuotas quotas_;
   std::unique_ptr<SceneCatalogue> catalogue_;  // null: scenes in memory only
+  const RecordingOptions recording_;
   // Changes run one at a time (builds included); lookups only take mu_.
   std::mutex edit_mu_;
   mutable std::mutex mu_;

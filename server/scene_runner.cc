@@ -45,12 +45,13 @@ ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
 }  // namespace
 
 SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,
-                         int realtime_priority)
+                         int realtime_priority, std::unique_ptr<SessionRecorder> recorder)
     : metrics_(metrics),
       step_s_(scene.scene->options().step_s),
       spec_(std::move(spec)),
       loaded_(std::move(scene)),
       names_(std::make_shared<const std::vector<std::string>>(loaded_.names)),
+      recorder_(std::move(recorder)),
       streams_([this](bool fresh) { SetDevicesFresh(fresh); }),
       fan_out_(streams_, metrics, realtime_priority) {
   loaded_.scene->SetNeeded(EffectSet());
@@ -124,12 +125,15 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   {
     std::lock_guard lock(scene_mu_);
     Scene& scene = *loaded_.scene;
+    snapshot->inputs.clear();
     for (const auto& [tool, pose] : fresh_.taken()) {
       const ObjectId id = FindTool(loaded_, tool);
       // Poses are validated at the edge; a tool removed meanwhile is skipped.
       if (id < 0 || !scene.SetDevicePose(id, pose.X_WD).ok()) continue;
       applied_[tool] = pose;
+      snapshot->inputs.push_back({id, pose.X_WD, pose.stamp});
     }
+    snapshot->needs = needs;
     scene.SetNeeded(needs);
     const Clock::time_point start = Clock::now();
     const StepFrame& frame = scene.Step();
@@ -151,27 +155,40 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     }
     last_stats_ = scene.stats();
     metrics_.ObserveStep(1e-9 * static_cast<double>(snapshot->step_ns), delta);
+    snapshot->start_lag_ns = start_lag_ns;
+    snapshot->missed_steps = missed_steps_;
+    snapshot->missed_steps_off_cpu = missed_steps_off_cpu_;
+    if (recorder_) recorder_->RecordStep(slot.snapshot);
   }
-  snapshot->start_lag_ns = start_lag_ns;
-  snapshot->missed_steps = missed_steps_;
-  snapshot->missed_steps_off_cpu = missed_steps_off_cpu_;
   fan_out_.Push(slot.snapshot);
   return step_ns;
 }
 
 absl::Status SceneRunner::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs) {
-  return streams_.AttachDevice(sink, tool, needs, [this](const std::string& name) {
+  absl::Status status = streams_.AttachDevice(sink, tool, needs, [this](const std::string& name) {
     std::lock_guard scene(scene_mu_);
     return FindTool(loaded_, name) >= 0;
   });
+  if (status.ok()) RecordStream(true, tool, needs);
+  return status;
 }
 
 absl::Status SceneRunner::AttachViewer(FrameSink* sink, EffectSet needs) {
-  return streams_.AttachViewer(sink, needs);
+  absl::Status status = streams_.AttachViewer(sink, needs);
+  if (status.ok()) RecordStream(true, "", needs);
+  return status;
+}
+
+void SceneRunner::RecordStream(bool attached, const std::string& tool, EffectSet needs) {
+  if (!recorder_) return;
+  std::lock_guard lock(scene_mu_);
+  recorder_->RecordStream(step_, attached, !tool.empty(), tool, needs);
 }
 
 void SceneRunner::Detach(FrameSink* sink) {
-  streams_.Detach(sink);
+  if (const std::optional<std::string> tool = streams_.Detach(sink)) {
+    RecordStream(false, *tool, EffectSet());
+  }
   // An offer to `sink` that started before it left the registry ends first.
   fan_out_.WaitForOffers();
 }
@@ -206,6 +223,7 @@ absl::Status SceneRunner::Replace(haptics::v1::SceneSpec spec, LoadedScene scene
         names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
         last_stats_ = StageStatsTable{};
         ++revision_;
+        if (recorder_) recorder_->RecordEdit(step_, spec_, revision_);
       });
 }
 

@@ -22,6 +22,7 @@
 #include "server/frame_fan_out.h"
 #include "server/metrics.h"
 #include "server/priority_inheriting_mutex.h"
+#include "server/recording/session_recorder.h"
 #include "server/snapshot_pool.h"
 #include "server/step_snapshot.h"
 #include "server/stream_registry.h"
@@ -45,8 +46,10 @@ class SceneRunner {
   /// SCHED_FIFO at `realtime_priority` when it is not 0 (as far as the
   /// system allows: see CheckRealtimePriority). `metrics` outlives the
   /// runner.
+  /// `recorder`, when given, records the session from the runner's
+  /// first step (server/recording/session_recorder.h).
   SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,
-              int realtime_priority = 0);
+              int realtime_priority = 0, std::unique_ptr<SessionRecorder> recorder = nullptr);
   /// Stop(UNAVAILABLE) if not stopped yet.
   ~SceneRunner();
   SceneRunner(const SceneRunner&) = delete;
@@ -85,6 +88,8 @@ class SceneRunner {
   void Run(int realtime_priority);
   // Returns the step's wall time, nanoseconds (workers included).
   int64_t StepOnce(int64_t start_lag_ns);
+  // Records a stream's attach or detach ("" tool: a viewer), if recording.
+  void RecordStream(bool attached, const std::string& tool, EffectSet needs);
   // Told by streams_ whether every device has a fresh pose.
   void SetDevicesFresh(bool fresh);
 
@@ -113,6 +118,8 @@ class SceneRunner {
   FreshPoses fresh_;         // runner thread only
   SnapshotPool snapshots_;  // runner thread only
 
+  // Told of every step, edit and stream change, in order (under scene_mu_).
+  std::unique_ptr<SessionRecorder> recorder_;
   StreamRegistry streams_;
   FrameFanOut fan_out_;
   std::thread thread_;

@@ -42,6 +42,22 @@ int main(int argc, char** argv) {
                  "Keep scenes created or changed over the API (scenes.db, SQLite) and uploaded "
                  "models (models/) in this folder across restarts; without it they live in "
                  "memory");
+  app.add_option("--record-dir", options.recording.dir,
+                 "Record each scene's session (spec, edits, device poses, streams, frames) into "
+                 "this folder, one file per session (docs/recording.md)");
+  std::string record_frames = "full";
+  app.add_option("--record-frames", record_frames,
+                 "What recordings keep of each frame: 'full', or 'digest' (its SHA-256)")
+      ->check(CLI::IsMember({"full", "digest"}))
+      ->capture_default_str();
+  app.add_option("--record-sync-ms", options.recording.sync_ms,
+                 "Longest a recorded record waits before it is synced to the disk, ms")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  app.add_option("--record-max-bytes", options.recording.max_file_bytes,
+                 "A recording file past this size rolls over to the session's next part")
+      ->check(CLI::Range(int64_t{1} << 16, int64_t{1} << 40))
+      ->capture_default_str();
   app.add_option("--max-scenes", options.limits.max_scenes)->capture_default_str();
   app.add_option("--max-clients", options.limits.max_clients)->capture_default_str();
   app.add_option("--max-objects", options.limits.max_objects_per_scene)->capture_default_str();
@@ -78,6 +94,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 99))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  options.recording.frames = record_frames == "digest" ? haptics::v1::FRAME_RECORDING_DIGEST
+                                                       : haptics::v1::FRAME_RECORDING_FULL;
 
   // SIGTERM, SIGINT and SIGHUP are taken by sigwait below, not by any thread.
   sigset_t signals;
@@ -132,6 +150,10 @@ int main(int argc, char** argv) {
   } else {
     std::cerr << "haptic-server: state kept in " << options.state_dir << " ("
               << (*server)->registry().List().size() << " scenes running)\n";
+  }
+  if (!options.recording.dir.empty()) {
+    std::cerr << "haptic-server: recording every scene's session into " << options.recording.dir
+              << " (frames: " << record_frames << ")\n";
   }
   std::cerr << "haptic-server: listening on port " << (*server)->port() << std::endl;
 

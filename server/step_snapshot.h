@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "common/sim/effects.h"
 #include "common/sim/step_frame.h"
 
 namespace hs {
@@ -18,6 +19,13 @@ struct AppliedPose {
   uint64_t sequence = 0;
   /// The ToolPose's device clock, nanoseconds.
   int64_t device_time_ns = 0;
+};
+
+/// A device pose applied just before a step.
+struct AppliedInput {
+  ObjectId tool = -1;
+  Isometry3d X_WD = Isometry3d::Identity();
+  AppliedPose stamp;
 };
 
 struct StepSnapshot {
@@ -32,6 +40,10 @@ struct StepSnapshot {
   std::shared_ptr<const std::vector<std::string>> names;
   /// Per entry of frame.tools: the last device pose applied to it.
   std::vector<AppliedPose> applied;
+  /// The device poses applied just before this step, and the effects it
+  /// was asked for (what a recording needs to re-run it).
+  std::vector<AppliedInput> inputs;
+  EffectSet needs;
   /// Wall time of the step, and how late it started, nanoseconds.
   int64_t step_ns = 0;
   int64_t start_lag_ns = 0;

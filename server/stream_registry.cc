@@ -27,11 +27,15 @@ absl::Status StreamRegistry::AttachViewer(FrameSink* sink, EffectSet needs) {
   return absl::OkStatus();
 }
 
-void StreamRegistry::Detach(FrameSink* sink) {
+std::optional<std::string> StreamRegistry::Detach(FrameSink* sink) {
   std::lock_guard lock(mu_);
-  sinks_.erase(sink);
+  const auto it = sinks_.find(sink);
+  if (it == sinks_.end()) return std::nullopt;
+  std::string tool = std::move(it->second.tool);
+  sinks_.erase(it);
   // The device that went may have been the only one not to have sent.
   if (DevicesFreshLocked()) devices_fresh_(true);
+  return tool;
 }
 
 void StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp) {

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -54,8 +55,9 @@ class StreamRegistry {
                             const std::function<bool(const std::string&)>& has_tool);
   /// Lets `sink` receive frames. UNAVAILABLE once closed.
   absl::Status AttachViewer(FrameSink* sink, EffectSet needs);
-  /// Forgets `sink` and frees its tool.
-  void Detach(FrameSink* sink);
+  /// Forgets `sink` and frees its tool. Returns its tool ("" for a
+  /// viewer), none when it was not attached.
+  std::optional<std::string> Detach(FrameSink* sink);
 
   /// The pose of `sink`'s tool for the next step (latest wins); ignored
   /// for a viewer or a stream not attached.

@@ -9,7 +9,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
-#include "server/sha256.h"
+#include "common/hash/sha256.h"
 
 namespace hs {
 namespace {

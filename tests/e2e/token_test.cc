@@ -11,7 +11,7 @@
 #include "client/exit_codes.h"
 #include "client/scenes_command.h"
 #include "server/haptic_server.h"
-#include "server/sha256.h"
+#include "common/hash/sha256.h"
 #include "tests/common/scratch_dir.h"
 
 namespace hs::cli {

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "server/sha256.h"
+#include "common/hash/sha256.h"
 
 namespace hs {
 namespace {

@@ -6,7 +6,7 @@
 #include <functional>
 #include <thread>
 
-#include "server/sha256.h"
+#include "common/hash/sha256.h"
 #include "tests/server/test_server.h"
 
 namespace hs::testing {

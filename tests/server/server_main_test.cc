@@ -15,7 +15,7 @@
 #include "absl/strings/escaping.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
-#include "server/sha256.h"
+#include "common/hash/sha256.h"
 #include "tests/server/test_server.h"
 #include "tests/common/scratch_dir.h"
 

@@ -7,7 +7,7 @@
 
 #include "absl/strings/escaping.h"
 #include "server/haptic_server.h"
-#include "server/sha256.h"
+#include "common/hash/sha256.h"
 #include "tests/common/scratch_dir.h"
 #include "tests/server/test_server.h"
 

@@ -1,7 +1,6 @@
 #pragma once
-// SHA-256 of a byte stream, for checking uploaded models. Abseil 20220623
-// has no CRC32C; OpenSSL (libssl-dev, which gRPC already depends on) has a
-// fast SHA-256.
+// SHA-256 of a byte stream: uploaded models, tokens, recorded frames.
+// OpenSSL (libssl-dev, which gRPC already depends on) has a fast one.
 
 #include <array>
 #include <cstdint>
