@@ -22,26 +22,6 @@ const char kCubeObj[] =
     "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
 
 // Uploads `data` in chunks of `chunk_bytes`, announcing `sha256`.
-grpc::Status Upload(TestServer& server, const std::string& name, const std::string& format,
-                    const std::string& data, const std::string& sha256, size_t chunk_bytes,
-                    pb::UploadModelResponse* response) {
-  auto context = ContextWithin(30);
-  auto writer = server.scenes().UploadModel(context.get(), response);
-  for (size_t offset = 0; offset == 0 || offset < data.size(); offset += chunk_bytes) {
-    pb::UploadModelChunk chunk;
-    if (offset == 0) {
-      chunk.mutable_header()->set_name(name);
-      chunk.mutable_header()->set_format(format);
-      chunk.mutable_header()->set_size_bytes(static_cast<int64_t>(data.size()));
-      chunk.mutable_header()->set_sha256(sha256);
-    }
-    chunk.set_data(data.substr(offset, chunk_bytes));
-    if (!writer->Write(chunk)) break;
-  }
-  writer->WritesDone();
-  return writer->Finish();
-}
-
 pb::SceneObject UploadedObject(const std::string& name, const std::string& model_id) {
   pb::SceneObject o;
   o.set_name(name);
@@ -67,7 +47,7 @@ TEST(SceneServiceTest, LifecycleAndLargeUpload) {
   std::string obj = kCubeObj;
   while (obj.size() < (5u << 20)) obj += "# padding padding padding padding padding padding\n";
   pb::UploadModelResponse uploaded;
-  const grpc::Status upload = Upload(server, "cube", "obj", obj, Sha256Of(obj), 1 << 20, &uploaded);
+  const grpc::Status upload = UploadModel(server.scenes(), "cube", "obj", obj, Sha256Of(obj), 1 << 20, &uploaded);
   ASSERT_TRUE(upload.ok()) << upload.error_message();
   EXPECT_EQ(uploaded.model_id(), "cube.obj");
   EXPECT_EQ(uploaded.triangles(), 12);
@@ -156,7 +136,7 @@ TEST(SceneServiceTest, BadInputGetsSpecificCodeAndChangesNothing) {
   auto upload = [&](const std::string& name, const std::string& data, const std::string& sha) {
     return [&server, name, data, sha] {
       pb::UploadModelResponse out;
-      return Upload(server, name, "obj", data, sha, 64, &out);
+      return UploadModel(server.scenes(), name, "obj", data, sha, 64, &out);
     };
   };
 

@@ -5,6 +5,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <functional>
+#include <sstream>
+#include <algorithm>
+#include <cmath>
+#include <vector>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +22,8 @@
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "common/hash/sha256.h"
+#include "common/recording/recording_summary.h"
+#include "common/recording/replay.h"
 #include "tests/server/test_server.h"
 #include "tests/common/scratch_dir.h"
 
@@ -174,6 +182,167 @@ TEST(ServerMainTest, ScenesSurviveAKill) {
 
   ServerProcess in_memory;
   EXPECT_NE(in_memory.startup().find("no --state-dir"), std::string::npos) << in_memory.startup();
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream all;
+  all << in.rdbuf();
+  return all.str();
+}
+
+// The recording files of scene `scene` in `dir`, oldest first.
+std::vector<std::string> RecordingsOf(const std::string& dir, const std::string& scene) {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().filename().string().starts_with(scene + "_")) {
+      files.push_back(entry.path().string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Drives tool "probe" of `scene` down and up with a pose a millisecond,
+// `poses` of them, reading frames as they come; returns the frames read.
+// With `then` it runs once half the poses are sent (the stream stays open).
+int DriveBurst(int port, const std::string& scene, int poses,
+               const std::function<void()>& then = {}) {
+  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(port),
+                                     grpc::InsecureChannelCredentials());
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
+  auto stream = pb::SessionService::NewStub(channel)->Interact(&context);
+  pb::InteractRequest open;
+  open.mutable_open()->set_scene(scene);
+  open.mutable_open()->set_tool("probe");
+  if (!stream->Write(open)) return 0;
+  std::atomic<int> frames{0};
+  std::thread reader([&] {
+    pb::Frame frame;
+    while (stream->Read(&frame)) ++frames;
+  });
+  for (int i = 0; i < poses; ++i) {
+    pb::InteractRequest pose;
+    pose.mutable_pose()->set_sequence(i + 1);
+    const double z = 0.05 - 0.045 * std::sin(3.14159 * i / poses);  // into the table and out
+    *pose.mutable_pose()->mutable_pose() = testing::PoseAt(0.001 * (i % 7), 0, z);
+    if (!stream->Write(pose)) break;
+    if (i == poses / 2 && then) then();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  context.TryCancel();
+  reader.join();
+  return frames;
+}
+
+// The crash test: a server with a state folder and a recording folder is
+// killed (SIGKILL) during a burst of poses, during an upload and during
+// an edit. Started again on the same folders, it has the scene and the
+// model acknowledged before each kill, nothing of the cut upload, each
+// recording's torn tail cut, and every recording of the scene replays
+// bit for bit up to its last whole record.
+TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
+  const std::string state = ScratchDir("crash_state").string();
+  const std::string records = ScratchDir("crash_records").string();
+  const std::vector<std::string> flags = {"--state-dir", state, "--record-dir", records,
+                                          "--record-sync-ms", "20"};
+  const std::string cube = ReadFile(std::string(HS_TEST_DATA_DIR) + "/cube.obj");
+  ASSERT_FALSE(cube.empty());
+  {  // 1. Killed during a burst of poses, after an upload and a create.
+    ServerProcess server(flags);
+    ASSERT_GT(server.port(), 0) << server.startup();
+    auto stub = SceneStub(server.port());
+    pb::UploadModelResponse uploaded;
+    ASSERT_TRUE(testing::UploadModel(*stub, "cube", "obj", cube, Sha256Of(cube), 1 << 20, &uploaded)
+                    .ok());
+    pb::CreateSceneRequest create;
+    *create.mutable_spec() = testing::SmallScene("kept");
+    pb::SceneObject* object = create.mutable_spec()->add_objects();
+    object->set_name("cube");
+    object->set_kind(pb::OBJECT_KIND_FIXED);
+    object->mutable_model()->set_uploaded_model_id("cube.obj");
+    *object->mutable_pose() = testing::PoseAt(0.3, 0, 0);
+    pb::SceneInfo info;
+    grpc::ClientContext create_context;
+    ASSERT_TRUE(stub->CreateScene(&create_context, create, &info).ok());
+    EXPECT_GT(DriveBurst(server.port(), "kept", 1500, [&] { server.Signal(SIGKILL); }), 0);
+    server.StopWith(SIGKILL);
+  }
+  {  // 2. Killed during an upload: half its chunks sent.
+    ServerProcess server(flags);
+    ASSERT_GT(server.port(), 0) << server.startup();
+    auto stub = SceneStub(server.port());
+    const std::string big(1 << 20, '#');
+    pb::UploadModelResponse response;
+    grpc::ClientContext context;
+    auto writer = stub->UploadModel(&context, &response);
+    pb::UploadModelChunk chunk;
+    chunk.mutable_header()->set_name("cut");
+    chunk.mutable_header()->set_format("obj");
+    chunk.mutable_header()->set_size_bytes(2 * big.size());
+    chunk.mutable_header()->set_sha256(std::string(32, 'x'));
+    chunk.set_data(big);
+    ASSERT_TRUE(writer->Write(chunk));
+    server.StopWith(SIGKILL);
+  }
+  {  // 3. Killed during an edit sent in the middle of a burst, its reply not awaited.
+    ServerProcess server(flags);
+    ASSERT_GT(server.port(), 0) << server.startup();
+    auto stub = SceneStub(server.port());
+    grpc::ClientContext edit_context;
+    pb::SetEffectsRequest edit;
+    edit.set_scene("kept");
+    edit.add_effects(pb::EFFECT_COLLISION);
+    pb::SceneInfo info;
+    grpc::CompletionQueue queue;
+    std::unique_ptr<grpc::ClientAsyncResponseReader<pb::SceneInfo>> call;
+    DriveBurst(server.port(), "kept", 600, [&] {
+      call = stub->AsyncSetEffects(&edit_context, edit, &queue);
+      server.Signal(SIGKILL);
+    });
+    server.StopWith(SIGKILL);
+  }
+  // A crash that tore the last record of the newest recording: its bytes
+  // cut short.
+  const std::vector<std::string> recordings = RecordingsOf(records, "kept");
+  ASSERT_EQ(recordings.size(), 3u);  // one per run
+  std::ofstream(recordings.back(), std::ios::binary | std::ios::app) << std::string("\x40\0\0\0abc", 7);
+
+  ServerProcess again(flags);
+  ASSERT_GT(again.port(), 0) << again.startup();
+  EXPECT_NE(again.startup().find("cut short by a crash"), std::string::npos) << again.startup();
+  auto stub = SceneStub(again.port());
+  pb::SceneInfo info;
+  ASSERT_TRUE(GetScene(*stub, "kept", info).ok());
+  EXPECT_EQ(info.spec().objects_size(), 3);  // the uploaded cube's scene built again
+  // The model acknowledged is kept (the same bytes again: the stored one);
+  // nothing of the cut upload is left.
+  pb::UploadModelResponse again_uploaded;
+  ASSERT_TRUE(testing::UploadModel(*stub, "cube", "obj", cube, Sha256Of(cube), 1 << 20,
+                                   &again_uploaded)
+                  .ok());
+  EXPECT_EQ(again_uploaded.model_id(), "cube.obj");
+  for (const auto& entry : std::filesystem::directory_iterator(state + "/models")) {
+    EXPECT_FALSE(entry.path().filename().string().starts_with("cut")) << entry.path();
+    EXPECT_FALSE(entry.path().filename().string().starts_with(".")) << entry.path();
+  }
+  for (size_t run = 0; run < recordings.size(); ++run) {
+    const std::string& file = recordings[run];
+    absl::StatusOr<RecordingSummary> summary = SummarizeRecording(file);
+    ASSERT_TRUE(summary.ok()) << summary.status();
+    EXPECT_FALSE(summary->ended) << file;  // a crash ended it
+    EXPECT_TRUE(summary->files.back().torn_reason.empty()) << file;  // cut at the start
+    absl::StatusOr<ReplayReport> report = ReplayRecording(file, {});
+    ASSERT_TRUE(report.ok()) << report.status();
+    EXPECT_TRUE(report->all_identical())
+        << file << ": step " << report->first_divergent_step << " "
+        << report->first_divergent_field << " " << report->stopped_early;
+    EXPECT_GT(report->steps_compared, 0) << file;
+    if (run != 1) {  // the runs with a burst
+      EXPECT_GT(summary->inputs, 100) << file;
+    }
+  }
 }
 
 // A state folder whose catalogue is not one (another file under its name)

@@ -73,6 +73,27 @@ pb::SceneInfo TestServer::Get(const std::string& scene) {
   return info;
 }
 
+grpc::Status UploadModel(pb::SceneService::Stub& stub, const std::string& name,
+                         const std::string& format, const std::string& data,
+                         const std::string& sha256, size_t chunk_bytes,
+                         pb::UploadModelResponse* response) {
+  auto context = ContextWithin(30);
+  auto writer = stub.UploadModel(context.get(), response);
+  for (size_t offset = 0; offset == 0 || offset < data.size(); offset += chunk_bytes) {
+    pb::UploadModelChunk chunk;
+    if (offset == 0) {
+      chunk.mutable_header()->set_name(name);
+      chunk.mutable_header()->set_format(format);
+      chunk.mutable_header()->set_size_bytes(static_cast<int64_t>(data.size()));
+      chunk.mutable_header()->set_sha256(sha256);
+    }
+    chunk.set_data(data.substr(offset, chunk_bytes));
+    if (!writer->Write(chunk)) break;
+  }
+  writer->WritesDone();
+  return writer->Finish();
+}
+
 std::unique_ptr<grpc::ClientContext> ContextWithin(double seconds) {
   auto context = std::make_unique<grpc::ClientContext>();
   context->set_deadline(std::chrono::system_clock::now() +

@@ -51,4 +51,11 @@ class TestServer {
 /// A client context whose call gives up after `seconds`.
 std::unique_ptr<grpc::ClientContext> ContextWithin(double seconds);
 
+/// UploadModel through `stub`: `data` in chunks of `chunk_bytes`, the
+/// header (name, format, size, `sha256`) on the first.
+grpc::Status UploadModel(pb::SceneService::Stub& stub, const std::string& name,
+                         const std::string& format, const std::string& data,
+                         const std::string& sha256, size_t chunk_bytes,
+                         pb::UploadModelResponse* response);
+
 }  // namespace hs::testing
