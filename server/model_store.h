@@ -1,7 +1,7 @@
 #pragma once
 // Uploaded models: assembled from chunks, checked against their SHA-256,
-// imported once to reject malformed meshes, then kept as files in one
-// folder, named by their model id, where BuildScene finds them.
+// imported once to reject malformed meshes, then kept in one folder by
+// their content's SHA-256, each model id a link where BuildScene finds it.
 
 #include <cstdint>
 #include <map>
@@ -49,13 +49,24 @@ class ModelUpload {
   std::string data_;
 };
 
-/// The folder of uploaded models. Thread-safe.
+/// The folder of uploaded models, content-addressed: each distinct
+/// content is one file named by its SHA-256, "<hex>.<format>", and each
+/// model id ("<name>.<format>", where BuildScene looks) is a symbolic link
+/// to its content. Every write is durable before it is acknowledged
+/// (temporary name, fsync, rename, fsync of the folder). Thread-safe.
 class ModelStore {
  public:
-  /// Keeps models in `dir` (created if missing), at most `max_models`;
-  /// the models already in `dir` (a --model-dir kept across restarts)
-  /// count and keep their ids.
+  /// Keeps models in `dir` (created if missing), at most `max_models`.
+  /// Load() reads what the folder holds.
   ModelStore(std::string dir, int max_models);
+
+  /// Takes the models already in the folder (a --state-dir kept across
+  /// restarts): they count and keep their ids. Removes what a crash left
+  /// of an upload that was never acknowledged; moves a model file named by
+  /// its id (the folder's earlier layout) to its content's name.
+  /// FAILED_PRECONDITION naming the file when a model's content is missing
+  /// or does not match its SHA-256: no start on half a store.
+  absl::Status Load();
 
   /// Imports a verified upload (in the import sandbox) and keeps it. The
   /// same bytes under a stored id return that model; other bytes under it
@@ -64,7 +75,8 @@ class ModelStore {
   absl::StatusOr<StoredModel> Store(const ModelUpload& upload);
   /// Whether model `id` is stored.
   bool Has(const std::string& id) const;
-  /// Deletes model `id`. NOT_FOUND when there is none.
+  /// Deletes model `id` (and its content, unless another id shares it).
+  /// NOT_FOUND when there is none.
   absl::Status Delete(const std::string& id);
 
   const std::string& dir() const { return dir_; }

@@ -131,6 +131,7 @@ absl::Status SceneRegistry::Delete(const std::string& name) {
 }
 
 absl::Status SceneRegistry::RestoreScenes() {
+  HS_RETURN_IF_ERROR(models_.Load());
   if (!catalogue_) return absl::OkStatus();
   HS_ASSIGN_OR_RETURN(std::vector<pb::SceneSpec> specs, catalogue_->LoadAll());
   for (pb::SceneSpec& spec : specs) {

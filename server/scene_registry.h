@@ -74,10 +74,11 @@ class SceneRegistry {
   /// over the API keeps it from then on).
   absl::StatusOr<RunnerInfo> Create(haptics::v1::SceneSpec spec, const std::string& base_dir,
                                     Deadline deadline = Deadline::max(), bool keep = true);
-  /// Starts every scene of the catalogue, as of its last kept change.
-  /// FAILED_PRECONDITION naming the catalogue and the scene when one does
-  /// not start (a missing model file, a spec this server refuses): the
-  /// server must not start on half its state. No-op without a catalogue.
+  /// Loads the model store (ModelStore::Load), then starts every scene of
+  /// the catalogue, as of its last kept change. FAILED_PRECONDITION
+  /// naming the file when a model's content is missing or damaged, or
+  /// naming the catalogue and the scene when one does not start (a spec
+  /// this server refuses): the server must not start on half its state.
   absl::Status RestoreScenes();
   /// Applies `edit` to scene `name`'s spec and swaps in the rebuilt scene
   /// (kept in the catalogue first). NOT_FOUND for an unknown scene; else as

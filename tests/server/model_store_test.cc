@@ -2,7 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "absl/strings/escaping.h"
 
 #include "common/hash/sha256.h"
 
@@ -45,6 +51,7 @@ TEST(ModelStoreTest, AssemblesVerifiesAndKeeps) {
   ASSERT_TRUE(upload.Add(Data(data.substr(0, 10))).ok());
   ASSERT_TRUE(upload.Add(Data(data.substr(10))).ok());
   ModelStore store(TempDir("keeps"), 4);
+  ASSERT_TRUE(store.Load().ok());
   absl::StatusOr<StoredModel> stored = store.Store(upload);
   ASSERT_TRUE(stored.ok()) << stored.status();
   EXPECT_EQ(stored->model_id, "tet.obj");
@@ -61,6 +68,7 @@ TEST(ModelStoreTest, AssemblesVerifiesAndKeeps) {
   EXPECT_EQ(store.Store(changed).status().code(), absl::StatusCode::kAlreadyExists);
   // A store over the same folder (a restart) knows the model by its bytes.
   ModelStore reopened(store.dir(), 4);
+  ASSERT_TRUE(reopened.Load().ok());
   EXPECT_TRUE(reopened.Has("tet.obj"));
   EXPECT_EQ(reopened.Store(changed).status().code(), absl::StatusCode::kAlreadyExists);
   EXPECT_TRUE(reopened.Store(upload).ok());
@@ -132,6 +140,80 @@ TEST(ModelStoreTest, UploadThatCrashesTheReaderIsRefused) {
   ASSERT_TRUE(good.Add(Data(tetrahedron)).ok());
   EXPECT_TRUE(store.Store(good).ok());
   std::filesystem::remove_all(store.dir());
+}
+
+ModelUpload Upload(const std::string& name, const std::string& data) {
+  ModelUpload upload(1 << 20);
+  EXPECT_TRUE(upload.Add(Header(name, data)).ok());
+  EXPECT_TRUE(upload.Add(Data(data)).ok());
+  return upload;
+}
+
+std::vector<std::string> Names(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// Content is kept once, in a file named by its SHA-256; each id is a link
+// to it. Deleting one of two ids of the same bytes keeps the content;
+// deleting the last removes it.
+TEST(ModelStoreTest, ContentIsNamedBySha256AndShared) {
+  const std::string data = kTetrahedronObj;
+  const std::string content = absl::BytesToHexString(Sha256Of(data)) + ".obj";
+  ModelStore store(TempDir("content"), 4);
+  ASSERT_TRUE(store.Load().ok());
+  ASSERT_TRUE(store.Store(Upload("a", data)).ok());
+  ASSERT_TRUE(store.Store(Upload("b", data)).ok());
+  EXPECT_EQ(Names(store.dir()), (std::vector<std::string>{"a.obj", "b.obj", content}));
+  const std::filesystem::path dir = store.dir();
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "a.obj"));
+  EXPECT_EQ(std::filesystem::read_symlink(dir / "a.obj").string(), content);
+  ASSERT_TRUE(store.Delete("a.obj").ok());
+  EXPECT_EQ(Names(store.dir()), (std::vector<std::string>{"b.obj", content}));
+  ASSERT_TRUE(store.Delete("b.obj").ok());
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  std::filesystem::remove_all(dir);
+}
+
+// Loading a folder: what a crash left of unacknowledged uploads goes (a
+// hidden staged file, content no id points at); a model file named by its
+// id (the earlier layout) moves to its content's name; a model whose
+// content is missing or damaged stops the load, naming the file.
+TEST(ModelStoreTest, LoadCleansMigratesAndRefusesDamage) {
+  const std::string data = kTetrahedronObj;
+  const std::string content = absl::BytesToHexString(Sha256Of(data)) + ".obj";
+  const std::filesystem::path dir = TempDir("load");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / ".cut.obj") << "half";
+  std::ofstream(dir / (std::string(64, 'a') + ".obj")) << "orphan";
+  std::ofstream(dir / "old.obj") << data;
+  {
+    ModelStore store(dir.string(), 4);
+    ASSERT_TRUE(store.Load().ok());
+    EXPECT_TRUE(store.Has("old.obj"));
+    EXPECT_EQ(Names(dir.string()), (std::vector<std::string>{content, "old.obj"}));
+    EXPECT_TRUE(std::filesystem::is_symlink(dir / "old.obj"));
+  }
+  {
+    std::ofstream(dir / content, std::ios::trunc) << data << "# changed\n";
+    ModelStore store(dir.string(), 4);
+    const absl::Status damaged = store.Load();
+    EXPECT_EQ(damaged.code(), absl::StatusCode::kFailedPrecondition);
+    EXPECT_NE(damaged.message().find(content), std::string::npos) << damaged;
+  }
+  {
+    std::filesystem::remove(dir / content);
+    ModelStore store(dir.string(), 4);
+    const absl::Status missing = store.Load();
+    EXPECT_EQ(missing.code(), absl::StatusCode::kFailedPrecondition);
+    EXPECT_NE(missing.message().find("is missing"), std::string::npos) << missing;
+    EXPECT_NE(missing.message().find("old.obj"), std::string::npos) << missing;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
