@@ -73,8 +73,12 @@ absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::
   }
   AbsoluteModelPaths(base_dir, spec);
   HS_ASSIGN_OR_RETURN(LoadedScene loaded, BuildChecked(spec, base_dir, deadline));
+  if (spec.record() && recording_.dir.empty()) {
+    return absl::FailedPreconditionError(
+        "record: this server keeps no recordings (it was started without --record-dir)");
+  }
   std::unique_ptr<SessionRecorder> recorder;
-  if (!recording_.dir.empty()) {
+  if (!recording_.dir.empty() && (recording_.all_scenes || spec.record())) {
     absl::StatusOr<std::unique_ptr<SessionRecorder>> started = SessionRecorder::Start(
         recording_,
         {spec.name(), spec, 0, loaded.scene->options().step_s, models_.dir()}, metrics_);

@@ -50,6 +50,12 @@ int main(int argc, char** argv) {
                  "What recordings keep of each frame: 'full', or 'digest' (its SHA-256)")
       ->check(CLI::IsMember({"full", "digest"}))
       ->capture_default_str();
+  std::string record_scenes = "all";
+  app.add_option("--record-scenes", record_scenes,
+                 "Which scenes --record-dir records: 'all', or 'requested' (those whose spec "
+                 "sets record)")
+      ->check(CLI::IsMember({"all", "requested"}))
+      ->capture_default_str();
   app.add_option("--record-sync-ms", options.recording.sync_ms,
                  "Longest a recorded record waits before it is synced to the disk, ms")
       ->check(CLI::Range(1, 10000))
@@ -96,6 +102,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   options.recording.frames = record_frames == "digest" ? haptics::v1::FRAME_RECORDING_DIGEST
                                                        : haptics::v1::FRAME_RECORDING_FULL;
+  options.recording.all_scenes = record_scenes == "all";
 
   // SIGTERM, SIGINT and SIGHUP are taken by sigwait below, not by any thread.
   sigset_t signals;
@@ -152,8 +159,10 @@ int main(int argc, char** argv) {
               << (*server)->registry().List().size() << " scenes running)\n";
   }
   if (!options.recording.dir.empty()) {
-    std::cerr << "haptic-server: recording every scene's session into " << options.recording.dir
-              << " (frames: " << record_frames << ")\n";
+    std::cerr << "haptic-server: recording "
+              << (options.recording.all_scenes ? "every scene's session"
+                                               : "the sessions of scenes that ask")
+              << " into " << options.recording.dir << " (frames: " << record_frames << ")\n";
   }
   std::cerr << "haptic-server: listening on port " << (*server)->port() << std::endl;
 

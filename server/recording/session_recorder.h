@@ -28,6 +28,8 @@ namespace hs {
 struct RecordingOptions {
   /// Where recordings go; "" records nothing.
   std::string dir;
+  /// Every scene, or only those whose spec asks (SceneSpec.record).
+  bool all_scenes = true;
   haptics::v1::FrameRecording frames = haptics::v1::FRAME_RECORDING_FULL;
   /// The longest a written record waits for the disk (fdatasync), ms.
   int sync_ms = 100;

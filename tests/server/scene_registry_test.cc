@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "tests/common/scratch_dir.h"
 #include "tests/server/test_server.h"
 
@@ -98,6 +100,29 @@ TEST_F(SceneRegistryTest, ServerWideLimitsAndStop) {
   EXPECT_TRUE(registry.List().empty());
   EXPECT_EQ(registry.Create(SmallScene("three"), "").status().code(),
             absl::StatusCode::kUnavailable);
+}
+
+// With --record-scenes requested, only scenes whose spec sets `record`
+// are recorded; a server without --record-dir refuses such a scene.
+TEST_F(SceneRegistryTest, RecordsTheScenesThatAsk) {
+  RecordingOptions recording;
+  recording.dir = ScratchDir("requested_recordings").string();
+  recording.all_scenes = false;
+  SceneRegistry registry({}, ScratchDir("models").string(), metrics_, nullptr, recording);
+  ASSERT_TRUE(registry.Create(SmallScene("quiet"), "").ok());
+  pb::SceneSpec asks = SmallScene("recorded");
+  asks.set_record(true);
+  ASSERT_TRUE(registry.Create(asks, "").ok());
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(recording.dir)) {
+    files.push_back(entry.path().filename().string());
+  }
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_TRUE(files[0].starts_with("recorded_")) << files[0];
+
+  SceneRegistry& plain = Registry();
+  EXPECT_EQ(plain.Create(asks, "").status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_FALSE(plain.Find("recorded").ok());
 }
 
 }  // namespace
