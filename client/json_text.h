@@ -10,7 +10,6 @@
 namespace hs::cli {
 
 /// Prints `j` to `out`, each key after `prefix`.
-void PrintJsonAsText(const nlohmann::ordered_json& j, const std::string& prefix,
-                     std::ostream& out);
+void PrintJsonAsText(const nlohmann::ordered_json& j, const std::string& prefix, std::ostream& out);
 
 }  // namespace hs::cli

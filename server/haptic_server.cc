@@ -48,7 +48,8 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
       return absl::UnavailableError(
           absl::StrCat("cannot make the state folder ", options.state_dir, ": ", error.message()));
     }
-    if (model_dir.empty()) model_dir = (std::filesystem::path(options.state_dir) / "models").string();
+    if (model_dir.empty())
+      model_dir = (std::filesystem::path(options.state_dir) / "models").string();
     absl::StatusOr<std::unique_ptr<SceneCatalogue>> opened =
         SceneCatalogue::Open((std::filesystem::path(options.state_dir) / "scenes.db").string());
     if (!opened.ok()) return opened.status();

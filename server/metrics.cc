@@ -41,8 +41,9 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
   missed_steps_off_cpu_ =
       &BuildCounter()
            .Name("hs_missed_steps_off_cpu_total")
-           .Help("Missed steps while the stepping thread was kept off the CPU, not stepping "
-                 "(the rule: server/step_pacer.h)")
+           .Help(
+               "Missed steps while the stepping thread was kept off the CPU, not stepping "
+               "(the rule: server/step_pacer.h)")
            .Register(*registry_)
            .Add({});
   auto& clients = BuildGauge().Name("hs_clients").Help("Open streams by kind").Register(*registry_);
@@ -65,8 +66,9 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
                          .Add({});
   recording_skipped_steps_ = &BuildCounter()
                                   .Name("hs_recording_skipped_steps_total")
-                                  .Help("Steps left out of recordings: the recorder's queue was "
-                                        "full or the disk refused")
+                                  .Help(
+                                      "Steps left out of recordings: the recorder's queue was "
+                                      "full or the disk refused")
                                   .Register(*registry_)
                                   .Add({});
   rejected_ = &BuildCounter()

@@ -9,8 +9,8 @@
 
 #include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
-#include "common/sandbox/sandboxed_import.h"
 #include "common/hash/sha256.h"
+#include "common/sandbox/sandboxed_import.h"
 #include "server/state/durable_file.h"
 
 namespace hs {
@@ -36,7 +36,8 @@ std::string ReadAll(const std::filesystem::path& path) {
 // The content file of bytes with digest `sha256` of model `id`: the hex
 // digest and the id's format ("<hex>.<format>").
 std::string ContentName(const std::string& sha256, const std::string& id) {
-  return absl::StrCat(absl::BytesToHexString(sha256), std::filesystem::path(id).extension().string());
+  return absl::StrCat(absl::BytesToHexString(sha256),
+                      std::filesystem::path(id).extension().string());
 }
 
 // Whether `name` is a content file's: 64 hex digits, a dot, a format.
@@ -125,13 +126,13 @@ absl::Status ModelStore::Load() {
       const fs::path content = fs::path(dir_) / target;
       const std::string hex = target.stem().string();
       if (!fs::is_regular_file(content, error)) {
-        return absl::FailedPreconditionError(absl::StrCat(
-            "model '", name, "' (", entry.path().string(), "): its content ", content.string(),
-            " is missing"));
+        return absl::FailedPreconditionError(absl::StrCat("model '", name, "' (",
+                                                          entry.path().string(), "): its content ",
+                                                          content.string(), " is missing"));
       }
       if (absl::BytesToHexString(Sha256Of(ReadAll(content))) != hex) {
-        return absl::FailedPreconditionError(absl::StrCat(
-            "model '", name, "': ", content.string(), " does not match its SHA-256"));
+        return absl::FailedPreconditionError(
+            absl::StrCat("model '", name, "': ", content.string(), " does not match its SHA-256"));
       }
       sha256_by_id[name] = absl::HexStringToBytes(hex);
       linked.insert(target.string());
@@ -152,9 +153,8 @@ absl::Status ModelStore::Load() {
     if (!fs::exists(content, error)) fs::rename(file, content, error);
     if (!error) error = LinkDurably(dir_, id, content.filename().string());
     if (error) {
-      return absl::FailedPreconditionError(
-          absl::StrCat("cannot move model ", file.string(), " to ", content.string(), ": ",
-                       error.message()));
+      return absl::FailedPreconditionError(absl::StrCat("cannot move model ", file.string(), " to ",
+                                                        content.string(), ": ", error.message()));
     }
     sha256_by_id_[id] = sha256;
   }
@@ -227,7 +227,8 @@ absl::Status ModelStore::Delete(const std::string& id) {
   std::filesystem::remove(std::filesystem::path(dir_) / id, error);
   const bool shared = std::any_of(sha256_by_id_.begin(), sha256_by_id_.end(),
                                   [&](const auto& entry) { return entry.second == sha256; });
-  if (!shared) std::filesystem::remove(std::filesystem::path(dir_) / ContentName(sha256, id), error);
+  if (!shared)
+    std::filesystem::remove(std::filesystem::path(dir_) / ContentName(sha256, id), error);
   (void)SyncFolder(dir_);
   return absl::OkStatus();
 }

@@ -80,8 +80,8 @@ absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::
   std::unique_ptr<SessionRecorder> recorder;
   if (!recording_.dir.empty() && (recording_.all_scenes || spec.record())) {
     absl::StatusOr<std::unique_ptr<SessionRecorder>> started = SessionRecorder::Start(
-        recording_,
-        {spec.name(), spec, 0, loaded.scene->options().step_s, models_.dir()}, metrics_);
+        recording_, {spec.name(), spec, 0, loaded.scene->options().step_s, models_.dir()},
+        metrics_);
     if (!started.ok()) {
       return absl::UnavailableError(
           absl::StrCat("cannot record the scene: ", started.status().message()));
@@ -143,9 +143,9 @@ absl::Status SceneRegistry::RestoreScenes() {
     absl::StatusOr<RunnerInfo> started =
         Create(std::move(spec), "", Deadline::max(), /*keep=*/false);
     if (!started.ok()) {
-      return absl::FailedPreconditionError(absl::StrCat("scene '", name, "' of ",
-                                                        catalogue_->path(),
-                                                        " does not start: ", started.status().message()));
+      return absl::FailedPreconditionError(
+          absl::StrCat("scene '", name, "' of ", catalogue_->path(),
+                       " does not start: ", started.status().message()));
     }
   }
   return absl::OkStatus();

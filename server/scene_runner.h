@@ -113,10 +113,10 @@ class SceneRunner {
   bool stop_ = false;
   bool devices_fresh_ = false;
   absl::Status stop_status_;
-  int64_t missed_steps_ = 0;                                // runner thread only
-  int64_t missed_steps_off_cpu_ = 0;                        // runner thread only
-  FreshPoses fresh_;         // runner thread only
-  SnapshotPool snapshots_;  // runner thread only
+  int64_t missed_steps_ = 0;          // runner thread only
+  int64_t missed_steps_off_cpu_ = 0;  // runner thread only
+  FreshPoses fresh_;                  // runner thread only
+  SnapshotPool snapshots_;            // runner thread only
 
   // Told of every step, edit and stream change, in order (under scene_mu_).
   std::unique_ptr<SessionRecorder> recorder_;

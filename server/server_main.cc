@@ -134,9 +134,9 @@ int main(int argc, char** argv) {
       continue;
     }
     absl::StatusOr<hs::RunnerInfo> info =
-        spec.ok() ? (*server)->registry().Create(
-                        *spec, std::filesystem::path(file).parent_path().string(),
-                        hs::SceneRegistry::Deadline::max(), /*keep=*/false)
+        spec.ok() ? (*server)->registry().Create(*spec,
+                                                 std::filesystem::path(file).parent_path().string(),
+                                                 hs::SceneRegistry::Deadline::max(), /*keep=*/false)
                   : absl::StatusOr<hs::RunnerInfo>(spec.status());
     if (!info.ok()) {
       std::cerr << "haptic-server: " << file << ": " << info.status().message() << "\n";

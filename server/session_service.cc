@@ -156,9 +156,9 @@ class FrameStream : public Base, public FrameSink {
   FrameOutbox outbox_;
   std::mutex finish_mu_;
   bool counted_ = false;
-  std::string caller_;      // set once its stream quota is taken
+  std::string caller_;       // set once its stream quota is taken
   FrameMessageArena frame_;  // the frame of the write in flight, until serialized
-  grpc::ByteBuffer bytes_;  // frame_, serialized: the write in flight
+  grpc::ByteBuffer bytes_;   // frame_, serialized: the write in flight
 };
 
 // Reads bytes and parses them here (raw_message.h): a message that is no

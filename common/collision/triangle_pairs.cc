@@ -287,7 +287,8 @@ class BucketTest {
       return false;
     }
     if (planes_only_) {
-      return SweptPlanesMeet(a.triangle, a.normal, b.triangle, b.normal, *sweep_A_, margin_, {0, 1});
+      return SweptPlanesMeet(a.triangle, a.normal, b.triangle, b.normal, *sweep_A_, margin_,
+                             {0, 1});
     }
     return !SweptIntersection(a.triangle, a.normal, b.triangle, b.normal, *sweep_A_, margin_,
                               {0, 1})
@@ -300,7 +301,6 @@ class BucketTest {
     const std::vector<int>& begin = skip_begin_;
     return skip_.subspan(begin[a], begin[a + 1] - begin[a]);
   }
-
 
   static void StartList(std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {
     list.clear();
@@ -329,7 +329,6 @@ class BucketTest {
     }
     list.resize(kept);
   }
-
 
   const CollisionModel::Impl& ia_;
   const CollisionModel::Impl& ib_;
@@ -452,8 +451,8 @@ int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_W
 int64_t FindSweptTrianglePairs(const CollisionModel& a, const Isometry3d& X_WA,
                                const Vector3d& sweep_W, const CollisionModel& b,
                                const Isometry3d& X_WB, double margin_m,
-                               std::vector<TrianglePair>& pairs,
-                               std::span<const TrianglePair> skip, SweptFaceTest face_test) {
+                               std::vector<TrianglePair>& pairs, std::span<const TrianglePair> skip,
+                               SweptFaceTest face_test) {
   return Find(a, X_WA, b, X_WB,
               {.sweep_W = &sweep_W,
                .margin_m = margin_m,

@@ -1,9 +1,9 @@
 #include "common/contact/contact_features.h"
 
 #include <algorithm>
-#include <tuple>
 #include <array>
 #include <cstdint>
+#include <tuple>
 
 #include "absl/container/flat_hash_set.h"
 
@@ -194,7 +194,6 @@ class Locator {
     }
     out.normal_F = normal_sum.squaredNorm() > 1e-24 ? Oriented(normal_sum.normalized(), normal_sum)
                                                     : -c_.direction_F;
-    
   }
 
  private:

@@ -473,7 +473,7 @@ std::vector<EdgeId> TouchedEdges(const PassResult& pass, const Candidates& edge_
 }  // namespace
 
 ContactSetF ReconstructByProjection(const ContactContext& context,
-                                   const ProjectionOptions& options) {
+                                    const ProjectionOptions& options) {
   const double tol = context.tolerance_m;
   const Vector3d& D = context.direction_F;
 
@@ -585,8 +585,8 @@ ContactSetF ReconstructByProjection(const ContactContext& context,
   const PassContacts f = Contacts(r.fixed, fixed, r.d_plane, tol);
   AggregateSide(context.moving, m.vertices,
                 TouchedEdges(r.fixed, moving, m.vertices, r.d_plane, tol), {}, set.moving);
-  AggregateSide(context.fixed, f.vertices, TouchedEdges(r.moving, fixed, f.vertices, r.d_plane, tol),
-                {}, set.fixed);
+  AggregateSide(context.fixed, f.vertices,
+                TouchedEdges(r.moving, fixed, f.vertices, r.d_plane, tol), {}, set.fixed);
 
   set.points.reserve(m.vertex_edge.size() + f.vertex_edge.size());
   for (const auto& [i, j] : m.vertex_edge) {

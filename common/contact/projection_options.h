@@ -38,6 +38,7 @@ struct ProjectionOptions {
 
 /// ReconstructByProjection (paper_method.h) with explicit options; the result
 /// is in F's frame.
-ContactSetF ReconstructByProjection(const ContactContext& context, const ProjectionOptions& options);
+ContactSetF ReconstructByProjection(const ContactContext& context,
+                                    const ProjectionOptions& options);
 
 }  // namespace hs

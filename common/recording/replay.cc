@@ -63,8 +63,8 @@ class ReplayedScene {
   absl::Status Build(const pb::SceneSpec& spec, int64_t after_step) {
     absl::StatusOr<LoadedScene> built = BuildScene(spec, BuildPaths{"", models_dir_});
     if (!built.ok()) {
-      return absl::InvalidArgumentError(absl::StrCat("the scene after step ", after_step,
-                                                     " does not build: ", built.status().message()));
+      return absl::InvalidArgumentError(absl::StrCat(
+          "the scene after step ", after_step, " does not build: ", built.status().message()));
     }
     loaded_ = std::move(*built);
     for (auto it = applied_.begin(); it != applied_.end();) {
@@ -122,9 +122,9 @@ absl::StatusOr<ReplayReport> ReplayRecording(const std::string& file,
   }
   ReplayReport report;
   report.files = session->files;
-  ReplayedScene scene(
-      options.uploaded_models_dir.empty() ? start.uploaded_models_dir() : options.uploaded_models_dir,
-      start.step_s(), start.frames());
+  ReplayedScene scene(options.uploaded_models_dir.empty() ? start.uploaded_models_dir()
+                                                          : options.uploaded_models_dir,
+                      start.step_s(), start.frames());
   if (absl::Status s = scene.Start(start); !s.ok()) return s;
   for (size_t i = 1; i < session->records.size(); ++i) {
     const pb::Record& record = session->records[i];
@@ -151,17 +151,15 @@ absl::StatusOr<ReplayReport> ReplayRecording(const std::string& file,
       }
       case pb::Record::kStart:  // the next part: it carries on from here
         if (record.start().after_step() != scene.step()) {
-          return absl::InvalidArgumentError(absl::StrCat("part ", record.start().part(),
-                                                         " starts after step ",
-                                                         record.start().after_step(),
-                                                         ", the part before ends at ", scene.step()));
+          return absl::InvalidArgumentError(absl::StrCat(
+              "part ", record.start().part(), " starts after step ", record.start().after_step(),
+              ", the part before ends at ", scene.step()));
         }
         break;
       case pb::Record::kGap:
-        report.stopped_early = absl::StrCat("the recorder skipped ", record.gap().steps(),
-                                            " steps from step ", record.gap().first_step(),
-                                            " (its queue was full): replayed up to step ",
-                                            scene.step());
+        report.stopped_early = absl::StrCat(
+            "the recorder skipped ", record.gap().steps(), " steps from step ",
+            record.gap().first_step(), " (its queue was full): replayed up to step ", scene.step());
         return report;
       default:  // stream changes and the end: nothing to re-run
         break;

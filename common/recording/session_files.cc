@@ -33,8 +33,7 @@ std::vector<std::string> SessionParts(const std::string& file) {
   if (file.size() < kSuffixBytes + kPartDigits + 1 || !file.ends_with(kSuffix)) return parts;
   const size_t digits_at = file.size() - kSuffixBytes - kPartDigits;
   int part = 0;
-  if (file[digits_at - 1] != '.' ||
-      !absl::SimpleAtoi(file.substr(digits_at, kPartDigits), &part)) {
+  if (file[digits_at - 1] != '.' || !absl::SimpleAtoi(file.substr(digits_at, kPartDigits), &part)) {
     return parts;
   }
   const std::string stem = file.substr(0, digits_at);

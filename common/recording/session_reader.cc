@@ -19,8 +19,8 @@ absl::StatusOr<RecordedSession> ReadSession(const std::string& file) {
     }
     const int part = contents->records.front().start().part();
     if (!session.files.empty() && part != session.files.back().part + 1) {
-      return absl::InvalidArgumentError(absl::StrCat(path, ": part ", part, " after part ",
-                                                     session.files.back().part));
+      return absl::InvalidArgumentError(
+          absl::StrCat(path, ": part ", part, " after part ", session.files.back().part));
     }
     session.files.push_back({.path = path,
                              .part = part,

@@ -60,21 +60,41 @@ bool ShutOffTheWorld() {
   scmp_filter_ctx filter = seccomp_init(SCMP_ACT_ALLOW);
   if (filter == nullptr) return false;
   bool ok = true;
-  for (int call : {SCMP_SYS(open), SCMP_SYS(openat), SCMP_SYS(openat2), SCMP_SYS(creat),
-                   SCMP_SYS(open_by_handle_at), SCMP_SYS(socket), SCMP_SYS(socketpair),
-                   SCMP_SYS(connect), SCMP_SYS(bind), SCMP_SYS(listen), SCMP_SYS(accept),
-                   SCMP_SYS(accept4), SCMP_SYS(fork), SCMP_SYS(vfork), SCMP_SYS(ptrace),
-                   SCMP_SYS(unlink), SCMP_SYS(unlinkat), SCMP_SYS(rename), SCMP_SYS(renameat),
-                   SCMP_SYS(renameat2), SCMP_SYS(mkdir), SCMP_SYS(mkdirat), SCMP_SYS(truncate),
-                   SCMP_SYS(chmod), SCMP_SYS(fchmodat), SCMP_SYS(link), SCMP_SYS(symlink)}) {
+  for (int call : {SCMP_SYS(open),
+                   SCMP_SYS(openat),
+                   SCMP_SYS(openat2),
+                   SCMP_SYS(creat),
+                   SCMP_SYS(open_by_handle_at),
+                   SCMP_SYS(socket),
+                   SCMP_SYS(socketpair),
+                   SCMP_SYS(connect),
+                   SCMP_SYS(bind),
+                   SCMP_SYS(listen),
+                   SCMP_SYS(accept),
+                   SCMP_SYS(accept4),
+                   SCMP_SYS(fork),
+                   SCMP_SYS(vfork),
+                   SCMP_SYS(ptrace),
+                   SCMP_SYS(unlink),
+                   SCMP_SYS(unlinkat),
+                   SCMP_SYS(rename),
+                   SCMP_SYS(renameat),
+                   SCMP_SYS(renameat2),
+                   SCMP_SYS(mkdir),
+                   SCMP_SYS(mkdirat),
+                   SCMP_SYS(truncate),
+                   SCMP_SYS(chmod),
+                   SCMP_SYS(fchmodat),
+                   SCMP_SYS(link),
+                   SCMP_SYS(symlink)}) {
     ok = ok && seccomp_rule_add(filter, SCMP_ACT_ERRNO(EACCES), call, 0) == 0;
   }
   // Nor may it ask whether a path exists (Coin stats a File node's name
   // before opening it): stat-like calls on a path fail too, while fstat
   // (newfstatat and statx on a descriptor, AT_EMPTY_PATH) still works.
   for (int call : {SCMP_SYS(stat), SCMP_SYS(lstat), SCMP_SYS(access), SCMP_SYS(faccessat),
-                   SCMP_SYS(faccessat2), SCMP_SYS(readlink), SCMP_SYS(readlinkat),
-                   SCMP_SYS(chdir), SCMP_SYS(getdents64)}) {
+                   SCMP_SYS(faccessat2), SCMP_SYS(readlink), SCMP_SYS(readlinkat), SCMP_SYS(chdir),
+                   SCMP_SYS(getdents64)}) {
     ok = ok && seccomp_rule_add(filter, SCMP_ACT_ERRNO(EACCES), call, 0) == 0;
   }
   ok = ok && seccomp_rule_add(filter, SCMP_ACT_ERRNO(EACCES), SCMP_SYS(newfstatat), 1,

@@ -113,8 +113,8 @@ bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectI
   const Counterpart c = CounterpartOf(other, tools);
   // Boxes apart (grown by the margins that cover the touching tolerance):
   // no contact, without asking the narrow phase.
-  if (options_.broad_phase && !objects_.GrownBox(body.id, body.state.X_WO)
-                                   .intersects(objects_.GrownBox(other, c.X_WO))) {
+  if (options_.broad_phase &&
+      !objects_.GrownBox(body.id, body.state.X_WO).intersects(objects_.GrownBox(other, c.X_WO))) {
     return false;
   }
   // The body's motion relative to the other object: the direction the
@@ -133,8 +133,8 @@ bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectI
   // The normal share of the reversing vector: moving back along the whole
   // vector would also undo the body's sliding along the surface.
   if (contact.penetrating) {
-    response.separation_m = SeparationAlongNormal(body.id, body.state.X_WO, other, c.X_WO,
-                                                  contact, query.direction_W, response.normal_W);
+    response.separation_m = SeparationAlongNormal(body.id, body.state.X_WO, other, c.X_WO, contact,
+                                                  query.direction_W, response.normal_W);
   }
   response.p_WC = CentreOfMass(body.mass, body.state);
   if (!contact.points.empty()) {

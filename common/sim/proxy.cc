@@ -20,9 +20,8 @@ struct SlideTouch {
 
 // The earliest touch of the tool (orientation R) moving from p to p + v,
 // into `earliest` (kept storage); returns the obstacle touched, -1 for none.
-absl::StatusOr<int> FindEarliestTouch(const PosedObject& tool, const Matrix3d& R,
-                                      const Vector3d& p, const Vector3d& v,
-                                      std::span<const PosedObject> obstacles,
+absl::StatusOr<int> FindEarliestTouch(const PosedObject& tool, const Matrix3d& R, const Vector3d& p,
+                                      const Vector3d& v, std::span<const PosedObject> obstacles,
                                       const ProxyOptions& options, FirstTouch& earliest) {
   Isometry3d X_end = Isometry3d::Identity();
   X_end.linear() = R;

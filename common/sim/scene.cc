@@ -96,10 +96,9 @@ const StepFrame& Scene::Step() {
     bodies_.Step(tools_, frame_.bodies);
     if (stages.Has(Effect::kForce)) {
       for (ToolFrame& tool : frame_.tools) {
-        const ToolForce force =
-            WithPushReaction({tool.force_W, tool.torque_W, tool.force_clamped},
-                             bodies_.PushImpulseOf(tool.tool), options_.step_s,
-                             options_.force_clamp_n);
+        const ToolForce force = WithPushReaction({tool.force_W, tool.torque_W, tool.force_clamped},
+                                                 bodies_.PushImpulseOf(tool.tool), options_.step_s,
+                                                 options_.force_clamp_n);
         tool.force_W = force.force_W;
         tool.force_clamped = force.clamped;
       }

@@ -237,9 +237,9 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
     const bool at_end = pair.substep == frame.substeps;
     const PosedObject at =
         at_end ? device
-               : objects_.Posed(tool.id, InterpolatePose(tool.X_WD_previous, tool.X_WD,
-                                                         static_cast<double>(pair.substep) /
-                                                             frame.substeps));
+               : objects_.Posed(
+                     tool.id, InterpolatePose(tool.X_WD_previous, tool.X_WD,
+                                              static_cast<double>(pair.substep) / frame.substeps));
     absl::Status status =
         ComputeContact(at, other, at_end ? at_device : along_motion, pair.contact);
     if (continuous && status.ok() && !pair.contact.colliding) {

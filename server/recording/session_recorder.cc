@@ -158,8 +158,8 @@ bool SessionRecorder::Append(const pb::Record& record) {
   if (failed_) return false;
   const int64_t before = file_.bytes();
   if (absl::Status s = file_.Append(record); !s.ok()) {
-    std::cerr << "haptic-server: recording of scene '" << start_.scene() << "' stops: "
-              << s.message() << "\n";
+    std::cerr << "haptic-server: recording of scene '" << start_.scene()
+              << "' stops: " << s.message() << "\n";
     failed_ = true;
     return false;
   }

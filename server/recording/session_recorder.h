@@ -101,8 +101,8 @@ class SessionRecorder {
   int queued_steps_ = 0;                 // guarded by mu_
   // Steps skipped since the last one queued; guarded by mu_.
   std::optional<haptics::v1::RecordingGap> gap_;
-  int64_t skipped_steps_ = 0;            // guarded by mu_
-  bool stop_ = false;                    // guarded by mu_
+  int64_t skipped_steps_ = 0;  // guarded by mu_
+  bool stop_ = false;          // guarded by mu_
 
   // Writer thread only, but for path() (under mu_).
   RecordFileWriter file_;

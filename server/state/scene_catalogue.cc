@@ -56,9 +56,9 @@ absl::StatusOr<std::unique_ptr<SceneCatalogue>> SceneCatalogue::Open(const std::
     absl::StatusOr<int> version = PragmaInt(db, "PRAGMA user_version", path);
     if (!version.ok()) return version.status();
     if (*id != kApplicationId || *version != kSchemaVersion) {
-      return absl::FailedPreconditionError(absl::StrCat(
-          path, " is not a scene catalogue of this server (application id ", *id,
-          ", schema version ", *version, ")"));
+      return absl::FailedPreconditionError(
+          absl::StrCat(path, " is not a scene catalogue of this server (application id ", *id,
+                       ", schema version ", *version, ")"));
     }
     absl::StatusOr<Statement> check = Prepare(db, "PRAGMA quick_check", path);
     if (!check.ok()) return check.status();
@@ -71,10 +71,10 @@ absl::StatusOr<std::unique_ptr<SceneCatalogue>> SceneCatalogue::Open(const std::
     if (absl::Status s = catalogue->Execute(sql); !s.ok()) return s;
   }
   if (!existed) {
-    const std::string schema = absl::StrCat(
-        "BEGIN; CREATE TABLE scenes (name TEXT PRIMARY KEY, spec BLOB NOT NULL);",
-        "PRAGMA application_id = ", kApplicationId, "; PRAGMA user_version = ", kSchemaVersion,
-        "; COMMIT;");
+    const std::string schema =
+        absl::StrCat("BEGIN; CREATE TABLE scenes (name TEXT PRIMARY KEY, spec BLOB NOT NULL);",
+                     "PRAGMA application_id = ", kApplicationId,
+                     "; PRAGMA user_version = ", kSchemaVersion, "; COMMIT;");
     if (absl::Status s = catalogue->Execute(schema.c_str()); !s.ok()) return s;
   }
   return catalogue;

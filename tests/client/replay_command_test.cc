@@ -28,7 +28,9 @@ void ExpectRefused(const std::string& path, const std::string& says) {
   EXPECT_EQ(RunRecording({.file = path, .json = false}, out, err), kExitFailure) << path;
   EXPECT_NE(err.str().find(says), std::string::npos) << err.str();
   std::ostringstream replay_out, replay_err;
-  EXPECT_EQ(RunReplay({.file = path, .model_dir = "", .json = false}, replay_out, replay_err), kExitFailure) << path;
+  EXPECT_EQ(RunReplay({.file = path, .model_dir = "", .json = false}, replay_out, replay_err),
+            kExitFailure)
+      << path;
   EXPECT_NE(replay_err.str().find(says), std::string::npos) << replay_err.str();
 }
 

@@ -10,8 +10,8 @@
 #include "absl/strings/escaping.h"
 #include "client/exit_codes.h"
 #include "client/scenes_command.h"
-#include "server/haptic_server.h"
 #include "common/hash/sha256.h"
+#include "server/haptic_server.h"
 #include "tests/common/scratch_dir.h"
 
 namespace hs::cli {

@@ -44,11 +44,12 @@ std::unique_ptr<hs::HapticObject> Mesh(Bytes& in) {
   hs::MeshInput mesh;
   mesh.materials.emplace_back();
   const int vertices = 3 + in.Small(6);
-  for (int v = 0; v < vertices; ++v) mesh.positions.emplace_back(in.Number(), in.Number(), in.Number());
+  for (int v = 0; v < vertices; ++v)
+    mesh.positions.emplace_back(in.Number(), in.Number(), in.Number());
   const int faces = 1 + in.Small(8);
   for (int f = 0; f < faces; ++f) {
-    mesh.faces.push_back(hs::FaceInput{
-        .vertices = {in.Small(vertices), in.Small(vertices), in.Small(vertices)}});
+    mesh.faces.push_back(
+        hs::FaceInput{.vertices = {in.Small(vertices), in.Small(vertices), in.Small(vertices)}});
   }
   absl::StatusOr<hs::HapticObject> object = hs::HapticObject::Create("m", std::move(mesh));
   if (!object.ok()) return nullptr;

@@ -26,8 +26,7 @@ TEST_F(SceneRegistryTest, CreateFindListDelete) {
   SceneRegistry& registry = Registry();
   ASSERT_TRUE(registry.Create(SmallScene("b"), "").ok());
   ASSERT_TRUE(registry.Create(SmallScene("a"), "").ok());
-  EXPECT_EQ(registry.Create(SmallScene("a"), "").status().code(),
-            absl::StatusCode::kAlreadyExists);
+  EXPECT_EQ(registry.Create(SmallScene("a"), "").status().code(), absl::StatusCode::kAlreadyExists);
   ASSERT_TRUE(registry.Find("a").ok());
   const std::vector<std::shared_ptr<SceneRunner>> listed = registry.List();
   ASSERT_EQ(listed.size(), 2u);
@@ -76,10 +75,9 @@ TEST_F(SceneRegistryTest, FailedEditsChangeNothing) {
   ASSERT_TRUE(edited.ok()) << edited.status();
   EXPECT_EQ(edited->revision, revision + 1);
   EXPECT_EQ(edited->spec.objects(0).pose().position_m().x(), 0.5);
-  EXPECT_EQ(registry.Edit("missing", [](pb::SceneSpec&) { return absl::OkStatus(); })
-                .status()
-                .code(),
-            absl::StatusCode::kNotFound);
+  EXPECT_EQ(
+      registry.Edit("missing", [](pb::SceneSpec&) { return absl::OkStatus(); }).status().code(),
+      absl::StatusCode::kNotFound);
 }
 
 // Past max_scenes and max_clients: RESOURCE_EXHAUSTED; a client slot given

@@ -47,7 +47,8 @@ TEST(SceneServiceTest, LifecycleAndLargeUpload) {
   std::string obj = kCubeObj;
   while (obj.size() < (5u << 20)) obj += "# padding padding padding padding padding padding\n";
   pb::UploadModelResponse uploaded;
-  const grpc::Status upload = UploadModel(server.scenes(), "cube", "obj", obj, Sha256Of(obj), 1 << 20, &uploaded);
+  const grpc::Status upload =
+      UploadModel(server.scenes(), "cube", "obj", obj, Sha256Of(obj), 1 << 20, &uploaded);
   ASSERT_TRUE(upload.ok()) << upload.error_message();
   EXPECT_EQ(uploaded.model_id(), "cube.obj");
   EXPECT_EQ(uploaded.triangles(), 12);

@@ -5,27 +5,27 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <functional>
-#include <sstream>
 #include <algorithm>
-#include <cmath>
-#include <vector>
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "absl/strings/escaping.h"
-#include "haptics/v1/scene_service.grpc.pb.h"
-#include "haptics/v1/session_service.grpc.pb.h"
 #include "common/hash/sha256.h"
 #include "common/recording/recording_summary.h"
 #include "common/recording/replay.h"
-#include "tests/server/test_server.h"
+#include "haptics/v1/scene_service.grpc.pb.h"
+#include "haptics/v1/session_service.grpc.pb.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/server/test_server.h"
 
 namespace hs {
 namespace {
@@ -208,8 +208,8 @@ std::vector<std::string> RecordingsOf(const std::string& dir, const std::string&
 // With `then` it runs once half the poses are sent (the stream stays open).
 int DriveBurst(int port, const std::string& scene, int poses,
                const std::function<void()>& then = {}) {
-  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(port),
-                                     grpc::InsecureChannelCredentials());
+  auto channel =
+      grpc::CreateChannel("127.0.0.1:" + std::to_string(port), grpc::InsecureChannelCredentials());
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
   auto stream = pb::SessionService::NewStub(channel)->Interact(&context);
@@ -245,7 +245,7 @@ int DriveBurst(int port, const std::string& scene, int poses,
 TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
   const std::string state = ScratchDir("crash_state").string();
   const std::string records = ScratchDir("crash_records").string();
-  const std::vector<std::string> flags = {"--state-dir", state, "--record-dir", records,
+  const std::vector<std::string> flags = {"--state-dir",      state, "--record-dir", records,
                                           "--record-sync-ms", "20"};
   const std::string cube = ReadFile(std::string(HS_TEST_DATA_DIR) + "/cube.obj");
   ASSERT_FALSE(cube.empty());
@@ -254,8 +254,8 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
     ASSERT_GT(server.port(), 0) << server.startup();
     auto stub = SceneStub(server.port());
     pb::UploadModelResponse uploaded;
-    ASSERT_TRUE(testing::UploadModel(*stub, "cube", "obj", cube, Sha256Of(cube), 1 << 20, &uploaded)
-                    .ok());
+    ASSERT_TRUE(
+        testing::UploadModel(*stub, "cube", "obj", cube, Sha256Of(cube), 1 << 20, &uploaded).ok());
     pb::CreateSceneRequest create;
     *create.mutable_spec() = testing::SmallScene("kept");
     pb::SceneObject* object = create.mutable_spec()->add_objects();
@@ -311,7 +311,8 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
   // cut short.
   const std::vector<std::string> recordings = RecordingsOf(records, "kept");
   ASSERT_EQ(recordings.size(), 3u);  // one per run
-  std::ofstream(recordings.back(), std::ios::binary | std::ios::app) << std::string("\x40\0\0\0abc", 7);
+  std::ofstream(recordings.back(), std::ios::binary | std::ios::app)
+      << std::string("\x40\0\0\0abc", 7);
 
   ServerProcess again(flags);
   ASSERT_GT(again.port(), 0) << again.startup();
@@ -323,9 +324,9 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
   // The model acknowledged is kept (the same bytes again: the stored one);
   // nothing of the cut upload is left.
   pb::UploadModelResponse again_uploaded;
-  ASSERT_TRUE(testing::UploadModel(*stub, "cube", "obj", cube, Sha256Of(cube), 1 << 20,
-                                   &again_uploaded)
-                  .ok());
+  ASSERT_TRUE(
+      testing::UploadModel(*stub, "cube", "obj", cube, Sha256Of(cube), 1 << 20, &again_uploaded)
+          .ok());
   EXPECT_EQ(again_uploaded.model_id(), "cube.obj");
   for (const auto& entry : std::filesystem::directory_iterator(state + "/models")) {
     EXPECT_FALSE(entry.path().filename().string().starts_with("cut")) << entry.path();
@@ -335,13 +336,13 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
     const std::string& file = recordings[run];
     absl::StatusOr<RecordingSummary> summary = SummarizeRecording(file);
     ASSERT_TRUE(summary.ok()) << summary.status();
-    EXPECT_FALSE(summary->ended) << file;  // a crash ended it
+    EXPECT_FALSE(summary->ended) << file;                            // a crash ended it
     EXPECT_TRUE(summary->files.back().torn_reason.empty()) << file;  // cut at the start
     absl::StatusOr<ReplayReport> report = ReplayRecording(file, {});
     ASSERT_TRUE(report.ok()) << report.status();
     EXPECT_TRUE(report->all_identical())
-        << file << ": step " << report->first_divergent_step << " "
-        << report->first_divergent_field << " " << report->stopped_early;
+        << file << ": step " << report->first_divergent_step << " " << report->first_divergent_field
+        << " " << report->stopped_early;
     EXPECT_GT(report->steps_compared, 0) << file;
     if (run != 1) {  // the runs with a burst
       EXPECT_GT(summary->inputs, 100) << file;

@@ -61,7 +61,8 @@ TEST(StepAllocationTest, ThousandDemoStepsWithTwoStreamsAllocateNothing) {
   ASSERT_TRUE(spec.ok()) << spec.status();
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(scenes + "/probe_on_torus.textproto");
   ASSERT_TRUE(loaded.ok()) << loaded.status();
-  const absl::StatusOr<std::vector<Isometry3d>> path = cli::ReadToolPath(scenes + "/press_and_slide.csv");
+  const absl::StatusOr<std::vector<Isometry3d>> path =
+      cli::ReadToolPath(scenes + "/press_and_slide.csv");
   ASSERT_TRUE(path.ok()) << path.status();
   Metrics metrics;
   SceneRunner runner(*spec, *std::move(loaded), metrics);

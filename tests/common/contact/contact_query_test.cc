@@ -103,8 +103,8 @@ TEST(ContactQueryTest, RejectsNonFiniteAndNonRigidInput) {
   EXPECT_EQ(code({.direction_W = kDown}), kInvalid);
   cube->X_WO = Isometry3d::Identity();
   EXPECT_TRUE(ComputeContact(cube->posed(), floor->posed(), {.direction_W = kDown}).ok());
-  const auto aabb_floor = MakeBody(MakeBox(Vector3d(4, 4, 1)), Translation(0, 0, -0.5),
-                                   BvType::kAabb);
+  const auto aabb_floor =
+      MakeBody(MakeBox(Vector3d(4, 4, 1)), Translation(0, 0, -0.5), BvType::kAabb);
   EXPECT_EQ(
       ComputeContact(cube->posed(), aabb_floor->posed(), {.direction_W = kDown}).status().code(),
       kInvalid);

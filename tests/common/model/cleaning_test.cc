@@ -20,7 +20,7 @@ FaceInput Triangle(VertexId a, VertexId b, VertexId c, MaterialId material, Poly
 // and unused; 6 the midpoint of edge 0-1.
 RawMesh SquareWithFaults() {
   RawMesh raw;
-  raw.positions = {{0, 0, 0},    {1000, 0, 0},   {1000, 1000, 0},    {0, 1000, 0},
+  raw.positions = {{0, 0, 0},          {1000, 0, 0},       {1000, 1000, 0}, {0, 1000, 0},
                    {1000, 1000, 1e-7}, {5000, 5000, 5000}, {500, 0, 0}};
   raw.material_names = {"", "steel"};
   const int32_t square[] = {0, 1, 2, 3};
@@ -40,9 +40,9 @@ RawMesh SquareWithFaults() {
 // materials made in order of first use, "" named after the default.
 TEST(CleaningTest, EachFaultCountedByHand) {
   const RawMesh raw = SquareWithFaults();
-  const std::vector<FaceInput> triangles = {
-      Triangle(0, 1, 2, 1, 0), Triangle(0, 2, 3, 0, 0), Triangle(3, 0, 4, 0, 1),
-      Triangle(0, 6, 1, 1, 2), Triangle(1, 2, 4, 1, 3)};
+  const std::vector<FaceInput> triangles = {Triangle(0, 1, 2, 1, 0), Triangle(0, 2, 3, 0, 0),
+                                            Triangle(3, 0, 4, 0, 1), Triangle(0, 6, 1, 1, 2),
+                                            Triangle(1, 2, 4, 1, 3)};
   ImportOptions options;
   options.unit_scale = 0.001;
   options.default_material.name = "tissue";

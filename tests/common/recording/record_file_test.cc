@@ -23,7 +23,8 @@ std::vector<pb::Record> SomeRecords() {
   records[0].mutable_start()->set_step_s(0.001);
   records[1].mutable_input()->set_step(1);
   records[1].mutable_input()->set_tool("probe");
-  for (int i = 0; i < 9; ++i) records[1].mutable_input()->mutable_device_pose()->add_rotation_row_major(i);
+  for (int i = 0; i < 9; ++i)
+    records[1].mutable_input()->mutable_device_pose()->add_rotation_row_major(i);
   records[2].mutable_frame()->set_step(1);
   records[2].mutable_frame()->mutable_frame()->set_time_s(0.001);
   records[3].mutable_end()->set_last_step(1);
@@ -135,7 +136,8 @@ TEST(RecordFileTest, ForeignAndMissingFilesAreErrors) {
 // A length field past the cap is damage, not a request for 4 GiB.
 TEST(RecordFileTest, HugeLengthIsTornNotRead) {
   const std::string path = (ScratchDir("records") / "huge.hsrec").string();
-  Overwrite(path, std::string(kRecordingMagic, kRecordingMagicBytes) + std::string("\xff\xff\xff\xff\0\0\0\0", 8));
+  Overwrite(path, std::string(kRecordingMagic, kRecordingMagicBytes) +
+                      std::string("\xff\xff\xff\xff\0\0\0\0", 8));
   absl::StatusOr<RecordFileContents> read = ReadRecordFile(path);
   ASSERT_TRUE(read.ok());
   EXPECT_TRUE(read->torn());

@@ -80,7 +80,8 @@ TEST(SandboxedImportTest, DeepNestingCrashesOnlyTheWorker) {
   for (int i = 0; i < kDepth; ++i) dae += "<node>";
   for (int i = 0; i < kDepth; ++i) dae += "</node>";
   dae += "</visual_scene></library_visual_scenes></COLLADA>";
-  for (const auto& [name, text] : {std::pair{"deep.iv", iv}, {"deep.wrl", wrl}, {"deep.dae", dae}}) {
+  for (const auto& [name, text] :
+       {std::pair{"deep.iv", iv}, {"deep.wrl", wrl}, {"deep.dae", dae}}) {
     const std::string path = Write(name, text);
     absl::StatusOr<ImportedModel> model = SandboxedImport(path);
     ASSERT_FALSE(model.ok()) << name;
@@ -107,7 +108,8 @@ TEST(SandboxedImportTest, ReferencesToOtherFilesReadNothing) {
   auto gltf = [](const std::string& target) {
     return Write("escape-" + target.substr(5) + ".gltf", R"({
       "asset": {"version": "2.0"},
-      "buffers": [{"uri": "../../../../../../../..)" + target + R"(", "byteLength": 36}],
+      "buffers": [{"uri": "../../../../../../../..)" + target +
+                                                             R"(", "byteLength": 36}],
       "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
       "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
                      "min": [0, 0, 0], "max": [1, 1, 1]}],
@@ -124,14 +126,17 @@ TEST(SandboxedImportTest, ReferencesToOtherFilesReadNothing) {
     EXPECT_FALSE(model.ok()) << path;
     EXPECT_EQ(model.status().code(), absl::StatusCode::kInvalidArgument);
     std::string message(model.status().message());
-    for (const std::string& name : {path, target, std::filesystem::path(path).filename().string()}) {
-      for (size_t at; (at = message.find(name)) != std::string::npos;) message.replace(at, name.size(), "X");
+    for (const std::string& name :
+         {path, target, std::filesystem::path(path).filename().string()}) {
+      for (size_t at; (at = message.find(name)) != std::string::npos;)
+        message.replace(at, name.size(), "X");
     }
     return message;
   };
   const int before = OpenDescriptors();
   for (int round = 0; round < 20; ++round) {
-    EXPECT_EQ(Message(gltf("/etc/passwd"), "/etc/passwd"), Message(gltf("/etc/nopass"), "/etc/nopass"));
+    EXPECT_EQ(Message(gltf("/etc/passwd"), "/etc/passwd"),
+              Message(gltf("/etc/nopass"), "/etc/nopass"));
     EXPECT_EQ(Message(iv("/etc/passwd"), "/etc/passwd"), Message(iv("/etc/nopass"), "/etc/nopass"));
   }
   EXPECT_EQ(OpenDescriptors(), before);
@@ -142,7 +147,8 @@ TEST(SandboxedImportTest, ReferencesToOtherFilesReadNothing) {
                                 "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   absl::StatusOr<ImportedModel> obj_model = SandboxedImport(obj);
   ASSERT_TRUE(obj_model.ok()) << obj_model.status();
-  for (const Material& m : obj_model->object.materials()) EXPECT_THAT(m.name, Not(HasSubstr("root")));
+  for (const Material& m : obj_model->object.materials())
+    EXPECT_THAT(m.name, Not(HasSubstr("root")));
 }
 
 // Too little memory ends the import with a message naming the file.
@@ -167,7 +173,8 @@ TEST(SandboxedImportTest, MemoryLimitEndsTheImport) {
 TEST(SandboxedImportTest, WallTimeAndMissingPieces) {
   const std::string kidney = DataPath("kidney.obj");
 
-  absl::StatusOr<ImportedModel> hurried = SandboxedImport(kidney, {}, SandboxLimits{.wall_s = 1e-6});
+  absl::StatusOr<ImportedModel> hurried =
+      SandboxedImport(kidney, {}, SandboxLimits{.wall_s = 1e-6});
   ASSERT_FALSE(hurried.ok());
   EXPECT_THAT(hurried.status().message(), HasSubstr("took longer than"));
 

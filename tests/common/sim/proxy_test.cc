@@ -95,12 +95,10 @@ TEST(ProxyTest, SlidesToAboveTheDeviceWithoutFriction) {
 TEST(ProxyTest, FrictionSticksInsideTheConeAndLagsOutside) {
   const Rig rig;
   const double depth = kResting - 0.01;
-  const ProxyState stuck =
-      *rig.Move(At(0, 0, kResting), At(0.002, 0, depth), /*friction=*/true);
+  const ProxyState stuck = *rig.Move(At(0, 0, kResting), At(0.002, 0, depth), /*friction=*/true);
   ASSERT_TRUE(stuck.touching);
   EXPECT_NEAR(stuck.X_WP.translation().x(), 0, kAt);
-  const ProxyState lagging =
-      *rig.Move(At(0, 0, kResting), At(0.005, 0, depth), /*friction=*/true);
+  const ProxyState lagging = *rig.Move(At(0, 0, kResting), At(0.005, 0, depth), /*friction=*/true);
   ASSERT_TRUE(lagging.touching);
   EXPECT_NEAR(lagging.X_WP.translation().x(), 0.003, kAt);
   EXPECT_NEAR(lagging.X_WP.translation().z(), kResting, kAt);

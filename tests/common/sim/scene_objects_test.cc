@@ -55,8 +55,9 @@ TEST(SceneObjectsTest, PairsMatchBoxesAfterMoves) {
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<ObjectKind> kinds;
   for (int i = 0; i < 12; ++i) {
-    kinds.push_back(i % 3 == 0 ? ObjectKind::kFixed : i % 3 == 1 ? ObjectKind::kFree
-                                                                 : ObjectKind::kTool);
+    kinds.push_back(i % 3 == 0   ? ObjectKind::kFixed
+                    : i % 3 == 1 ? ObjectKind::kFree
+                                 : ObjectKind::kTool);
     AddCube(objects, 0.2, kinds.back(), At(u(rng), u(rng), u(rng)));
   }
   std::vector<Isometry3d> poses(12);

@@ -6,8 +6,8 @@
 #include <map>
 
 #include "absl/strings/escaping.h"
-#include "server/haptic_server.h"
 #include "common/hash/sha256.h"
+#include "server/haptic_server.h"
 #include "tests/common/scratch_dir.h"
 #include "tests/server/test_server.h"
 

@@ -107,8 +107,8 @@ TEST(SessionRecorderTest, FullFramesReplayBitForBit) {
 
   absl::StatusOr<ReplayReport> report = ReplayRecording(file, {});
   ASSERT_TRUE(report.ok()) << report.status();
-  EXPECT_TRUE(report->all_identical()) << report->first_divergent_step << " "
-                                       << report->first_divergent_field;
+  EXPECT_TRUE(report->all_identical())
+      << report->first_divergent_step << " " << report->first_divergent_field;
   EXPECT_EQ(report->steps_compared, summary->steps);
 }
 
@@ -137,7 +137,8 @@ TEST(SessionRecorderTest, ChangedFrameIsTheFirstDivergence) {
     if (changed_step == 0 && r.has_frame() && r.frame().frame().tools_size() > 0 &&
         r.frame().frame().tools(0).force_w_n().z() != 0) {
       changed_step = r.frame().step();
-      pb::Vector3* force = r.mutable_frame()->mutable_frame()->mutable_tools(0)->mutable_force_w_n();
+      pb::Vector3* force =
+          r.mutable_frame()->mutable_frame()->mutable_tools(0)->mutable_force_w_n();
       force->set_z(force->z() + 1e-12);
     }
     ASSERT_TRUE(writer->Append(r).ok());

@@ -74,9 +74,9 @@ TEST(SceneCatalogueTest, RefusesWhatIsNoCatalogue) {
   {
     sqlite3* db = nullptr;
     ASSERT_EQ(sqlite3_open(bad_row.c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db, "INSERT INTO scenes VALUES ('x', X'FFFFFFFF')", nullptr, nullptr,
-                           nullptr),
-              SQLITE_OK);
+    ASSERT_EQ(
+        sqlite3_exec(db, "INSERT INTO scenes VALUES ('x', X'FFFFFFFF')", nullptr, nullptr, nullptr),
+        SQLITE_OK);
     sqlite3_close(db);
   }
   const auto loaded = (*SceneCatalogue::Open(bad_row))->LoadAll();
