@@ -34,14 +34,6 @@ Clock::time_point AtNanoseconds(int64_t ns) {
       std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(ns)));
 }
 
-// The id of tool `name` in `scene`, or -1.
-ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
-  for (ObjectId id : scene.tools) {
-    if (scene.names[id] == name) return id;
-  }
-  return -1;
-}
-
 }  // namespace
 
 SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,

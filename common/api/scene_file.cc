@@ -237,6 +237,13 @@ class FirstError : public google::protobuf::io::ErrorCollector {
 
 }  // namespace
 
+ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
+  for (ObjectId id : scene.tools) {
+    if (scene.names[id] == name) return id;
+  }
+  return -1;
+}
+
 absl::StatusOr<pb::SceneSpec> ReadSceneFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) return absl::NotFoundError(absl::StrCat(path, ": cannot open"));

@@ -32,6 +32,9 @@ struct BuildPaths {
   std::string uploaded_dir;
 };
 
+/// The id of tool `name` in `scene`, or -1 when it has no such tool.
+ObjectId FindTool(const LoadedScene& scene, const std::string& name);
+
 /// Reads a SceneSpec from `path`: JSON when the name ends in ".json",
 /// protobuf text format otherwise. INVALID_ARGUMENT (naming the file) when it
 /// does not parse; NOT_FOUND when it does not exist.

@@ -40,7 +40,7 @@ class ReplayedScene {
     if (input.step() != step_ + 1) return OutOfOrder("a device input", input.step());
     absl::StatusOr<Isometry3d> X_WD = ExactPoseFromProto(input.device_pose());
     if (!X_WD.ok()) return X_WD.status();
-    const ObjectId id = FindTool(input.tool());
+    const ObjectId id = FindTool(*loaded_, input.tool());
     if (id >= 0 && loaded_->scene->SetDevicePose(id, *X_WD).ok()) applied_[input.tool()] = *X_WD;
     return absl::OkStatus();
   }
@@ -68,18 +68,11 @@ class ReplayedScene {
     }
     loaded_ = std::move(*built);
     for (auto it = applied_.begin(); it != applied_.end();) {
-      const ObjectId id = FindTool(it->first);
+      const ObjectId id = FindTool(*loaded_, it->first);
       it = id >= 0 && loaded_->scene->SetDevicePose(id, it->second).ok() ? std::next(it)
                                                                          : applied_.erase(it);
     }
     return absl::OkStatus();
-  }
-
-  ObjectId FindTool(const std::string& name) const {
-    for (ObjectId id : loaded_->tools) {
-      if (loaded_->names[id] == name) return id;
-    }
-    return -1;
   }
 
   absl::Status OutOfOrder(const std::string& what, int64_t at) const {

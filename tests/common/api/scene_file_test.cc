@@ -28,13 +28,17 @@ std::string TwoObjects(const std::string& tool_extra = "", const std::string& sc
          tool_extra + "}\n" + scene_extra;
 }
 
-// The bundled demo scene loads: its objects, names and tool.
+// The bundled demo scene loads: its objects, names and tool, found by name.
 TEST(SceneFileTest, BundledDemoSceneLoads) {
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(kScenes + "/probe_on_torus.textproto");
   ASSERT_TRUE(loaded.ok()) << loaded.status();
   EXPECT_EQ(loaded->names, (std::vector<std::string>{"table", "organ", "probe"}));
   EXPECT_EQ(loaded->tools, (std::vector<ObjectId>{2}));
   EXPECT_DOUBLE_EQ(loaded->scene->options().step_s, 0.001);
+  // Tools are found by name; an object that is no tool, or no object, is not one.
+  EXPECT_EQ(FindTool(*loaded, "probe"), 2);
+  EXPECT_EQ(FindTool(*loaded, "organ"), -1);
+  EXPECT_EQ(FindTool(*loaded, "stylus"), -1);
 }
 
 // Model files are found relative to the scene file, with unit scale and
