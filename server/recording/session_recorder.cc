@@ -79,6 +79,7 @@ SessionRecorder::~SessionRecorder() {
 
 void SessionRecorder::Push(Entry entry) {
   const bool is_step = entry.step != nullptr;
+  bool skipped = false;
   {
     std::lock_guard lock(mu_);
     if (is_step && queued_steps_ >= options_.queue_steps) {
@@ -88,35 +89,31 @@ void SessionRecorder::Push(Entry entry) {
       }
       gap_->set_steps(gap_->steps() + 1);
       ++skipped_steps_;
+      skipped = true;
     } else {
-      // Steps take at most queue_steps of the room; edits and stream
-      // changes (rare, and a replay needs every edit) are never dropped:
-      // past the room kept for them the queue grows.
       if (is_step && gap_) {
         auto record = std::make_unique<pb::Record>();
         *record->mutable_gap() = *gap_;
         gap_.reset();
-        PushEvent(std::move(record));
+        Enqueue({nullptr, std::move(record)});
       }
-      if (is_step) {
-        ++queued_steps_;
-        queue_.push_back(std::move(entry));
-      } else {
-        PushEvent(std::move(entry.event));
-      }
-      entry.step = nullptr;  // queued: told apart from a skipped step below
+      queued_steps_ += is_step;
+      Enqueue(std::move(entry));
     }
   }
-  if (is_step && entry.step != nullptr) {
+  if (skipped) {
     metrics_.AddRecordingSkippedSteps(1);
   } else {
     wake_.notify_one();
   }
 }
 
-void SessionRecorder::PushEvent(std::unique_ptr<pb::Record> event) {
+void SessionRecorder::Enqueue(Entry entry) {
+  // Steps take at most queue_steps of the room; edits, stream changes and
+  // gaps (rare, and a replay needs every edit) are never dropped: past the
+  // room kept for them the queue grows rather than overwrite its oldest.
   if (queue_.full()) queue_.set_capacity(2 * queue_.capacity());
-  queue_.push_back({nullptr, std::move(event)});
+  queue_.push_back(std::move(entry));
 }
 
 void SessionRecorder::RecordStep(std::shared_ptr<const StepSnapshot> snapshot) {
@@ -157,13 +154,21 @@ int64_t SessionRecorder::skipped_steps() const {
 bool SessionRecorder::Append(const pb::Record& record) {
   if (failed_) return false;
   const int64_t before = file_.bytes();
-  if (absl::Status s = file_.Append(record); !s.ok()) {
-    std::cerr << "haptic-server: recording of scene '" << start_.scene()
-              << "' stops: " << s.message() << "\n";
-    failed_ = true;
-    return false;
-  }
+  if (absl::Status s = file_.Append(record); !s.ok()) return Fail(s);
   metrics_.AddRecordedBytes(file_.bytes() - before);
+  return true;
+}
+
+bool SessionRecorder::Fail(const absl::Status& status) {
+  std::cerr << "haptic-server: recording of scene '" << start_.scene()
+            << "' stops: " << status.message() << "\n";
+  failed_ = true;
+  return false;
+}
+
+bool SessionRecorder::Sync() {
+  if (failed_) return false;
+  if (absl::Status s = file_.Sync(); !s.ok()) return Fail(s);
   return true;
 }
 
@@ -173,25 +178,23 @@ bool SessionRecorder::RollOver() {
   end->set_last_step(last_step_);
   end->set_end_unix_ns(UnixNanoseconds());
   end->set_rolled_over(true);
-  if (!Append(record_) || !file_.Sync().ok()) return false;
+  if (!Append(record_) || !Sync()) return false;
   start_.set_part(start_.part() + 1);
   start_.set_after_step(last_step_);
   const std::string path = (std::filesystem::path(options_.dir) /
                             SessionFileName(start_.scene(), start_.start_unix_ns(), start_.part()))
                                .string();
   absl::StatusOr<RecordFileWriter> next = RecordFileWriter::Create(path);
-  if (!next.ok()) {
-    std::cerr << "haptic-server: recording stops: " << next.status().message() << "\n";
-    failed_ = true;
-    return false;
-  }
+  if (!next.ok()) return Fail(next.status());
   {
     std::lock_guard lock(mu_);
     file_ = std::move(*next);
   }
   record_.Clear();
   *record_.mutable_start() = start_;
-  return Append(record_) && SyncFolder(options_.dir).ok();
+  if (!Append(record_)) return false;
+  if (absl::Status s = SyncFolder(options_.dir); !s.ok()) return Fail(s);
+  return true;
 }
 
 bool SessionRecorder::WriteEntry(const Entry& entry) {
@@ -246,7 +249,7 @@ void SessionRecorder::Run() {
       skipped_steps_ += refused;
     }
     if (unsynced && Clock::now() >= next_sync) {
-      if (!failed_ && !file_.Sync().ok()) failed_ = true;
+      (void)Sync();
       unsynced = false;
       next_sync = Clock::now() + cadence;
     } else if (!unsynced) {
@@ -256,7 +259,7 @@ void SessionRecorder::Run() {
   record_.Clear();
   record_.mutable_end()->set_last_step(last_step_);
   record_.mutable_end()->set_end_unix_ns(UnixNanoseconds());
-  if (Append(record_)) (void)file_.Sync();
+  if (Append(record_)) (void)Sync();
 }
 
 }  // namespace hs

@@ -83,12 +83,16 @@ class SessionRecorder {
   SessionRecorder(const RecordingOptions& options, const RecordedScene& scene, Metrics& metrics,
                   RecordFileWriter file);
   void Push(Entry entry);
-  // Queues an event, growing the queue when it is full. Under mu_.
-  void PushEvent(std::unique_ptr<haptics::v1::Record> event);
+  // Queues an entry, growing the queue when it is full. Under mu_.
+  void Enqueue(Entry entry);
   void Run();
   // Writes one entry's records; false once the disk refused.
   bool WriteEntry(const Entry& entry);
   bool Append(const haptics::v1::Record& record);
+  // Syncs the file; false once the disk refused.
+  bool Sync();
+  // Says why recording stops (stderr) and stops it; returns false.
+  bool Fail(const absl::Status& status);
   // Ends this file and starts the next part.
   bool RollOver();
 
