@@ -12,6 +12,7 @@
 #include "client/exit_codes.h"
 #include "client/frame_format.h"
 #include "client/needs_args.h"
+#include "client/remote/remote_drive.h"
 #include "common/api/proto_convert.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
@@ -51,6 +52,23 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   absl::StatusOr<std::shared_ptr<grpc::Channel>> opened = MakeChannel(args.server);
   if (!opened.ok()) return ReportError("drive", opened.status(), err);
   std::shared_ptr<grpc::Channel> channel = *std::move(opened);
+  if (!args.operator_motion.empty()) {
+    absl::StatusOr<OperatorMotion> motion = ParseOperator(args.operator_motion);
+    if (!motion.ok()) return ReportError("drive", motion.status(), err);
+    Isometry3d start;
+    if (grpc::Status s = ToolStartPose(args, channel, start); !s.ok()) {
+      return ReportRpcError("drive", s, err);
+    }
+    RemoteDriveArgs remote{.scene = args.scene,
+                           .tool = args.tool,
+                           .duration_s = args.duration_s,
+                           .trace_path = args.trace_path,
+                           .json = args.json};
+    remote.run.motion = *motion;
+    remote.run.local_model = args.local_model == "on";
+    remote.run.link = args.link;
+    return RunRemoteDrive(remote, channel, start, out, err);
+  }
   std::vector<TimedPose> path;
   if (!args.motion.empty()) {
     absl::StatusOr<Motion> motion = ParseMotion(args.motion);
@@ -144,9 +162,34 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "One JSON object (haptics.v1.Frame) per line");
   AddNeedsOption(*cmd, args->needs);
-  cmd->callback([args, path, motion, &exit_code] {
-    if (path->count() + motion->count() != 1) {
-      std::cerr << "hapticctl drive: give --path or --motion\n";
+  CLI::Option* hand =
+      cmd->add_option("--operator", args->operator_motion,
+                      "A simulated hand drives the tool in a closed loop and one summary is "
+                      "printed (docs/remote-haptics.md)")
+          ->check(CLI::IsMember({"press", "slide", "tap"}));
+  hand->excludes(path);
+  hand->excludes(motion);
+  cmd->add_option("--local-model", args->local_model,
+                  "With --operator: render from the local contact model on the device (on) or "
+                  "apply the server's forces as they arrive (off)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--latency-ms", args->link.latency_ms,
+                  "With --operator: simulated round trip, milliseconds")
+      ->check(CLI::Range(0.0, 1000.0));
+  cmd->add_option("--jitter-ms", args->link.jitter_ms,
+                  "With --operator: up to this much more each way, milliseconds (uniform)")
+      ->check(CLI::Range(0.0, 1000.0));
+  cmd->add_option("--loss", args->link.loss,
+                  "With --operator: probability each message is lost, each way")
+      ->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--seed", args->link.seed, "With --operator: the link's random seed")
+      ->capture_default_str();
+  cmd->add_option("--trace", args->trace_path,
+                  "With --operator: write the rendered force and device position per tick (CSV)");
+  cmd->callback([args, path, motion, hand, &exit_code] {
+    if (path->count() + motion->count() + hand->count() != 1) {
+      std::cerr << "hapticctl drive: give --path, --motion or --operator\n";
       exit_code = kExitUsage;
       return;
     }

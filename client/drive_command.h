@@ -3,12 +3,17 @@
 // press|sweep [--duration S]) [--rate HZ] [--json]`: acts as a haptic input
 // device. Plays a device path into a scene's tool over
 // SessionService.Interact and prints each frame that applies a new pose:
-// its contacts and force.
+// its contacts and force. With `--operator press|slide|tap` instead, a
+// simulated hand drives the tool in a closed loop through a simulated link
+// (--latency-ms, --jitter-ms, --loss, --seed), rendering from the local
+// contact model or not (--local-model on|off), and one summary is printed
+// (client/remote/remote_drive.h).
 
 #include <ostream>
 #include <string>
 
 #include "CLI/CLI.hpp"
+#include "client/remote/delay_line.h"
 #include "client/server_call.h"
 
 namespace hs::cli {
@@ -34,6 +39,14 @@ struct DriveArgs {
   bool json = false;
   /// What the device needs (effect names); empty means everything.
   std::vector<std::string> needs;
+  /// A closed-loop operator: "press", "slide" or "tap"; empty for none.
+  std::string operator_motion;
+  /// "on": render from the local model on the device; "off": apply the
+  /// server's forces as they arrive.
+  std::string local_model = "on";
+  LinkConditions link;
+  /// With --operator: a CSV of the rendered force per tick.
+  std::string trace_path;
 };
 
 /// Drives the tool and prints to `out`. kExitOk; kExitFailure for a bad

@@ -6,7 +6,7 @@
 namespace hs::cli {
 
 absl::StatusOr<EffectSet> ParseNeeds(const std::vector<std::string>& names) {
-  if (names.empty()) return EffectSet::All();
+  if (names.empty()) return EffectSet::Default();
   EffectSet needs;
   for (const std::string& name : names) {
     absl::StatusOr<Effect> effect = ParseEffect(name);
@@ -28,14 +28,16 @@ std::string NeedsNames(const EffectSet& needs) {
 void AddNeedsOption(CLI::App& cmd, std::vector<std::string>& names) {
   cmd.add_option("--needs", names,
                  "Effects the consumer needs (collision, contact_set, reversing_vector, force, "
-                 "friction, continuous_collision, free_body_motion); default all. A haptic "
-                 "device needs 'force friction'")
-      ->check(ValueCheck("EFFECT", [](const std::string& name) { return ParseEffect(name).status(); }));
+                 "friction, continuous_collision, free_body_motion, local_model); default all "
+                 "but local_model. A haptic device needs 'force friction', a remote one "
+                 "'force friction local_model'")
+      ->check(
+          ValueCheck("EFFECT", [](const std::string& name) { return ParseEffect(name).status(); }));
 }
 
 void SetNeeds(const EffectSet& needs, haptics::v1::InteractRequest::Open& open) {
   open.clear_needs();
-  if (needs != EffectSet::All()) EffectsToProto(needs, open.mutable_needs());
+  if (needs != EffectSet::Default()) EffectsToProto(needs, open.mutable_needs());
 }
 
 }  // namespace hs::cli

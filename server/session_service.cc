@@ -195,7 +195,7 @@ class InteractReactor
     const pb::InteractRequest::Open& open = request_.open();
     if (!Open(open.scene(), "Interact")) return false;
     absl::StatusOr<EffectSet> needs =
-        EffectsFromProto(open.needs(), EffectSet::All(), "open.needs");
+        EffectsFromProto(open.needs(), EffectSet::Default(), "open.needs");
     if (!needs.ok()) {
       Fail(needs.status(), "Interact");
       return false;
@@ -232,8 +232,8 @@ class InteractReactor
 
 // What a viewer's parts need the scene to compute.
 absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequest& request) {
-  if (request.parts().empty()) return std::pair{FrameParts{}, EffectSet::All()};
-  FrameParts parts{false, false, false};
+  if (request.parts().empty()) return std::pair{FrameParts{}, EffectSet::Default()};
+  FrameParts parts{false, false, false, false};
   EffectSet needs;
   for (int i = 0; i < request.parts_size(); ++i) {
     switch (request.parts(i)) {
@@ -247,6 +247,10 @@ absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequ
       case pb::WATCH_PART_FORCES:
         parts.forces = true;
         needs = needs | EffectSet{Effect::kForce, Effect::kFriction};
+        break;
+      case pb::WATCH_PART_LOCAL_MODEL:
+        parts.local_model = true;
+        needs = needs | EffectSet{Effect::kLocalModel, Effect::kFriction};
         break;
       default:
         return absl::InvalidArgumentError(absl::StrCat("parts[", i, "]: unknown part"));

@@ -51,7 +51,7 @@ struct LoadtestOptions {
   /// Run the echo baseline.
   bool echo = true;
   /// What each device needs; a haptic device needs its force (with friction).
-  EffectSet needs = EffectSet::All();
+  EffectSet needs = EffectSet::Default();
   /// Where a progress line goes once a second (none when null).
   std::ostream* progress = nullptr;
 };

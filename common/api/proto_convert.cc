@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "common/api/local_model_convert.h"
 #include "common/core/status_macros.h"
 
 namespace hs {
@@ -97,7 +98,7 @@ absl::StatusOr<EffectSet> EffectsFromProto(const google::protobuf::RepeatedField
   EffectSet out;
   for (int i = 0; i < effects.size(); ++i) {
     const int e = effects.Get(i);
-    if (e <= pb::EFFECT_UNSPECIFIED || e > pb::EFFECT_FREE_BODY_MOTION) {
+    if (e <= pb::EFFECT_UNSPECIFIED || e > kNumEffects) {
       return Invalid(absl::StrCat(where, "[", i, "]"), "unknown effect");
     }
     // The proto's effects follow Effect's order, from 1.
@@ -105,6 +106,8 @@ absl::StatusOr<EffectSet> EffectsFromProto(const google::protobuf::RepeatedField
   }
   return out;
 }
+
+static_assert(pb::Effect_MAX == kNumEffects, "haptics.v1.Effect and Effect must match");
 
 pb::Effect EffectToProto(Effect effect) {
   return static_cast<pb::Effect>(static_cast<int>(effect) + 1);
@@ -136,6 +139,9 @@ void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& na
     }
     if (parts.contacts) {
       for (const PairContact& c : t.contacts) ContactToProto(c, names, tool->add_contacts());
+    }
+    if (parts.local_model && frame.stages_run.Has(Effect::kLocalModel)) {
+      LocalModelToProto(t.local_model, names, tool->mutable_local_model());
     }
   }
 }

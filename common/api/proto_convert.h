@@ -49,6 +49,7 @@ struct FrameParts {
   bool poses = true;
   bool contacts = true;
   bool forces = true;
+  bool local_model = true;
 };
 
 /// Fills `out`'s tools and stages from `frame`, keeping the `parts` asked

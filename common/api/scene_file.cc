@@ -196,6 +196,7 @@ absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
   if (spec.step_s() != 0) options.step_s = spec.step_s();
   if (spec.relative_tolerance() != 0) options.relative_tolerance = spec.relative_tolerance();
   if (spec.force_clamp_n() != 0) options.force_clamp_n = spec.force_clamp_n();
+  if (spec.local_model_radius_m() != 0) options.local_model_radius_m = spec.local_model_radius_m();
   HS_ASSIGN_OR_RETURN(options.enabled,
                       EffectsFromProto(spec.effects(), EffectSet::All(), "effects"));
   if (spec.has_gravity_m_per_s2()) {

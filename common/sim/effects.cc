@@ -17,12 +17,14 @@ constexpr std::array<std::pair<Effect, std::string_view>, kNumEffects> kNames = 
     {Effect::kFriction, "friction"},
     {Effect::kContinuousCollision, "continuous_collision"},
     {Effect::kFreeBodyMotion, "free_body_motion"},
+    {Effect::kLocalModel, "local_model"},
 }};
 
 // Each effect and the one it directly needs.
 // The reversing vector (the proxy) reads no other stage: it sweeps the tool
 // from the proxy toward the device itself.
-constexpr std::array<std::pair<Effect, Effect>, 4> kNeeds = {{
+constexpr std::array<std::pair<Effect, Effect>, 5> kNeeds = {{
+    {Effect::kLocalModel, Effect::kReversingVector},
     {Effect::kFriction, Effect::kForce},
     {Effect::kForce, Effect::kReversingVector},
     {Effect::kContactSet, Effect::kCollision},

@@ -20,8 +20,9 @@ enum class Effect : uint8_t {
   kFriction,             ///< Coulomb friction in the proxy's sliding.
   kContinuousCollision,  ///< Contact anywhere along the step, not only at its end.
   kFreeBodyMotion,       ///< Free objects move under the simulation.
+  kLocalModel,           ///< Each tool's local contact model, for remote devices.
 };
-inline constexpr int kNumEffects = 7;
+inline constexpr int kNumEffects = 8;
 
 /// A set of effects (a bit mask).
 class EffectSet {
@@ -31,6 +32,10 @@ class EffectSet {
     for (Effect e : effects) bits_ |= Bit(e);
   }
   static constexpr EffectSet All() { return EffectSet((1u << kNumEffects) - 1); }
+  /// What a consumer that names no needs gets: every effect but the local
+  /// model, which only remote devices use and ask for by name (it costs a
+  /// face search per tool and step).
+  static constexpr EffectSet Default() { return All().Without(Effect::kLocalModel); }
 
   constexpr bool Has(Effect e) const { return (bits_ & Bit(e)) != 0; }
   constexpr EffectSet With(Effect e) const { return EffectSet(bits_ | Bit(e)); }
@@ -48,7 +53,8 @@ class EffectSet {
 
 /// `needed` plus every effect those need to have run first: friction needs
 /// force, which needs the reversing vector (the proxy, which reads no other
-/// stage); the contact set and continuous collision need collision.
+/// stage), as the local model does; the contact set and continuous
+/// collision need collision.
 EffectSet WithPrerequisites(EffectSet needed);
 
 /// The stages a step runs: what the scene enables, of what consumers need
@@ -58,7 +64,7 @@ EffectSet WithPrerequisites(EffectSet needed);
 EffectSet StagesToRun(EffectSet enabled, EffectSet needed);
 
 /// "collision", "contact_set", "reversing_vector", "force", "friction",
-/// "continuous_collision", "free_body_motion".
+/// "continuous_collision", "free_body_motion", "local_model".
 std::string_view EffectName(Effect effect);
 /// The names of the effects in `effects`, in Effect order.
 std::vector<std::string_view> EffectNames(EffectSet effects);

@@ -14,6 +14,10 @@ namespace {
 
 // Collision models are grown for query tolerances up to this (relative).
 constexpr double kMaxRelativeTolerance = 1e-6;
+// A local model reaches at most this far, metres: its planes are searched
+// for in the tool's box grown by it, so a larger one would take most of a
+// scene's faces each step.
+constexpr double kMaxLocalModelRadius = 1;
 
 }  // namespace
 
@@ -26,6 +30,9 @@ absl::StatusOr<std::unique_ptr<Scene>> Scene::Create(const SceneOptions& options
   }
   if (!(std::isfinite(options.force_clamp_n) && options.force_clamp_n > 0)) {
     return absl::InvalidArgumentError("force_clamp_n must be finite and > 0");
+  }
+  if (!(options.local_model_radius_m > 0 && options.local_model_radius_m <= kMaxLocalModelRadius)) {
+    return absl::InvalidArgumentError("local_model_radius_m must be in (0, 1]");
   }
   if (!(std::isfinite(options.contact_angular_damping_per_s) &&
         options.contact_angular_damping_per_s >= 0)) {

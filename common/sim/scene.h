@@ -72,7 +72,7 @@ class Scene {
   explicit Scene(const SceneOptions& options) : options_(options) {}
 
   SceneOptions options_;
-  EffectSet needed_ = EffectSet::All();
+  EffectSet needed_ = EffectSet::Default();
   SceneObjects objects_;
   ToolStage tools_{options_, objects_};
   FreeBodies bodies_{options_, objects_};

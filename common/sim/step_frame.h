@@ -8,6 +8,7 @@
 
 #include "common/contact/contact_set.h"
 #include "common/sim/effects.h"
+#include "common/sim/local_model.h"
 
 namespace hs {
 
@@ -49,6 +50,9 @@ struct ToolFrame {
   int substeps = 1;
   /// One entry per object the tool touches or penetrates, by object id.
   std::vector<PairContact> contacts;
+  /// The local contact model at the proxy pose, when the local-model stage
+  /// ran (else its planes are empty and its radius 0).
+  LocalModel local_model;
 };
 
 /// Where a free body ended a step.

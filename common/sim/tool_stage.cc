@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/sim/frame_storage.h"
+#include "common/sim/local_model_builder.h"
 #include "common/sim/motion_bounds.h"
 #include "common/sim/proxy.h"
 #include "common/sim/stage_timer.h"
@@ -260,6 +261,8 @@ void ToolStage::StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
   frame.force_W.setZero();
   frame.torque_W.setZero();
   frame.force_clamped = false;
+  frame.local_model.planes.clear();
+  frame.local_model.validity_radius_m = 0;
   // Friction runs inside the proxy stage: its runs are counted here, its
   // time is the proxy's.
   if (stages.Has(Effect::kFriction)) ++stats[static_cast<int>(Effect::kFriction)].runs;
@@ -275,6 +278,15 @@ void ToolStage::StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
     if (proxy.touching) proxy.obstacle = scratch.proxy_obstacle_ids[proxy.obstacle];
     frame.X_WP = proxy.X_WP;
+  }
+  if (stages.Has(Effect::kLocalModel)) {
+    StageTimer timer(stats[static_cast<int>(Effect::kLocalModel)]);
+    BuildLocalModel(objects_.Posed(tool.id, proxy.X_WP), proxy, objects_.obstacles(),
+                    objects_.obstacle_ids(),
+                    {.radius_m = options_.local_model_radius_m,
+                     .force_clamp_n = options_.force_clamp_n,
+                     .friction = stages.Has(Effect::kFriction)},
+                    frame.local_model);
   }
   if (stages.Has(Effect::kForce) && proxy.touching) {
     StageTimer timer(stats[static_cast<int>(Effect::kForce)]);

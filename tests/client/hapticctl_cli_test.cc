@@ -35,9 +35,10 @@ TEST(HapticctlCliTest, ExitStatuses) {
 // Every server command has --help (exit 0), rejects a wrong command line
 // with 2, and exits 3 when no server listens.
 TEST(HapticctlCliTest, ServerCommands) {
-  for (const char* command : {"scenes", "scenes list", "scenes create", "scenes show",
-                              "scenes delete", "upload", "delete-model", "objects", "objects add", "objects update",
-                              "objects remove", "health", "watch", "drive", "loadtest"}) {
+  for (const char* command :
+       {"scenes", "scenes list", "scenes create", "scenes show", "scenes delete", "upload",
+        "delete-model", "objects", "objects add", "objects update", "objects remove", "health",
+        "watch", "drive", "loadtest"}) {
     EXPECT_EQ(RunHapticctl(std::string(command) + " --help"), kExitOk) << command;
   }
   EXPECT_EQ(RunHapticctl("scenes"), kExitUsage);
@@ -82,6 +83,9 @@ TEST(HapticctlCliTest, MalformedValuesAreUsageErrors) {
       {"objects add s o --box 1,nan,1", "--box: 'nan' is not a finite number"},
       {"drive --scene s --tool t --motion press --needs forse", "--needs: unknown effect 'forse'"},
       {"contact a.obj b.obj --direction 1,0", "--direction: '1,0': expected 3"},
+      {"drive --scene s --tool t --operator press --latency-ms 5000", "--latency-ms: Value 5000"},
+      {"drive --scene s --tool t --operator press --loss 0.9", "--loss: Value 0.9"},
+      {"drive --scene s --tool t --operator press --jitter-ms -1", "--jitter-ms: Value -1"},
       {"--server 1.2.3.4:5 scenes list",
        "options go after the subcommand (hapticctl SUBCOMMAND [OPTIONS]); not expected before "
        "it: --server"},

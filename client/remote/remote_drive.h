@@ -1,0 +1,34 @@
+#pragma once
+// `hapticctl drive --operator press|slide|tap`: a closed-loop remote device
+// (remote_run.h) against a scene on a server, over SessionService.Interact,
+// through a simulated link of --latency-ms, --jitter-ms and --loss. When
+// the link is not ideal, a run over an ideal link comes first: the
+// reference of force_rms_error_n.
+
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include <grpcpp/grpcpp.h>
+
+#include "client/remote/remote_run.h"
+
+namespace hs::cli {
+
+struct RemoteDriveArgs {
+  std::string scene;
+  std::string tool;
+  RemoteRunOptions run;
+  double duration_s = 4;
+  /// Write "t_s,fx,fy,fz,x,y,z" per tick (the rendered force, N, and the
+  /// device position, m) to this file; empty for none.
+  std::string trace_path;
+  bool json = false;
+};
+
+/// Runs and prints the summary to `out`: one JSON object with --json.
+/// kExitOk, or the exit status of a failed stream (reported on `err`).
+int RunRemoteDrive(const RemoteDriveArgs& args, const std::shared_ptr<grpc::Channel>& channel,
+                   const Isometry3d& start, std::ostream& out, std::ostream& err);
+
+}  // namespace hs::cli

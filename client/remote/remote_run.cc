@@ -1,0 +1,83 @@
+#include "client/remote/remote_run.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "client/percentiles.h"
+
+namespace hs::cli {
+
+RemoteRun::RemoteRun(const RemoteRunOptions& options, const Isometry3d& start)
+    : options_(options),
+      hand_(options.motion, options.hand, start),
+      loop_(options.loop),
+      up_(options.link, 0),
+      down_(options.link, 1) {}
+
+void RemoteRun::Read(const ServerFrame& frame, int64_t tick) {
+  if (frame.model_rejected) ++models_rejected_;
+  // An older pose's, or not this run's.
+  if (frame.applied_sequence <= newest_applied_ || frame.applied_sequence > sent_) return;
+  newest_applied_ = frame.applied_sequence;
+  // Pose n went out at tick n - 1.
+  round_trips_ms_.push_back(
+      static_cast<double>(tick - static_cast<int64_t>(frame.applied_sequence) + 1) *
+      options_.tick_s * 1e3);
+  server_force_ = frame.force_W;
+  if (frame.model && !loop_.SetModel(*frame.model)) ++models_rejected_;
+}
+
+void RemoteRun::Tick(int64_t k) {
+  const double now_s = static_cast<double>(k) * options_.tick_s;
+  down_.PopDue(now_s, [&](const ServerFrame& frame) { Read(frame, k); });
+  const Isometry3d X_WD = hand_.DevicePose();
+  const Vector3d force = options_.local_model ? loop_.Tick(X_WD).force_W : server_force_;
+  forces_.push_back(force);
+  positions_.push_back(X_WD.translation());
+  hand_.Step(now_s, options_.tick_s, force);
+  up_.Push(now_s, PoseMessage{static_cast<uint64_t>(k) + 1, hand_.DevicePose()});
+  sent_ = static_cast<uint64_t>(k) + 1;
+}
+
+void RemoteRun::FromServer(double now_s, ServerFrame frame) {
+  if (frame.applied_sequence > 0 && frame.applied_sequence <= sent_) {
+    depth_by_sequence_.try_emplace(frame.applied_sequence, frame.depth_m);
+  }
+  down_.Push(now_s, std::move(frame));
+}
+
+RemoteSummary RemoteRun::Summary(std::span<const Vector3d> reference) const {
+  RemoteSummary s;
+  s.ticks = static_cast<int64_t>(forces_.size());
+  s.energy_j = hand_.work_j();
+  double error_sq = 0;
+  for (size_t i = 0; i < forces_.size(); ++i) {
+    s.max_force_n = std::max(s.max_force_n, forces_[i].norm());
+    if (i > 0)
+      s.max_force_step_n = std::max(s.max_force_step_n, (forces_[i] - forces_[i - 1]).norm());
+    const Vector3d ref = i < reference.size() ? reference[i] : Vector3d::Zero();
+    error_sq += (forces_[i] - ref).squaredNorm();
+  }
+  if (!reference.empty() && !forces_.empty()) {
+    s.force_rms_error_n = std::sqrt(error_sq / static_cast<double>(forces_.size()));
+  }
+  std::vector<double> depths;
+  depths.reserve(depth_by_sequence_.size());
+  for (const auto& [sequence, depth] : depth_by_sequence_) depths.push_back(depth);
+  const Percentiles depth = Summarize(depths);
+  s.penetration_p99_m = depth.p99;
+  s.penetration_max_m = depth.max;
+  std::vector<double> trips = round_trips_ms_;
+  const Percentiles trip = Summarize(trips);
+  s.round_trip_p50_ms = trip.p50;
+  s.round_trip_p99_ms = trip.p99;
+  s.uplink_mean_ms = up_.mean_delay_s() * 1e3;
+  s.downlink_mean_ms = down_.mean_delay_s() * 1e3;
+  s.poses_lost = up_.lost();
+  s.frames_lost = down_.lost();
+  s.models_rejected = models_rejected_;
+  s.beyond_validity_ticks = loop_.beyond_validity_ticks();
+  return s;
+}
+
+}  // namespace hs::cli

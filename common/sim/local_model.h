@@ -1,0 +1,61 @@
+#pragma once
+// The local contact model of a tool (an intermediate representation, Adachi
+// et al. 1995; Mark et al. 1996): what a remote device needs to render the
+// contact by itself, at its own rate, until the next frame brings a newer
+// one. The planes near the proxy that the tool must stay in front of, with
+// their materials, and the proxy they were taken at. Plain data, so that a
+// device's loop (client/haptic_loop) can use it without the simulation.
+
+#include <cstdint>
+#include <vector>
+
+#include "common/core/types.h"
+
+namespace hs {
+
+/// A plane the tool must stay in front of: the tangent plane of a face of a
+/// fixed object near the proxy.
+struct ConstraintPlane {
+  /// The object's id in the scene (-1 where unknown: a model read from a
+  /// frame names its objects instead).
+  int32_t object = -1;
+  /// On the plane: the point nearest the tool at the model's proxy pose,
+  /// world frame, metres.
+  Vector3d point_W = Vector3d::Zero();
+  /// Unit, world frame, out of the object (toward the tool).
+  Vector3d normal_W = Vector3d::UnitZ();
+  /// How far the tool at the model's proxy pose is in front of the plane,
+  /// metres, >= 0.
+  double gap_m = 0;
+  /// The tool's point nearest the plane at the model's proxy pose, world
+  /// frame, metres: the lever of the torque when the tool leans on this
+  /// plane and the proxy touched nothing.
+  Vector3d tool_point_W = Vector3d::Zero();
+  /// The face's material: spring N/m, damper N*s/m, Coulomb coefficients.
+  double stiffness_n_per_m = 0;
+  double damping_ns_per_m = 0;
+  double static_friction = 0;
+  double dynamic_friction = 0;
+};
+
+struct LocalModel {
+  /// The proxy pose the model was taken at, world frame, metres.
+  Isometry3d X_WP = Isometry3d::Identity();
+  /// How far from the proxy's origin the model holds, metres: every face
+  /// of a fixed object within this distance of the tool is behind one of
+  /// the planes. A device must not move its proxy farther.
+  double validity_radius_m = 0;
+  /// The scene's force clamp, newtons.
+  double force_clamp_n = 0;
+  /// Whether the proxy touched an object at the model's pose, and where
+  /// (the tool's touching point, world frame, metres): the lever of the
+  /// torque while the tool leans on any plane.
+  bool touching = false;
+  Vector3d touch_point_W = Vector3d::Zero();
+  /// Whether the scene slides its proxies with friction.
+  bool friction = false;
+  /// Nearest first; several for edges and corners, none in free space.
+  std::vector<ConstraintPlane> planes;
+};
+
+}  // namespace hs

@@ -1,0 +1,209 @@
+#include "common/sim/local_model_builder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/collision/faces_in_box.h"
+#include "common/core/scratch.h"
+#include "common/sim/motion_bounds.h"
+
+namespace hs {
+namespace {
+
+// A triangle in the world frame with its unit normal (out of its object).
+struct WorldFace {
+  Vector3d a, b, c, n;
+};
+
+// Kept between steps (common/core/scratch.h): the faces near the tool, and
+// the tool's vertices and faces at the proxy pose.
+struct NearFaces {
+  std::vector<FaceId> faces;
+};
+// An edge in the world frame: its ends and the sum of its faces' normals
+// (which side is out).
+struct WorldEdge {
+  Vector3d from, to, out;
+};
+struct PlacedTool {
+  std::vector<Vector3d> vertices;
+  std::vector<WorldFace> faces;
+  std::vector<WorldEdge> edges;
+};
+
+// Two planes closer than these in direction (cosine) and offset (relative
+// to the tool's size) are one: the two triangles of a flat face.
+constexpr double kSameNormalCos = 1 - 1e-9;
+constexpr double kSameOffset = 1e-9;
+
+// Face `f` of `o` in the world frame; false when it has no area.
+bool PlaceFace(const PosedObject& o, FaceId f, WorldFace& out) {
+  const Face& face = o.object->face(f);
+  out.a = o.X_WO * o.object->position(face.vertices[0]);
+  out.b = o.X_WO * o.object->position(face.vertices[1]);
+  out.c = o.X_WO * o.object->position(face.vertices[2]);
+  const Vector3d normal = (out.b - out.a).cross(out.c - out.a);
+  if (!(normal.norm() > 0)) return false;
+  out.n = normal.normalized();
+  return true;
+}
+
+// Whether `p` (on the face's plane) lies in the face, within `slack` of its
+// edges (relative to the face's size).
+bool Inside(const WorldFace& f, const Vector3d& p, double slack) {
+  for (const auto& [from, to] : {std::pair{&f.a, &f.b}, {&f.b, &f.c}, {&f.c, &f.a}}) {
+    const Vector3d edge = *to - *from;
+    if (f.n.cross(edge).dot(p - *from) < -slack * edge.squaredNorm()) return false;
+  }
+  return true;
+}
+
+// Unit normal of face `f` of `o` in the world frame (zero when it has no
+// area).
+Vector3d FaceNormal(const PosedObject& o, FaceId f) {
+  WorldFace face;
+  return PlaceFace(o, f, face) ? face.n : Vector3d::Zero();
+}
+
+// Edge `e` of `o` in the world frame.
+WorldEdge PlaceEdge(const PosedObject& o, EdgeId e) {
+  const Edge& edge = o.object->edge(e);
+  WorldEdge out{o.X_WO * o.object->position(edge.vertices[0]),
+                o.X_WO * o.object->position(edge.vertices[1]), Vector3d::Zero()};
+  for (const FaceId f : o.object->EdgeFaces(e)) out.out += FaceNormal(o, f);
+  return out;
+}
+
+// The plane where tool edge `t` meets object edge `o` when the tool moves
+// along it: normal t x o, out of the object and into neither side's
+// faces; the closest points of the lines must lie on both edges. False
+// for parallel edges (the vertex pairs hold those) and edges that cannot
+// meet that way.
+bool EdgePairPlane(const WorldEdge& t, const WorldEdge& o, ConstraintPlane& plane) {
+  const Vector3d u = t.to - t.from, v = o.to - o.from;
+  Vector3d n = u.cross(v);
+  if (!(n.norm() > 1e-9 * u.norm() * v.norm())) return false;
+  n.normalize();
+  if (n.dot(o.out) < 0) n = -n;
+  if (!(n.dot(o.out) > 0 && n.dot(t.out) < 0)) return false;
+  // Closest points of the two lines: t.from + a u and o.from + b v.
+  const Vector3d w = t.from - o.from;
+  const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
+  const double det = uu * vv - uv * uv;
+  const double a = (uv * vw - vv * uw) / det, b = (uu * vw - uv * uw) / det;
+  constexpr double kEnds = 1e-9;
+  if (a < -kEnds || a > 1 + kEnds || b < -kEnds || b > 1 + kEnds) return false;
+  const Vector3d on_tool = t.from + a * u, on_object = o.from + b * v;
+  plane.normal_W = n;
+  plane.gap_m = n.dot(on_tool - on_object);
+  plane.point_W = on_object;
+  plane.tool_point_W = on_tool;
+  return true;
+}
+
+// Adds `plane` to `planes` unless one equal to it is there.
+void AddPlane(const ConstraintPlane& plane, double size, std::vector<ConstraintPlane>& planes) {
+  for (const ConstraintPlane& p : planes) {
+    if (p.normal_W.dot(plane.normal_W) > kSameNormalCos &&
+        std::abs(p.normal_W.dot(p.point_W - plane.point_W)) <= kSameOffset * size) {
+      return;
+    }
+  }
+  planes.push_back(plane);
+}
+
+}  // namespace
+
+void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
+                     std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                     const LocalModelOptions& options, LocalModel& model) {
+  model.X_WP = proxy.X_WP;
+  model.validity_radius_m = options.radius_m;
+  model.force_clamp_n = options.force_clamp_n;
+  model.friction = options.friction;
+  model.touching = proxy.touching;
+  model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
+  model.planes.clear();
+  const HapticObject& t = *tool.object;
+  const double size = t.bounding_box().diagonal().norm();
+  // A pair this far behind its plane (the proxy's stand-off is 1e-6 of the
+  // size in front) is not one the tool rests on.
+  const double behind = 1e-6 * size;
+  constexpr double kSlack = 1e-9;
+  PlacedTool& placed = Scratch<PlacedTool>();
+  placed.vertices.clear();
+  for (const Vector3d& p : t.positions()) placed.vertices.push_back(proxy.X_WP * p);
+  placed.faces.clear();
+  const PosedObject at_proxy{tool.object, tool.model, proxy.X_WP};
+  for (FaceId g = 0; g < t.num_faces(); ++g) {
+    WorldFace face;
+    if (PlaceFace(at_proxy, g, face)) placed.faces.push_back(face);
+  }
+  placed.edges.clear();
+  for (EdgeId e = 0; e < t.num_edges(); ++e) placed.edges.push_back(PlaceEdge(at_proxy, e));
+  const AlignedBox3d near = GrowBox(WorldBox(t, proxy.X_WP), options.radius_m);
+  std::vector<FaceId>& faces = Scratch<NearFaces>().faces;
+  // The planes of the translations the tool may make (the faces of the
+  // obstacle in configuration space): where a vertex of the tool meets a
+  // face of an object (the face's plane), where a vertex of an object
+  // meets a face of the tool (the tool face's plane, turned round), and
+  // where an edge of each meets (the plane of both). Each pair counts when
+  // its features, moved along the plane's normal, would meet, and lie in
+  // front by at most the radius.
+  for (size_t k = 0; k < obstacles.size(); ++k) {
+    const PosedObject& o = obstacles[k];
+    faces.clear();
+    FindFacesInBox(*o.model, o.X_WO, near, faces);
+    std::sort(faces.begin(), faces.end());  // the same model whatever the traversal order
+    for (const FaceId f : faces) {
+      WorldFace face;
+      if (!PlaceFace(o, f, face)) continue;
+      const Material& m = o.object->face_material(f);
+      ConstraintPlane plane{.object = ids[k],
+                            .stiffness_n_per_m = m.stiffness_n_per_m,
+                            .damping_ns_per_m = m.damping_ns_per_m,
+                            .static_friction = m.static_friction,
+                            .dynamic_friction = m.dynamic_friction};
+      for (const Vector3d& v : placed.vertices) {  // tool vertex, object face
+        const double gap = face.n.dot(v - face.a);
+        if (gap < -behind || gap > options.radius_m) continue;
+        const Vector3d on_face = v - gap * face.n;
+        if (!Inside(face, on_face, kSlack)) continue;
+        plane.normal_W = face.n;
+        plane.gap_m = std::max(gap, 0.0);
+        plane.point_W = on_face;
+        plane.tool_point_W = v;
+        AddPlane(plane, size, model.planes);
+      }
+      for (const Vector3d* q : {&face.a, &face.b, &face.c}) {  // object vertex, tool face
+        for (const WorldFace& g : placed.faces) {
+          const double gap = g.n.dot(*q - g.a);
+          if (gap < -behind || gap > options.radius_m) continue;
+          const Vector3d on_tool = *q - gap * g.n;
+          if (!Inside(g, on_tool, kSlack)) continue;
+          plane.normal_W = -g.n;
+          plane.gap_m = std::max(gap, 0.0);
+          plane.point_W = *q;
+          plane.tool_point_W = on_tool;
+          AddPlane(plane, size, model.planes);
+        }
+      }
+      for (const EdgeId e : o.object->face(f).edges) {  // object edge, tool edge
+        const WorldEdge edge = PlaceEdge(o, e);
+        for (const WorldEdge& g : placed.edges) {
+          if (!EdgePairPlane(g, edge, plane)) continue;
+          if (plane.gap_m < -behind || plane.gap_m > options.radius_m) continue;
+          plane.gap_m = std::max(plane.gap_m, 0.0);
+          AddPlane(plane, size, model.planes);
+        }
+      }
+    }
+  }
+  std::sort(model.planes.begin(), model.planes.end(),
+            [](const ConstraintPlane& x, const ConstraintPlane& y) { return x.gap_m < y.gap_m; });
+  if (static_cast<int>(model.planes.size()) > options.max_planes) {
+    model.planes.resize(options.max_planes);
+  }
+}
+
+}  // namespace hs

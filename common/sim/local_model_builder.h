@@ -1,0 +1,33 @@
+#pragma once
+// Builds a tool's local contact model (local_model.h) from the faces of the
+// fixed objects near its proxy.
+
+#include <span>
+
+#include "common/contact/contact_query.h"
+#include "common/sim/local_model.h"
+#include "common/sim/proxy.h"
+#include "common/sim/step_frame.h"
+
+namespace hs {
+
+struct LocalModelOptions {
+  /// The model's validity radius, metres, > 0.
+  double radius_m = 0.02;
+  /// The most planes a model holds (the nearest are kept).
+  int max_planes = 16;
+  double force_clamp_n = 10;
+  bool friction = false;
+};
+
+/// Fills `model` for `tool` (its pose field ignored) at `proxy`, among
+/// `obstacles` (fixed objects, ids `ids`; `proxy.obstacle` is an id). A
+/// plane is taken for each face whose box comes within the radius of the
+/// tool's box and whose plane the tool is in front of by at most the
+/// radius; planes that coincide are taken once. Allocates nothing once
+/// `model.planes` and the query buffers are large enough.
+void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
+                     std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                     const LocalModelOptions& options, LocalModel& model);
+
+}  // namespace hs

@@ -1,0 +1,153 @@
+// The device's haptic loop on hand-made models: a floor, a corner, a
+// model past its radius, lost frames and the switch bound, bad input.
+
+#include "client/haptic_loop/haptic_loop.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace hs {
+namespace {
+
+constexpr double kK = 1000;  // N/m
+
+ConstraintPlane Plane(const Vector3d& normal, double gap) {
+  return {.normal_W = normal.normalized(),
+          .gap_m = gap,
+          .stiffness_n_per_m = kK,
+          .damping_ns_per_m = 0,
+          .static_friction = 0,
+          .dynamic_friction = 0};
+}
+
+// A model at the proxy origin `p` with `planes`, radius 2 cm, clamp 10 N.
+LocalModel Model(const Vector3d& p, std::vector<ConstraintPlane> planes) {
+  LocalModel m;
+  m.X_WP.translation() = p;
+  m.validity_radius_m = 0.02;
+  m.force_clamp_n = 10;
+  m.planes = std::move(planes);
+  return m;
+}
+
+Isometry3d At(const Vector3d& p) {
+  Isometry3d X = Isometry3d::Identity();
+  X.translation() = p;
+  return X;
+}
+
+// A floor 1 mm below the proxy: the device 3 mm down is 2 mm in, pushed
+// up by k * 2 mm (hand-computed: 2 N).
+TEST(HapticLoopTest, FloorPushesBackBySpringTimesDepth) {
+  HapticLoop loop;
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0.001)})));
+  loop.Tick(At(Vector3d::Zero()));
+  const HapticOutput out = loop.Tick(At(Vector3d(0, 0, -0.003)));
+  EXPECT_TRUE(out.touching);
+  EXPECT_NEAR(out.p_WP.z(), -0.001, 1e-7);
+  EXPECT_NEAR(out.force_W.z(), 2.0, 1e-3);
+  EXPECT_NEAR(out.force_W.x(), 0, 1e-12);
+}
+
+// Two walls meeting at a right angle (x >= 0 and y >= 0 for the proxy):
+// a device at (-1, -2) mm is held at the corner's edge, the force pulls it
+// back along both normals.
+TEST(HapticLoopTest, CornerHoldsTheProxyOnBothPlanes) {
+  HapticLoop loop({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d(0.001, 0.001, 0), {Plane(Vector3d::UnitX(), 0.001),
+                                                              Plane(Vector3d::UnitY(), 0.001)})));
+  HapticOutput out;
+  for (int i = 0; i < 3; ++i) out = loop.Tick(At(Vector3d(-0.001, -0.002, 0)));
+  EXPECT_NEAR(out.p_WP.x(), 0, 1e-7);
+  EXPECT_NEAR(out.p_WP.y(), 0, 1e-7);
+  EXPECT_NEAR(out.force_W.x(), 1.0, 1e-3);
+  EXPECT_NEAR(out.force_W.y(), 2.0, 1e-3);
+}
+
+// With friction the proxy sticks while the sideways pull is inside the
+// static cone (mu_s * depth) and slides, lagging by mu_d * depth, past it.
+TEST(HapticLoopTest, FrictionSticksThenSlides) {
+  ConstraintPlane floor = Plane(Vector3d::UnitZ(), 0);
+  floor.static_friction = 0.5;
+  floor.dynamic_friction = 0.25;
+  LocalModel model = Model(Vector3d::Zero(), {floor});
+  model.friction = true;
+  HapticLoop loop({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(loop.SetModel(model));
+  loop.Tick(At(Vector3d(0, 0, -0.002)));
+  HapticOutput out = loop.Tick(At(Vector3d(0.0009, 0, -0.002)));  // 0.9 mm < 0.5 * 2 mm
+  EXPECT_NEAR(out.p_WP.x(), 0, 1e-7);
+  out = loop.Tick(At(Vector3d(0.003, 0, -0.002)));  // past the cone: lags by 0.5 mm
+  EXPECT_NEAR(out.p_WP.x(), 0.003 - 0.25 * 0.002, 1e-7);
+}
+
+// Past the validity radius the proxy stops at the sphere's edge: a floor
+// the model knows nothing beyond is not extrapolated 5 cm away.
+TEST(HapticLoopTest, ModelIsNotExtrapolatedPastItsRadius) {
+  HapticLoop loop;
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0.001)})));
+  const HapticOutput out = loop.Tick(At(Vector3d(0.05, 0, 0)));
+  EXPECT_TRUE(out.beyond_validity);
+  EXPECT_NEAR(out.p_WP.norm(), 0.02, 1e-9);
+  EXPECT_EQ(out.force_W, Vector3d::Zero());
+  EXPECT_EQ(loop.beyond_validity_ticks(), 1);
+}
+
+// Lost frames: the last model keeps rendering the floor. A new model whose
+// proxy is 5 mm off (the server's proxy moved) changes the force by 5 N at
+// once; the loop spreads it, no tick changing by more than the bound.
+TEST(HapticLoopTest, LostFramesKeepTheModelAndSwitchesAreRateBounded) {
+  const HapticLoopOptions options{.max_switch_step_n = 0.25};
+  HapticLoop loop(options);
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)})));
+  const Isometry3d pressed = At(Vector3d(0, 0, -0.002));
+  HapticOutput last;
+  for (int i = 0; i < 20; ++i) last = loop.Tick(pressed);  // the first model ramps in too
+  for (int i = 0; i < 50; ++i) {                           // 50 ticks without a frame
+    const HapticOutput out = loop.Tick(pressed);
+    EXPECT_TRUE(out.touching);
+    EXPECT_NEAR(out.force_W.z(), 2.0, 1e-3);
+    last = out;
+  }
+  LocalModel moved = Model(Vector3d(0.005, 0, 0), {Plane(Vector3d::UnitZ(), 0)});
+  moved.friction = true;
+  moved.planes[0].static_friction = 10;  // sticks where the server left it
+  moved.planes[0].dynamic_friction = 10;
+  ASSERT_TRUE(loop.SetModel(moved));
+  double largest = 0;
+  for (int i = 0; i < 60; ++i) {
+    const HapticOutput out = loop.Tick(pressed);
+    largest = std::max(largest, (out.force_W - last.force_W).norm());
+    last = out;
+  }
+  EXPECT_LE(largest, options.max_switch_step_n + 1e-9);
+  EXPECT_NEAR(last.force_W.x(), 5.0, 1e-2);  // it got there (a stuck proxy creeps by its stand-off)
+}
+
+TEST(HapticLoopTest, NonFiniteInputNeverReachesTheForce) {
+  HapticLoop loop;
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)})));
+  HapticOutput held;
+  for (int i = 0; i < 20; ++i) held = loop.Tick(At(Vector3d(0, 0, -0.001)));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const HapticOutput out = loop.Tick(At(Vector3d(nan, 0, 0)));
+  EXPECT_EQ(out.force_W, held.force_W);
+  EXPECT_EQ(loop.rejected_poses(), 1);
+
+  LocalModel bad = Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)});
+  bad.planes[0].normal_W.x() = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(loop.SetModel(bad));
+  LocalModel unnormal = Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)});
+  unnormal.planes[0].normal_W = Vector3d(0, 0, 2);
+  EXPECT_FALSE(loop.SetModel(unnormal));
+  LocalModel no_radius = Model(Vector3d::Zero(), {});
+  no_radius.validity_radius_m = 0;
+  EXPECT_FALSE(loop.SetModel(no_radius));
+  EXPECT_EQ(loop.rejected_models(), 3);
+  // The floor still renders.
+  EXPECT_EQ(loop.Tick(At(Vector3d(0, 0, -0.001))).force_W, held.force_W);
+}
+
+}  // namespace
+}  // namespace hs
