@@ -19,6 +19,8 @@ struct WorldFace {
 // the tool's vertices and faces at the proxy pose.
 struct NearFaces {
   std::vector<FaceId> faces;
+  std::vector<VertexId> vertices;
+  std::vector<EdgeId> edges;
 };
 // An edge in the world frame: its ends and the sum of its faces' normals
 // (which side is out).
@@ -29,6 +31,9 @@ struct PlacedTool {
   std::vector<Vector3d> vertices;
   std::vector<WorldFace> faces;
   std::vector<WorldEdge> edges;
+};
+struct CandidatePlanes {
+  std::vector<ConstraintPlane> planes;
 };
 
 // Two planes closer than these in direction (cosine) and offset (relative
@@ -101,15 +106,39 @@ bool EdgePairPlane(const WorldEdge& t, const WorldEdge& o, ConstraintPlane& plan
   return true;
 }
 
-// Adds `plane` to `planes` unless one equal to it is there.
-void AddPlane(const ConstraintPlane& plane, double size, std::vector<ConstraintPlane>& planes) {
-  for (const ConstraintPlane& p : planes) {
-    if (p.normal_W.dot(plane.normal_W) > kSameNormalCos &&
-        std::abs(p.normal_W.dot(p.point_W - plane.point_W)) <= kSameOffset * size) {
-      return;
-    }
+template <typename T>
+void SortUnique(std::vector<T>& ids) {
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+}
+
+// A plane of object `id` with the material of its face `f`.
+ConstraintPlane MaterialPlane(const HapticObject& object, FaceId f, ObjectId id) {
+  const Material& m = object.face_material(f);
+  return {.object = id,
+          .stiffness_n_per_m = m.stiffness_n_per_m,
+          .damping_ns_per_m = m.damping_ns_per_m,
+          .static_friction = m.static_friction,
+          .dynamic_friction = m.dynamic_friction};
+}
+
+// Whether `a` and `b` are one plane.
+bool SamePlane(const ConstraintPlane& a, const ConstraintPlane& b, double size) {
+  return a.normal_W.dot(b.normal_W) > kSameNormalCos &&
+         std::abs(a.normal_W.dot(a.point_W - b.point_W)) <= kSameOffset * size;
+}
+
+// Nearest first; ties in a fixed order, so that the model does not depend
+// on the order the pairs were found in.
+bool Nearer(const ConstraintPlane& x, const ConstraintPlane& y) {
+  if (x.gap_m != y.gap_m) return x.gap_m < y.gap_m;
+  for (int i = 0; i < 3; ++i) {
+    if (x.normal_W[i] != y.normal_W[i]) return x.normal_W[i] < y.normal_W[i];
   }
-  planes.push_back(plane);
+  for (int i = 0; i < 3; ++i) {
+    if (x.tool_point_W[i] != y.tool_point_W[i]) return x.tool_point_W[i] < y.tool_point_W[i];
+  }
+  return x.object < y.object;
 }
 
 }  // namespace
@@ -142,7 +171,12 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
   placed.edges.clear();
   for (EdgeId e = 0; e < t.num_edges(); ++e) placed.edges.push_back(PlaceEdge(at_proxy, e));
   const AlignedBox3d near = GrowBox(WorldBox(t, proxy.X_WP), options.radius_m);
-  std::vector<FaceId>& faces = Scratch<NearFaces>().faces;
+  std::vector<ConstraintPlane>& candidates = Scratch<CandidatePlanes>().planes;
+  candidates.clear();
+  NearFaces& near_faces = Scratch<NearFaces>();
+  std::vector<FaceId>& faces = near_faces.faces;
+  std::vector<VertexId>& vertices = near_faces.vertices;
+  std::vector<EdgeId>& edges = near_faces.edges;
   // The planes of the translations the tool may make (the faces of the
   // obstacle in configuration space): where a vertex of the tool meets a
   // face of an object (the face's plane), where a vertex of an object
@@ -155,16 +189,21 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
     faces.clear();
     FindFacesInBox(*o.model, o.X_WO, near, faces);
     std::sort(faces.begin(), faces.end());  // the same model whatever the traversal order
+    // Each face, vertex and edge once (a vertex is in about six faces).
+    vertices.clear();
+    edges.clear();
     for (const FaceId f : faces) {
+      const Face& face = o.object->face(f);
+      vertices.insert(vertices.end(), face.vertices.begin(), face.vertices.end());
+      edges.insert(edges.end(), face.edges.begin(), face.edges.end());
+    }
+    SortUnique(vertices);
+    SortUnique(edges);
+    for (const FaceId f : faces) {  // tool vertex, object face
       WorldFace face;
       if (!PlaceFace(o, f, face)) continue;
-      const Material& m = o.object->face_material(f);
-      ConstraintPlane plane{.object = ids[k],
-                            .stiffness_n_per_m = m.stiffness_n_per_m,
-                            .damping_ns_per_m = m.damping_ns_per_m,
-                            .static_friction = m.static_friction,
-                            .dynamic_friction = m.dynamic_friction};
-      for (const Vector3d& v : placed.vertices) {  // tool vertex, object face
+      ConstraintPlane plane = MaterialPlane(*o.object, f, ids[k]);
+      for (const Vector3d& v : placed.vertices) {
         const double gap = face.n.dot(v - face.a);
         if (gap < -behind || gap > options.radius_m) continue;
         const Vector3d on_face = v - gap * face.n;
@@ -173,36 +212,50 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
         plane.gap_m = std::max(gap, 0.0);
         plane.point_W = on_face;
         plane.tool_point_W = v;
-        AddPlane(plane, size, model.planes);
+        candidates.push_back(plane);
       }
-      for (const Vector3d* q : {&face.a, &face.b, &face.c}) {  // object vertex, tool face
-        for (const WorldFace& g : placed.faces) {
-          const double gap = g.n.dot(*q - g.a);
-          if (gap < -behind || gap > options.radius_m) continue;
-          const Vector3d on_tool = *q - gap * g.n;
-          if (!Inside(g, on_tool, kSlack)) continue;
-          plane.normal_W = -g.n;
-          plane.gap_m = std::max(gap, 0.0);
-          plane.point_W = *q;
-          plane.tool_point_W = on_tool;
-          AddPlane(plane, size, model.planes);
-        }
+    }
+    // Features beyond the box are farther than the radius from the tool:
+    // a move the model holds for cannot bring them together.
+    for (const VertexId v : vertices) {  // object vertex, tool face
+      const Vector3d q = o.X_WO * o.object->position(v);
+      if (!near.contains(q)) continue;
+      ConstraintPlane plane = MaterialPlane(*o.object, o.object->VertexFaces(v).front(), ids[k]);
+      for (const WorldFace& g : placed.faces) {
+        const double gap = g.n.dot(q - g.a);
+        if (gap < -behind || gap > options.radius_m) continue;
+        const Vector3d on_tool = q - gap * g.n;
+        if (!Inside(g, on_tool, kSlack)) continue;
+        plane.normal_W = -g.n;
+        plane.gap_m = std::max(gap, 0.0);
+        plane.point_W = q;
+        plane.tool_point_W = on_tool;
+        candidates.push_back(plane);
       }
-      for (const EdgeId e : o.object->face(f).edges) {  // object edge, tool edge
-        const WorldEdge edge = PlaceEdge(o, e);
-        for (const WorldEdge& g : placed.edges) {
-          if (!EdgePairPlane(g, edge, plane)) continue;
-          if (plane.gap_m < -behind || plane.gap_m > options.radius_m) continue;
-          plane.gap_m = std::max(plane.gap_m, 0.0);
-          AddPlane(plane, size, model.planes);
-        }
+    }
+    for (const EdgeId e : edges) {  // object edge, tool edge
+      const Edge& ends = o.object->edge(e);
+      AlignedBox3d box(o.X_WO * o.object->position(ends.vertices[0]));
+      box.extend(o.X_WO * o.object->position(ends.vertices[1]));
+      if (!box.intersects(near)) continue;
+      const WorldEdge edge = PlaceEdge(o, e);
+      ConstraintPlane plane = MaterialPlane(*o.object, o.object->EdgeFaces(e).front(), ids[k]);
+      for (const WorldEdge& g : placed.edges) {
+        if (!EdgePairPlane(g, edge, plane)) continue;
+        if (plane.gap_m < -behind || plane.gap_m > options.radius_m) continue;
+        plane.gap_m = std::max(plane.gap_m, 0.0);
+        candidates.push_back(plane);
       }
     }
   }
-  std::sort(model.planes.begin(), model.planes.end(),
-            [](const ConstraintPlane& x, const ConstraintPlane& y) { return x.gap_m < y.gap_m; });
-  if (static_cast<int>(model.planes.size()) > options.max_planes) {
-    model.planes.resize(options.max_planes);
+  // The nearest distinct planes, at most max_planes.
+  std::sort(candidates.begin(), candidates.end(), Nearer);
+  for (const ConstraintPlane& plane : candidates) {
+    if (static_cast<int>(model.planes.size()) == options.max_planes) break;
+    const bool seen =
+        std::any_of(model.planes.begin(), model.planes.end(),
+                    [&](const ConstraintPlane& p) { return SamePlane(p, plane, size); });
+    if (!seen) model.planes.push_back(plane);
   }
 }
 

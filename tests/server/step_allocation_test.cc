@@ -67,8 +67,8 @@ TEST(StepAllocationTest, ThousandDemoStepsWithTwoStreamsAllocateNothing) {
   Metrics metrics;
   SceneRunner runner(*spec, *std::move(loaded), metrics);
   SerializingSink device("probe"), viewer("");
-  // Every effect a stream gets by default; the local model's stage still
-  // allocates (its copies into the step's snapshot), so is left out here.
+  // Every effect a stream gets by default (the local model is left out:
+  // its planes' copies into the step's snapshot are not yet checked).
   ASSERT_TRUE(runner.AttachDevice(&device, "probe", EffectSet::Default()).ok());
   ASSERT_TRUE(runner.AttachViewer(&viewer, EffectSet::Default()).ok());
 
