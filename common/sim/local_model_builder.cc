@@ -17,10 +17,16 @@ struct WorldFace {
 
 // Kept between steps (common/core/scratch.h): the faces near the tool, and
 // the tool's vertices and faces at the proxy pose.
-struct NearFaces {
+struct NearFeatures {
   std::vector<FaceId> faces;
   std::vector<VertexId> vertices;
   std::vector<EdgeId> edges;
+};
+struct ObjectNear {
+  NearFeatures features;
+};
+struct ToolNear {
+  NearFeatures features;
 };
 // An edge in the world frame: its ends and the sum of its faces' normals
 // (which side is out).
@@ -112,6 +118,27 @@ void SortUnique(std::vector<T>& ids) {
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
 }
 
+// The faces of `o` whose volumes meet `box_W`, and their vertices and edges,
+// each once, sorted (the same model whatever the traversal order).
+// Returns the world box of those faces.
+AlignedBox3d FindNearFeatures(const PosedObject& o, const AlignedBox3d& box_W, NearFeatures& out) {
+  out.faces.clear();
+  out.vertices.clear();
+  out.edges.clear();
+  FindFacesInBox(*o.model, o.X_WO, box_W, out.faces);
+  SortUnique(out.faces);
+  for (const FaceId f : out.faces) {
+    const Face& face = o.object->face(f);
+    out.vertices.insert(out.vertices.end(), face.vertices.begin(), face.vertices.end());
+    out.edges.insert(out.edges.end(), face.edges.begin(), face.edges.end());
+  }
+  SortUnique(out.vertices);
+  SortUnique(out.edges);
+  AlignedBox3d box;
+  for (const VertexId v : out.vertices) box.extend(o.X_WO * o.object->position(v));
+  return box;
+}
+
 // A plane of object `id` with the material of its face `f`.
 ConstraintPlane MaterialPlane(const HapticObject& object, FaceId f, ObjectId id) {
   const Material& m = object.face_material(f);
@@ -141,6 +168,21 @@ bool Nearer(const ConstraintPlane& x, const ConstraintPlane& y) {
   return x.object < y.object;
 }
 
+// The tool's `near` features at X_WP in the world frame.
+void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures& near,
+               PlacedTool& placed) {
+  const PosedObject at_proxy{&t, nullptr, X_WP};
+  placed.vertices.clear();
+  for (const VertexId v : near.vertices) placed.vertices.push_back(X_WP * t.position(v));
+  placed.faces.clear();
+  for (const FaceId g : near.faces) {
+    WorldFace face;
+    if (PlaceFace(at_proxy, g, face)) placed.faces.push_back(face);
+  }
+  placed.edges.clear();
+  for (const EdgeId e : near.edges) placed.edges.push_back(PlaceEdge(at_proxy, e));
+}
+
 }  // namespace
 
 void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
@@ -160,23 +202,15 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
   const double behind = 1e-6 * size;
   constexpr double kSlack = 1e-9;
   PlacedTool& placed = Scratch<PlacedTool>();
-  placed.vertices.clear();
-  for (const Vector3d& p : t.positions()) placed.vertices.push_back(proxy.X_WP * p);
-  placed.faces.clear();
   const PosedObject at_proxy{tool.object, tool.model, proxy.X_WP};
-  for (FaceId g = 0; g < t.num_faces(); ++g) {
-    WorldFace face;
-    if (PlaceFace(at_proxy, g, face)) placed.faces.push_back(face);
-  }
-  placed.edges.clear();
-  for (EdgeId e = 0; e < t.num_edges(); ++e) placed.edges.push_back(PlaceEdge(at_proxy, e));
   const AlignedBox3d near = GrowBox(WorldBox(t, proxy.X_WP), options.radius_m);
   std::vector<ConstraintPlane>& candidates = Scratch<CandidatePlanes>().planes;
   candidates.clear();
-  NearFaces& near_faces = Scratch<NearFaces>();
-  std::vector<FaceId>& faces = near_faces.faces;
-  std::vector<VertexId>& vertices = near_faces.vertices;
-  std::vector<EdgeId>& edges = near_faces.edges;
+  NearFeatures& object_near = Scratch<ObjectNear>().features;
+  NearFeatures& tool_near = Scratch<ToolNear>().features;
+  const std::vector<FaceId>& faces = object_near.faces;
+  const std::vector<VertexId>& vertices = object_near.vertices;
+  const std::vector<EdgeId>& edges = object_near.edges;
   // The planes of the translations the tool may make (the faces of the
   // obstacle in configuration space): where a vertex of the tool meets a
   // face of an object (the face's plane), where a vertex of an object
@@ -186,19 +220,12 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
   // front by at most the radius.
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const PosedObject& o = obstacles[k];
-    faces.clear();
-    FindFacesInBox(*o.model, o.X_WO, near, faces);
-    std::sort(faces.begin(), faces.end());  // the same model whatever the traversal order
-    // Each face, vertex and edge once (a vertex is in about six faces).
-    vertices.clear();
-    edges.clear();
-    for (const FaceId f : faces) {
-      const Face& face = o.object->face(f);
-      vertices.insert(vertices.end(), face.vertices.begin(), face.vertices.end());
-      edges.insert(edges.end(), face.edges.begin(), face.edges.end());
-    }
-    SortUnique(vertices);
-    SortUnique(edges);
+    // The object's features near the tool, and the tool's near those: on
+    // both sides only what may meet within the radius.
+    const AlignedBox3d object_box = FindNearFeatures(o, near, object_near);
+    if (object_box.isEmpty()) continue;
+    FindNearFeatures(at_proxy, GrowBox(object_box, options.radius_m), tool_near);
+    PlaceTool(t, proxy.X_WP, tool_near, placed);
     for (const FaceId f : faces) {  // tool vertex, object face
       WorldFace face;
       if (!PlaceFace(o, f, face)) continue;

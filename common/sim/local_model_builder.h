@@ -13,7 +13,7 @@ namespace hs {
 
 struct LocalModelOptions {
   /// The model's validity radius, metres, > 0.
-  double radius_m = 0.02;
+  double radius_m = 0.01;
   /// The most planes a model holds (the nearest are kept).
   int max_planes = 16;
   double force_clamp_n = 10;

@@ -23,9 +23,10 @@ struct SceneOptions {
   double force_clamp_n = 10;
   /// The validity radius of each tool's local contact model
   /// (local_model.h), metres, in (0, 1]: the faces within it of the tool
-  /// at its proxy pose become the model's planes. 2 cm holds a hand at
-  /// 0.2 m/s for a 100 ms round trip.
-  double local_model_radius_m = 0.02;
+  /// at its proxy pose become the model's planes. 1 cm holds a hand at
+  /// 0.1 m/s for a 100 ms round trip; the search's cost grows with its
+  /// square on a fine surface.
+  double local_model_radius_m = 0.01;
   /// Acceleration of free bodies by gravity, world frame, m/s^2. Finite.
   Vector3d gravity_W = Vector3d(0, 0, -9.81);
   /// How fast a free body's spin dies while it touches something, 1/s
