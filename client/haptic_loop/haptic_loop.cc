@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+
+#include "common/sim/proxy_slide.h"
 
 namespace hs {
 namespace {
@@ -74,24 +77,14 @@ int HapticLoop::MoveProxy(const Vector3d& device, const Vector3d& goal_in) {
     const Vector3d& n = plane.normal_W;
     p += first_t * v + stand_off * n;
     touched = first;
-    // Slide toward the device as the server's proxy (common/sim/proxy.cc)
-    // does, the same rule written again because this library links no
-    // simulation: drop the part of the way into the plane; with friction,
-    // stick inside the static cone, else lag the device by the dynamic
-    // friction.
-    const Vector3d rest = device - p;
-    const double into = -rest.dot(n);
-    if (into <= 0) {
-      goal = device;
-      continue;
-    }
-    Vector3d along = rest + into * n;
-    if (model_.friction) {
-      const double length = along.norm();
-      if (length <= plane.static_friction * into) break;
-      along *= (length - plane.dynamic_friction * into) / length;
-    }
-    goal = p + along;
+    // Slide toward the device as the server's proxy does (proxy_slide.h).
+    const std::optional<Vector3d> next = SlideGoal(
+        p, device, n,
+        model_.friction
+            ? std::optional<SlideFriction>({plane.static_friction, plane.dynamic_friction})
+            : std::nullopt);
+    if (!next) break;
+    goal = *next;
   }
   // The model holds within its sphere only: the proxy stays inside it.
   const Vector3d out = p - P0;

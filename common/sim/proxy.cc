@@ -4,6 +4,7 @@
 
 #include "common/core/scratch.h"
 #include "common/core/status_macros.h"
+#include "common/sim/proxy_slide.h"
 #include "common/sim/touched_face.h"
 
 namespace hs {
@@ -73,23 +74,16 @@ absl::StatusOr<ProxyState> MoveProxy(const PosedObject& tool, const Isometry3d& 
     state.face = TouchedFace(object, touch.fixed);
     state.normal_W = n;
     state.p_WC = touch.points.empty() ? p : touch.points.front().p_WC;
-    // Slide toward the device: drop the part of the way that goes into the
-    // surface; with friction, stick inside the static cone and otherwise
-    // lag the device by the dynamic friction force.
-    const Vector3d rest = device - p;
-    const double into = -rest.dot(n);
-    if (into <= 0) {
-      goal = device;
-      continue;
-    }
-    Vector3d along = rest + into * n;
+    // Slide toward the device (proxy_slide.h), with the touched face's
+    // friction when enabled.
+    std::optional<SlideFriction> friction;
     if (options.friction) {
       const Material& m = object.face_material(state.face);
-      const double length = along.norm();
-      if (length <= m.static_friction * into) break;
-      along *= (length - m.dynamic_friction * into) / length;
+      friction = SlideFriction{m.static_friction, m.dynamic_friction};
     }
-    goal = p + along;
+    const std::optional<Vector3d> next = SlideGoal(p, device, n, friction);
+    if (!next) break;
+    goal = *next;
   }
   state.X_WP.linear() = R;
   state.X_WP.translation() = p;
