@@ -100,7 +100,7 @@ class RemoteRun {
 
   /// The rendered force of each tick so far, world frame, N.
   const std::vector<Vector3d>& forces() const { return forces_; }
-  /// The hand's target and device position at each tick, world frame, m.
+  /// The device position at each tick, world frame, metres.
   const std::vector<Vector3d>& device_positions() const { return positions_; }
   /// The measures; `reference`: the forces of the zero-latency run of the
   /// same operator, for force_rms_error_n (empty: 0).

@@ -11,14 +11,10 @@ namespace {
 
 namespace pb = haptics::v1;
 
-absl::Status Invalid(const std::string& where, const std::string& what) {
-  return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
-}
-
 // A finite number in [low, high], else INVALID_ARGUMENT naming `where`.
 absl::StatusOr<double> NumberIn(double value, double low, double high, const std::string& where) {
   if (!(std::isfinite(value) && value >= low && value <= high)) {
-    return Invalid(where, absl::StrCat("must be finite and in [", low, ", ", high, "]"));
+    return InvalidField(where, absl::StrCat("must be finite and in [", low, ", ", high, "]"));
   }
   return value;
 }
@@ -28,7 +24,7 @@ absl::StatusOr<ConstraintPlane> PlaneFromProto(const pb::ConstraintPlane& p,
   ConstraintPlane plane;
   HS_ASSIGN_OR_RETURN(plane.point_W, VectorFromProto(p.point_w_m(), at + ".point_W_m"));
   HS_ASSIGN_OR_RETURN(plane.normal_W, VectorFromProto(p.normal_w(), at + ".normal_W"));
-  if (std::abs(plane.normal_W.norm() - 1) > 1e-6) return Invalid(at + ".normal_W", "not unit");
+  if (std::abs(plane.normal_W.norm() - 1) > 1e-6) return InvalidField(at + ".normal_W", "not unit");
   HS_ASSIGN_OR_RETURN(plane.gap_m, NumberIn(p.gap_m(), 0, kMaxCoordinate, at + ".gap_m"));
   HS_ASSIGN_OR_RETURN(plane.tool_point_W,
                       VectorFromProto(p.tool_point_w_m(), at + ".tool_point_W_m"));
@@ -36,7 +32,8 @@ absl::StatusOr<ConstraintPlane> PlaneFromProto(const pb::ConstraintPlane& p,
   const std::string mat = at + ".material";
   HS_ASSIGN_OR_RETURN(plane.stiffness_n_per_m,
                       NumberIn(m.stiffness_n_per_m(), 0, 1e9, mat + ".stiffness_n_per_m"));
-  if (!(plane.stiffness_n_per_m > 0)) return Invalid(mat + ".stiffness_n_per_m", "must be > 0");
+  if (!(plane.stiffness_n_per_m > 0))
+    return InvalidField(mat + ".stiffness_n_per_m", "must be > 0");
   HS_ASSIGN_OR_RETURN(plane.damping_ns_per_m,
                       NumberIn(m.damping_ns_per_m(), 0, 1e9, mat + ".damping_ns_per_m"));
   HS_ASSIGN_OR_RETURN(plane.static_friction,
@@ -77,10 +74,11 @@ absl::StatusOr<LocalModel> LocalModelFromProto(const pb::LocalModel& model) {
   HS_ASSIGN_OR_RETURN(out.X_WP, PoseFromProto(model.proxy_pose(), "local_model.proxy_pose"));
   HS_ASSIGN_OR_RETURN(out.validity_radius_m, NumberIn(model.validity_radius_m(), 0, kMaxCoordinate,
                                                       "local_model.validity_radius_m"));
-  if (!(out.validity_radius_m > 0)) return Invalid("local_model.validity_radius_m", "must be > 0");
+  if (!(out.validity_radius_m > 0))
+    return InvalidField("local_model.validity_radius_m", "must be > 0");
   HS_ASSIGN_OR_RETURN(out.force_clamp_n,
                       NumberIn(model.force_clamp_n(), 0, 1e6, "local_model.force_clamp_n"));
-  if (!(out.force_clamp_n > 0)) return Invalid("local_model.force_clamp_n", "must be > 0");
+  if (!(out.force_clamp_n > 0)) return InvalidField("local_model.force_clamp_n", "must be > 0");
   out.friction = model.friction();
   out.touching = model.touching();
   HS_ASSIGN_OR_RETURN(out.touch_point_W,

@@ -11,10 +11,6 @@ namespace {
 
 namespace pb = haptics::v1;
 
-absl::Status Invalid(const std::string& where, const std::string& what) {
-  return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
-}
-
 void FeatureToProto(const Feature& f, pb::Feature* out) {
   out->set_kind(static_cast<pb::FeatureKind>(f.kind));
   out->set_id(f.id);
@@ -51,11 +47,15 @@ void ContactToProto(const PairContact& pair, const std::vector<std::string>& nam
 
 }  // namespace
 
+absl::Status InvalidField(const std::string& where, const std::string& what) {
+  return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
+}
+
 absl::StatusOr<Vector3d> VectorFromProto(const pb::Vector3& v, const std::string& where) {
   const Vector3d out(v.x(), v.y(), v.z());
-  if (!out.allFinite()) return Invalid(where, "not finite");
+  if (!out.allFinite()) return InvalidField(where, "not finite");
   if (out.cwiseAbs().maxCoeff() > kMaxCoordinate) {
-    return Invalid(where, absl::StrCat("beyond +-", kMaxCoordinate));
+    return InvalidField(where, absl::StrCat("beyond +-", kMaxCoordinate));
   }
   return out;
 }
@@ -64,11 +64,11 @@ absl::StatusOr<Isometry3d> PoseFromProto(const pb::Pose& pose, const std::string
   HS_ASSIGN_OR_RETURN(const Vector3d p, VectorFromProto(pose.position_m(), where + ".position_m"));
   const pb::Quaternion& q = pose.orientation();
   Eigen::Quaterniond rotation(q.w(), q.x(), q.y(), q.z());
-  if (!rotation.coeffs().allFinite()) return Invalid(where + ".orientation", "not finite");
+  if (!rotation.coeffs().allFinite()) return InvalidField(where + ".orientation", "not finite");
   if (rotation.coeffs().isZero()) {
     rotation = Eigen::Quaterniond::Identity();
   } else if (std::abs(rotation.norm() - 1) > 1e-6) {
-    return Invalid(where + ".orientation", "not a unit quaternion");
+    return InvalidField(where + ".orientation", "not a unit quaternion");
   }
   Isometry3d X = Isometry3d::Identity();
   X.linear() = rotation.normalized().toRotationMatrix();
@@ -99,7 +99,7 @@ absl::StatusOr<EffectSet> EffectsFromProto(const google::protobuf::RepeatedField
   for (int i = 0; i < effects.size(); ++i) {
     const int e = effects.Get(i);
     if (e <= pb::EFFECT_UNSPECIFIED || e > kNumEffects) {
-      return Invalid(absl::StrCat(where, "[", i, "]"), "unknown effect");
+      return InvalidField(absl::StrCat(where, "[", i, "]"), "unknown effect");
     }
     // The proto's effects follow Effect's order, from 1.
     out = out.With(static_cast<Effect>(e - 1));

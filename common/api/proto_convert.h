@@ -19,6 +19,10 @@ namespace hs {
 /// is finite but its diagonal is not).
 inline constexpr double kMaxCoordinate = 1e6;
 
+/// INVALID_ARGUMENT "where: what": a message field `where` that breaks the
+/// rule `what`.
+absl::Status InvalidField(const std::string& where, const std::string& what);
+
 /// A vector, unchanged. INVALID_ARGUMENT naming `where` when not finite or
 /// a component is beyond +-kMaxCoordinate.
 absl::StatusOr<Vector3d> VectorFromProto(const haptics::v1::Vector3& v, const std::string& where);

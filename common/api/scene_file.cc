@@ -23,25 +23,21 @@ namespace {
 
 namespace pb = haptics::v1;
 
-absl::Status Invalid(const std::string& where, const std::string& what) {
-  return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
-}
-
 absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::string& where) {
   switch (p.shape_case()) {
     case pb::Procedural::kBox: {
       HS_ASSIGN_OR_RETURN(const Vector3d size,
                           VectorFromProto(p.box().size_m(), where + ".box.size_m"));
-      if (!(size.array() > 0).all()) return Invalid(where + ".box.size_m", "must be > 0");
+      if (!(size.array() > 0).all()) return InvalidField(where + ".box.size_m", "must be > 0");
       return MakeBox(size);
     }
     case pb::Procedural::kSphere: {
       const auto& s = p.sphere();
       if (!(s.radius_m() > 0 && s.radius_m() <= kMaxCoordinate)) {
-        return Invalid(where + ".sphere.radius_m", "must be in (0, 1e6]");
+        return InvalidField(where + ".sphere.radius_m", "must be in (0, 1e6]");
       }
       if (s.subdivisions() < 0 || s.subdivisions() > 6) {
-        return Invalid(where + ".sphere.subdivisions", "must be in [0, 6]");
+        return InvalidField(where + ".sphere.subdivisions", "must be in [0, 6]");
       }
       return MakeIcosphere(s.radius_m(), s.subdivisions());
     }
@@ -49,11 +45,11 @@ absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::str
       const auto& t = p.torus();
       if (!(0 < t.minor_radius_m() && t.minor_radius_m() < t.major_radius_m() &&
             t.major_radius_m() <= kMaxCoordinate)) {
-        return Invalid(where + ".torus", "radii must be 0 < minor < major <= 1e6");
+        return InvalidField(where + ".torus", "radii must be 0 < minor < major <= 1e6");
       }
       if (t.major_segments() < 3 || t.minor_segments() < 3 || t.major_segments() > 1000 ||
           t.minor_segments() > 1000) {
-        return Invalid(where + ".torus", "segments must be in [3, 1000]");
+        return InvalidField(where + ".torus", "segments must be in [3, 1000]");
       }
       return MakeTorus(t.major_radius_m(), t.minor_radius_m(), t.major_segments(),
                        t.minor_segments());
@@ -61,7 +57,7 @@ absl::StatusOr<MeshInput> ProceduralMesh(const pb::Procedural& p, const std::str
     case pb::Procedural::SHAPE_NOT_SET:
       break;
   }
-  return Invalid(where, "no shape");
+  return InvalidField(where, "no shape");
 }
 
 // Model files a scene file names are the operator's, read in this process
@@ -75,7 +71,7 @@ absl::StatusOr<HapticObject> ImportFile(const std::string& path, double unit_sca
   options.unit_scale = unit_scale;
   absl::StatusOr<ImportedModel> model =
       trust == Trust::kLocalFile ? ImportModel(path, options) : SandboxedImport(path, options);
-  if (!model.ok()) return Invalid(where + ".model", std::string(model.status().message()));
+  if (!model.ok()) return InvalidField(where + ".model", std::string(model.status().message()));
   return std::move(model->object);
 }
 
@@ -84,7 +80,7 @@ absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::stri
   const pb::ModelSource& source = o.model();
   const double unit_scale = source.unit_scale() == 0 ? 1.0 : source.unit_scale();
   if (!(unit_scale >= 1e-9 && unit_scale <= kMaxCoordinate)) {
-    return Invalid(where + ".model.unit_scale", "must be in [1e-9, 1e6]");
+    return InvalidField(where + ".model.unit_scale", "must be in [1e-9, 1e6]");
   }
   switch (source.source_case()) {
     case pb::ModelSource::kPath: {
@@ -95,9 +91,9 @@ absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::stri
     case pb::ModelSource::kUploadedModelId: {
       const std::string& id = source.uploaded_model_id();
       const std::string at = where + ".model.uploaded_model_id";
-      if (paths.uploaded_dir.empty()) return Invalid(at, "uploaded models need a server");
+      if (paths.uploaded_dir.empty()) return InvalidField(at, "uploaded models need a server");
       if (id.empty() || id.find('/') != std::string::npos || id.starts_with(".")) {
-        return Invalid(at, "not a model id");
+        return InvalidField(at, "not a model id");
       }
       const std::filesystem::path path = std::filesystem::path(paths.uploaded_dir) / id;
       if (!std::filesystem::exists(path)) {
@@ -109,13 +105,14 @@ absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::stri
       HS_ASSIGN_OR_RETURN(MeshInput mesh, ProceduralMesh(source.procedural(), where + ".model"));
       mesh = TransformMesh(std::move(mesh), Isometry3d(Eigen::Scaling(unit_scale)));
       absl::StatusOr<HapticObject> object = HapticObject::Create(o.name(), std::move(mesh));
-      if (!object.ok()) return Invalid(where + ".model", std::string(object.status().message()));
+      if (!object.ok())
+        return InvalidField(where + ".model", std::string(object.status().message()));
       return object;
     }
     case pb::ModelSource::SOURCE_NOT_SET:
       break;
   }
-  return Invalid(where + ".model", "no path or procedural shape");
+  return InvalidField(where + ".model", "no path or procedural shape");
 }
 
 absl::Status ApplyMaterials(const pb::SceneObject& o, const std::string& where,
@@ -135,10 +132,10 @@ absl::Status ApplyMaterials(const pb::SceneObject& o, const std::string& where,
       material.static_friction = m.material().static_friction();
       material.dynamic_friction = m.material().dynamic_friction();
       if (absl::Status s = object.SetMaterial(id, material); !s.ok()) {
-        return Invalid(at, std::string(s.message()));
+        return InvalidField(at, std::string(s.message()));
       }
     }
-    if (!found) return Invalid(at, absl::StrCat("no face group '", m.face_group(), "'"));
+    if (!found) return InvalidField(at, absl::StrCat("no face group '", m.face_group(), "'"));
   }
   return absl::OkStatus();
 }
@@ -152,8 +149,8 @@ absl::StatusOr<ObjectKind> ToKind(const pb::SceneObject& o, const std::string& w
     case pb::OBJECT_KIND_FREE:
       return ObjectKind::kFree;
     default:
-      return Invalid(where + ".kind",
-                     "must be OBJECT_KIND_FIXED, OBJECT_KIND_TOOL or OBJECT_KIND_FREE");
+      return InvalidField(where + ".kind",
+                          "must be OBJECT_KIND_FIXED, OBJECT_KIND_TOOL or OBJECT_KIND_FREE");
   }
 }
 
@@ -161,13 +158,13 @@ absl::StatusOr<BodyOptions> ToBodyOptions(const pb::SceneObject& o, const std::s
   BodyOptions body;
   if (!o.has_free_body()) return body;
   const std::string at = where + ".free_body";
-  if (o.kind() != pb::OBJECT_KIND_FREE) return Invalid(at, "only for OBJECT_KIND_FREE");
+  if (o.kind() != pb::OBJECT_KIND_FREE) return InvalidField(at, "only for OBJECT_KIND_FREE");
   const pb::FreeBody& b = o.free_body();
   if (!(std::isfinite(b.mass_kg()) && b.mass_kg() >= 0)) {
-    return Invalid(at + ".mass_kg", "must be finite and >= 0");
+    return InvalidField(at + ".mass_kg", "must be finite and >= 0");
   }
   if (!(std::isfinite(b.density_kg_per_m3()) && b.density_kg_per_m3() >= 0)) {
-    return Invalid(at + ".density_kg_per_m3", "must be finite and >= 0");
+    return InvalidField(at + ".density_kg_per_m3", "must be finite and >= 0");
   }
   body.mass_kg = b.mass_kg();
   if (b.density_kg_per_m3() != 0) body.density_kg_per_m3 = b.density_kg_per_m3();
@@ -185,7 +182,7 @@ absl::Status ApplyVertexMoves(const pb::SceneObject& o, const std::string& where
     HS_ASSIGN_OR_RETURN(const Vector3d p, VectorFromProto(move.position_m(), at + ".position_m"));
     const VertexId id = move.vertex_id();
     if (absl::Status s = object.MoveVertices({&id, 1}, {&p, 1}); !s.ok()) {
-      return Invalid(at, std::string(s.message()));
+      return InvalidField(at, std::string(s.message()));
     }
   }
   return absl::OkStatus();
@@ -212,12 +209,12 @@ absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
       options.method = ContactMethod::kSweep3d;
       break;
     default:
-      return Invalid("contact_method", "unknown method");
+      return InvalidField("contact_method", "unknown method");
   }
   constexpr BvType kBvs[] = {BvType::kObbRss, BvType::kObbRss, BvType::kObb,
                              BvType::kRss,    BvType::kKios,   BvType::kAabb};
   if (spec.bounding_volume() < 0 || spec.bounding_volume() > pb::BOUNDING_VOLUME_AABB) {
-    return Invalid("bounding_volume", "unknown bounding volume");
+    return InvalidField("bounding_volume", "unknown bounding volume");
   }
   options.bv = kBvs[spec.bounding_volume()];
   return options;
@@ -281,10 +278,10 @@ absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const BuildPat
   for (int i = 0; i < spec.objects_size(); ++i) {
     const pb::SceneObject& o = spec.objects(i);
     if (absl::Status s = ValidateName(o.name()); !s.ok()) {
-      return Invalid(absl::StrCat("objects[", i, "]"), std::string(s.message()));
+      return InvalidField(absl::StrCat("objects[", i, "]"), std::string(s.message()));
     }
     const std::string where = absl::StrCat("objects[", i, "] '", o.name(), "'");
-    if (!names.insert(o.name()).second) return Invalid(where, "name must be unique");
+    if (!names.insert(o.name()).second) return InvalidField(where, "name must be unique");
     HS_ASSIGN_OR_RETURN(const ObjectKind kind, ToKind(o, where));
     HS_ASSIGN_OR_RETURN(const BodyOptions body, ToBodyOptions(o, where));
     HS_ASSIGN_OR_RETURN(const Isometry3d X_WO, PoseFromProto(o.pose(), where + ".pose"));
@@ -293,7 +290,7 @@ absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const BuildPat
     HS_RETURN_IF_ERROR(ApplyVertexMoves(o, where, object));
     loaded.triangles += object.num_faces();
     absl::StatusOr<ObjectId> id = loaded.scene->AddObject(std::move(object), kind, X_WO, body);
-    if (!id.ok()) return Invalid(where, std::string(id.status().message()));
+    if (!id.ok()) return InvalidField(where, std::string(id.status().message()));
     loaded.names.push_back(o.name());
     if (kind == ObjectKind::kTool) loaded.tools.push_back(*id);
   }

@@ -4,6 +4,7 @@
 #include <fcl/geometry/shape/utility.h>
 
 #include "common/collision/fcl_bvh.h"
+#include "common/collision/obb_overlap.h"
 #include "common/core/scratch.h"
 
 namespace hs {
@@ -15,46 +16,30 @@ struct NodeStack {
 };
 
 // A box (half sides `half`, pose X_OB in the object frame) as a query on
-// volumes of kind BV. Oriented boxes (OBB, and OBBRSS by its box) test the
-// box itself; the other kinds take FCL's conversion, which allocates.
+// volumes of kind BV. Volumes with an oriented culling box (OBB, OBBRSS)
+// are tested against the box itself; the other kinds against FCL's
+// conversion of it, which allocates.
 template <typename BV>
 class BoxQuery {
  public:
   BoxQuery(const Vector3d& half, const fcl::Transform3d& X_OB) {
-    fcl::computeBV(fcl::Boxd(2 * half), X_OB, bv_);
+    box_.axis = X_OB.linear();
+    box_.To = X_OB.translation();
+    box_.extent = half;
+    if constexpr (!kOriented) fcl::computeBV(fcl::Boxd(2 * half), X_OB, converted_);
   }
-  bool Meets(const BV& node) const { return node.overlap(bv_); }
+  bool Meets(const BV& node) const {
+    if constexpr (kOriented) {
+      return CullingBox(node).overlap(box_);
+    } else {
+      return node.overlap(converted_);
+    }
+  }
 
  private:
-  BV bv_;
-};
-
-fcl::OBBd OrientedBox(const Vector3d& half, const fcl::Transform3d& X_OB) {
-  fcl::OBBd box;
-  box.axis = X_OB.linear();
-  box.To = X_OB.translation();
-  box.extent = half;
-  return box;
-}
-
-template <>
-class BoxQuery<fcl::OBBd> {
- public:
-  BoxQuery(const Vector3d& half, const fcl::Transform3d& X_OB) : box_(OrientedBox(half, X_OB)) {}
-  bool Meets(const fcl::OBBd& node) const { return node.overlap(box_); }
-
- private:
+  static constexpr bool kOriented = requires(const BV& bv) { CullingBox(bv); };
   fcl::OBBd box_;
-};
-
-template <>
-class BoxQuery<fcl::OBBRSSd> {
- public:
-  BoxQuery(const Vector3d& half, const fcl::Transform3d& X_OB) : box_(OrientedBox(half, X_OB)) {}
-  bool Meets(const fcl::OBBRSSd& node) const { return node.obb.overlap(box_); }
-
- private:
-  fcl::OBBd box_;
+  BV converted_;
 };
 
 template <typename BV>

@@ -7,6 +7,7 @@
 // Gottschalk's separating axis test exit early.
 
 #include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
 
 #include <cmath>
 #include <cstdint>
@@ -15,6 +16,12 @@
 #include "common/core/types.h"
 
 namespace hs {
+
+/// The oriented box that carries a volume's culling test: an OBB itself,
+/// an OBBRSS's box. Volumes of other kinds have none (the overload set
+/// tells them apart).
+inline const fcl::OBBd& CullingBox(const fcl::OBBd& bv) { return bv; }
+inline const fcl::OBBd& CullingBox(const fcl::OBBRSSd& bv) { return bv.obb; }
 
 /// An oriented box in A's frame, with the radius of its bounding sphere.
 struct PlacedBox {

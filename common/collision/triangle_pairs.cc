@@ -67,10 +67,6 @@ fcl::AABBd Swept(const fcl::AABBd& bv, const Vector3d& v) {
   return out;
 }
 
-// The box that carries each volume's culling test, for the fast path.
-const fcl::OBBd& CullingBox(const fcl::OBBd& bv) { return bv; }
-const fcl::OBBd& CullingBox(const fcl::OBBRSSd& bv) { return bv.obb; }
-
 // The volume test of one traversal: oriented boxes (OBB, OBBRSS) take the
 // lean cached path, the other volumes FCL's own tests.
 template <typename BV>
