@@ -121,9 +121,9 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     for (const auto& [tool, pose] : fresh_.taken()) {
       const ObjectId id = FindTool(loaded_, tool);
       // Poses are validated at the edge; a tool removed meanwhile is skipped.
-      if (id < 0 || !scene.SetDevicePose(id, pose.X_WD).ok()) continue;
+      if (id < 0 || !ApplyDevicePose(scene, id, pose.X_WD, pose.seat).ok()) continue;
       applied_[tool] = pose;
-      snapshot->inputs.push_back({id, pose.X_WD, pose.stamp});
+      snapshot->inputs.push_back({id, pose.X_WD, pose.stamp, pose.seat});
     }
     snapshot->needs = needs;
     scene.SetNeeded(needs);

@@ -26,6 +26,8 @@ struct AppliedInput {
   ObjectId tool = -1;
   Isometry3d X_WD = Isometry3d::Identity();
   AppliedPose stamp;
+  /// The first pose of a device that had just taken the tool.
+  bool seat = false;
 };
 
 struct StepSnapshot {

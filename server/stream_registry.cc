@@ -42,7 +42,11 @@ void StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD, const Appl
   std::lock_guard lock(mu_);
   const auto it = sinks_.find(sink);
   if (it == sinks_.end() || it->second.tool.empty()) return;
-  pending_[it->second.tool] = PendingPose{X_WD, stamp, true};
+  PendingPose& pending = pending_[it->second.tool];
+  // A first pose not taken yet stays a seat when a later one replaces it.
+  const bool seat = !it->second.sent_pose || (pending.fresh && pending.seat);
+  pending = PendingPose{X_WD, stamp, true, seat};
+  it->second.sent_pose = true;
   if (DevicesFreshLocked()) devices_fresh_(true);
 }
 

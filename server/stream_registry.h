@@ -26,6 +26,8 @@ struct PendingPose {
   Isometry3d X_WD = Isometry3d::Identity();
   AppliedPose stamp;
   bool fresh = false;
+  /// The first pose of the device that holds the tool now (Scene::SeatDevice).
+  bool seat = false;
 };
 
 /// The device poses one step takes: (tool, pose) entries [0, count); the
@@ -60,7 +62,8 @@ class StreamRegistry {
   std::optional<std::string> Detach(FrameSink* sink);
 
   /// The pose of `sink`'s tool for the next step (latest wins); ignored
-  /// for a viewer or a stream not attached.
+  /// for a viewer or a stream not attached. A device's first pose seats it
+  /// (PendingPose::seat), until a step takes it.
   void SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp);
   /// Moves the poses not taken before into `fresh` and returns what the
   /// streams need, at one instant.
@@ -89,6 +92,7 @@ class StreamRegistry {
   struct Attached {
     std::string tool;  // empty for viewers
     EffectSet needs;
+    bool sent_pose = false;
   };
   // Whether every attached device has a pose not taken yet (and there is one).
   bool DevicesFreshLocked() const;

@@ -35,6 +35,9 @@ bool ValidModel(const LocalModel& m) {
 
 }  // namespace
 
+HapticLoop::HapticLoop(const HapticLoopOptions& options)
+    : options_(options), history_(std::max(options.history_ticks, 1)) {}
+
 bool HapticLoop::SetModel(const LocalModel& model) {
   if (!ValidModel(model)) {
     ++rejected_models_;
@@ -45,11 +48,11 @@ bool HapticLoop::SetModel(const LocalModel& model) {
   return true;
 }
 
-int HapticLoop::MoveProxy(const Vector3d& device, const Vector3d& goal_in) {
+int HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
   const Vector3d P0 = model_.X_WP.translation();
   const double stand_off = kStandOff * model_.validity_radius_m;
   Vector3d p = proxy_;
-  Vector3d goal = goal_in;
+  Vector3d goal = target;
   int touched = -1;
   for (int slide = 0; slide <= options_.max_slides; ++slide) {
     const Vector3d v = goal - p;
@@ -77,32 +80,34 @@ int HapticLoop::MoveProxy(const Vector3d& device, const Vector3d& goal_in) {
     const Vector3d& n = plane.normal_W;
     p += first_t * v + stand_off * n;
     touched = first;
-    // Slide toward the device as the server's proxy does (proxy_slide.h).
+    // Slide toward the target as the server's proxy does (proxy_slide.h).
     const std::optional<Vector3d> next = SlideGoal(
-        p, device, n,
-        model_.friction
+        p, target, n,
+        friction && model_.friction
             ? std::optional<SlideFriction>({plane.static_friction, plane.dynamic_friction})
             : std::nullopt);
     if (!next) break;
     goal = *next;
   }
-  // The model holds within its sphere only: the proxy stays inside it.
-  const Vector3d out = p - P0;
-  if (out.norm() > model_.validity_radius_m) p = P0 + out * (model_.validity_radius_m / out.norm());
   proxy_ = p;
   return touched;
 }
 
-HapticOutput HapticLoop::Render(int plane, const Vector3d& device, const Vector3d& v_WD) const {
+HapticOutput HapticLoop::Render(int plane, const Vector3d& device, const Vector3d& v_WD,
+                                bool held) const {
   HapticOutput out;
-  out.p_WP = proxy_;
+  out.p_WP = InValidity(proxy_);
   if (plane < 0) return out;
   const ConstraintPlane& p = model_.planes[plane];
   out.touching = true;
   // As the server's common/sim/tool_force.h: spring to the proxy, damper
   // along the normal, clamped; the lever is tool-fixed.
-  out.force_W = p.stiffness_n_per_m * (proxy_ - device) -
+  out.force_W = p.stiffness_n_per_m * (out.p_WP - device) -
                 p.damping_ns_per_m * v_WD.dot(p.normal_W) * p.normal_W;
+  // There the model knows no more of the surface than that the tool is
+  // behind this plane: it pushes out along the normal, and neither drags
+  // the hand back toward the sphere nor holds it by friction.
+  if (held) out.force_W = p.normal_W * p.normal_W.dot(out.force_W);
   if (out.force_W.norm() > model_.force_clamp_n) {
     out.force_W *= model_.force_clamp_n / out.force_W.norm();
     out.clamped = true;
@@ -112,16 +117,64 @@ HapticOutput HapticLoop::Render(int plane, const Vector3d& device, const Vector3
   return out;
 }
 
-HapticOutput HapticLoop::Step(const Vector3d& device, const Vector3d& v_WD) {
-  // Past the validity sphere the model says nothing: the proxy goes no
-  // farther than its edge.
+void HapticLoop::Record(const Vector3d& device, const Vector3d& proxy) {
+  history_[history_next_] = {device, proxy};
+  history_next_ = (history_next_ + 1) % static_cast<int>(history_.size());
+  history_size_ = std::min(history_size_ + 1, static_cast<int>(history_.size()));
+}
+
+int HapticLoop::FindInHistory(const Vector3d& p_WD) const {
+  const int n = static_cast<int>(history_.size());
+  for (int k = 0; k < history_size_; ++k) {
+    const int i = (history_next_ - 1 - k + n) % n;
+    if (history_[i].device == p_WD) return i;
+  }
+  return -1;
+}
+
+void HapticLoop::SwitchModel(const Vector3d& device, Vector3d kept) {
+  const Vector3d p_WD = pending_model_.p_WD;
+  std::swap(model_, pending_model_);
+  has_pending_model_ = false;
+  has_model_ = true;
   const Vector3d P0 = model_.X_WP.translation();
-  const Vector3d from_proxy = device - P0;
-  const bool beyond = from_proxy.norm() > model_.validity_radius_m;
-  const Vector3d goal =
-      beyond ? Vector3d(P0 + from_proxy * (model_.validity_radius_m / from_proxy.norm())) : device;
-  HapticOutput out = Render(MoveProxy(device, goal), device, v_WD);
-  out.beyond_validity = beyond;
+  proxy_ = P0;
+  // The loop's own proxy when the device was where the model was taken:
+  // this tick's (no latency) or one in the history; else a restart at the
+  // server's proxy.
+  const bool now = p_WD == device;
+  const int then = now ? -1 : FindInHistory(p_WD);
+  if (!now && then < 0) {
+    ++restarted_models_;
+    return;
+  }
+  // Where the loop's proxy is now, moved by the server's correction of
+  // where it was then; reached from the server's proxy, so that it ends
+  // in front of every plane (frictionless: this is no motion of the tool).
+  const Vector3d goal = kept + (P0 - (now ? kept : history_[then].proxy));
+  MoveProxy(goal, false);
+  if (now) return;
+  // The ticks since the model's were rendered from the uncorrected proxy:
+  // they take the correction too, so that the next model's does not count
+  // it again.
+  const Vector3d moved = proxy_ - kept;
+  const int n = static_cast<int>(history_.size());
+  for (int i = (then + 1) % n; i != history_next_; i = (i + 1) % n) history_[i].proxy += moved;
+}
+
+Vector3d HapticLoop::InValidity(const Vector3d& point) const {
+  const Vector3d P0 = model_.X_WP.translation();
+  const Vector3d out = point - P0;
+  const double r = model_.validity_radius_m;
+  return out.norm() > r ? Vector3d(P0 + out * (r / out.norm())) : point;
+}
+
+HapticOutput HapticLoop::Step(const Vector3d& device, const Vector3d& v_WD) {
+  const int plane = MoveProxy(device, true);
+  const Vector3d P0 = model_.X_WP.translation();
+  const bool held = (proxy_ - P0).norm() > model_.validity_radius_m;
+  HapticOutput out = Render(plane, device, v_WD, held);
+  out.beyond_validity = (device - P0).norm() > model_.validity_radius_m;
   return out;
 }
 
@@ -141,10 +194,7 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
     // does from the server's proxy: that step, not the hand's motion, is
     // what gets spread over the next ticks.
     const Vector3d before = has_model_ ? Step(device, v_WD).force_W : last_.force_W;
-    std::swap(model_, pending_model_);
-    has_pending_model_ = false;
-    has_model_ = true;
-    proxy_ = model_.X_WP.translation();
+    SwitchModel(device, has_model_ ? proxy_ : device);
     out = Step(device, v_WD);
     switch_offset_ += before - out.force_W;
   } else if (has_model_) {
@@ -161,6 +211,11 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
     switch_offset_ *= (left - options_.max_switch_step_n) / left;
   }
   out.force_W += switch_offset_;
+  if (has_model_ && out.force_W.norm() > model_.force_clamp_n) {
+    out.force_W *= model_.force_clamp_n / out.force_W.norm();
+    out.clamped = true;
+  }
+  Record(device, proxy_);
   last_ = out;
   return out;
 }

@@ -10,16 +10,29 @@
 // it meets and sliding along it toward the device (Coulomb friction when
 // the model says so), at most three slides; the force is the touched
 // plane's spring from the device to the proxy and its damper along the
-// normal, clamped to the scene's clamp, with its torque. A new model
-// restarts the proxy where the server's was (the server's god object
-// knows the whole mesh); the step between what the old and the new model
-// render at that tick is spread over the next ticks, so that no tick
-// changes the force by more than `max_switch_step_n` on that account. The proxy never leaves the
-// model's validity sphere: past it the model says nothing, so the loop does not extrapolate. A
-// non-finite pose or model is rejected: the loop holds its last force (or model) and counts the
-// rejection.
+// normal, clamped to the scene's clamp, with its torque.
+//
+// A new model arrives a round trip after the device pose it was taken at
+// (`LocalModel::p_WD`). The loop finds the tick it rendered that pose at
+// and moves its proxy by how far the server's proxy then differed from its
+// own (the server's god object knows the whole mesh), from the server's
+// proxy toward that place: the proxy stays where the hand has taken it
+// since, corrected, rather than jumping back a round trip (which would
+// drag the hand back and, when it turns, push it on). A model whose pose
+// the loop no longer holds restarts the proxy where the server's was. The
+// step between what the old and the new model render at that tick is
+// spread over the next ticks, so that no tick changes the force by more
+// than `max_switch_step_n` on that account; the sum stays within the clamp.
+// Past the model's validity sphere the model says nothing, so the loop
+// does not extrapolate: the proxy is rendered at the sphere's edge, and
+// only the touched plane's push along its normal is felt (no friction and
+// no drag back toward the sphere, which would be forces no surface makes).
+// A non-finite pose or model is rejected: the loop holds its last force
+// (or model) and counts the rejection. Nothing is allocated after
+// construction.
 
 #include <cstdint>
+#include <vector>
 
 #include "common/core/types.h"
 #include "common/sim/local_model.h"
@@ -33,6 +46,9 @@ struct HapticLoopOptions {
   double max_switch_step_n = 0.25;
   /// Stops and slides per tick, as the server's proxy.
   int max_slides = 3;
+  /// Ticks of device and proxy positions kept to match a model with the
+  /// pose it was taken at: the longest round trip corrected (2 s at 1 kHz).
+  int history_ticks = 2048;
 };
 
 struct HapticOutput {
@@ -49,7 +65,7 @@ struct HapticOutput {
 
 class HapticLoop {
  public:
-  explicit HapticLoop(const HapticLoopOptions& options = {}) : options_(options) {}
+  explicit HapticLoop(const HapticLoopOptions& options = {});
 
   /// Renders from `model` from the next tick on. A model with a number that
   /// is not finite, a normal that is not unit, or a radius or clamp that is
@@ -64,18 +80,36 @@ class HapticLoop {
   /// Models and poses rejected so far.
   int64_t rejected_models() const { return rejected_models_; }
   int64_t rejected_poses() const { return rejected_poses_; }
+  /// Models whose device pose was not among the last ticks' (the proxy
+  /// restarted at the server's).
+  int64_t restarted_models() const { return restarted_models_; }
   /// Ticks whose device lay past the model's validity radius.
   int64_t beyond_validity_ticks() const { return beyond_validity_ticks_; }
 
  private:
-  // Moves proxy_ toward `goal` against the model's planes; returns the
-  // plane last touched, -1 for none.
-  int MoveProxy(const Vector3d& device, const Vector3d& goal);
+  // Moves proxy_ toward `target` against the model's planes, sliding
+  // toward it (with the model's friction if `friction`); returns the plane
+  // last touched, -1 for none. The proxy may leave the validity sphere
+  // (it is rendered at the sphere's edge): it is the loop's reckoning of
+  // where the server's proxy would be, which the next model corrects.
+  int MoveProxy(const Vector3d& target, bool friction);
+  // The point of the validity sphere nearest `point`.
+  Vector3d InValidity(const Vector3d& point) const;
+  // Makes model_ the pending model: the proxy moves from the new model's
+  // proxy toward where the loop's own proxy (at `kept` now, with the device
+  // at `device`) would be by the server's reckoning. `kept` is a copy: the
+  // caller's is often proxy_ itself.
+  void SwitchModel(const Vector3d& device, Vector3d kept);
+  // The history entry whose device position is `p_WD`, newest first; -1 for
+  // none.
+  int FindInHistory(const Vector3d& p_WD) const;
+  void Record(const Vector3d& device, const Vector3d& proxy);
   // One tick's proxy move and force against model_.
   HapticOutput Step(const Vector3d& device, const Vector3d& v_WD);
   // The force of touching plane `plane` with the device at `device`
-  // moving at `v_WD`.
-  HapticOutput Render(int plane, const Vector3d& device, const Vector3d& v_WD) const;
+  // moving at `v_WD`, the proxy at proxy_ or, past the validity sphere,
+  // at its edge; `held`: the proxy is past it (normal push only).
+  HapticOutput Render(int plane, const Vector3d& device, const Vector3d& v_WD, bool held) const;
 
   HapticLoopOptions options_;
   LocalModel model_;
@@ -86,12 +120,22 @@ class HapticLoop {
   Vector3d proxy_ = Vector3d::Zero();
   Vector3d last_device_ = Vector3d::Zero();
   bool has_last_device_ = false;
+  // The last ticks' device and proxy positions, a ring: entry
+  // (history_next_ - 1 - k) mod size is k ticks old.
+  struct Rendered {
+    Vector3d device;
+    Vector3d proxy;
+  };
+  std::vector<Rendered> history_;
+  int history_next_ = 0;
+  int history_size_ = 0;
   // What a model switch left to spread over the next ticks, newtons.
   Vector3d switch_offset_ = Vector3d::Zero();
   HapticOutput last_;
   int64_t rejected_models_ = 0;
   int64_t rejected_poses_ = 0;
   int64_t beyond_validity_ticks_ = 0;
+  int64_t restarted_models_ = 0;
 };
 
 }  // namespace hs

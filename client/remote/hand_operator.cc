@@ -22,6 +22,18 @@ absl::StatusOr<OperatorMotion> ParseOperator(const std::string& name) {
   return absl::InvalidArgumentError("operator must be press, slide or tap, not '" + name + "'");
 }
 
+const char* OperatorName(OperatorMotion motion) {
+  switch (motion) {
+    case OperatorMotion::kPress:
+      return "press";
+    case OperatorMotion::kSlide:
+      return "slide";
+    case OperatorMotion::kTap:
+      return "tap";
+  }
+  return "?";
+}
+
 HandOperator::HandOperator(OperatorMotion motion, const HandParams& params, const Isometry3d& start)
     : motion_(motion), params_(params), start_(start), x_(start.translation()) {}
 

@@ -24,6 +24,8 @@ enum class OperatorMotion {
 
 /// "press", "slide" or "tap"; INVALID_ARGUMENT otherwise.
 absl::StatusOr<OperatorMotion> ParseOperator(const std::string& name);
+/// The name ParseOperator reads.
+const char* OperatorName(OperatorMotion motion);
 
 struct HandParams {
   /// An arm holding a stylus: about 0.15 kg, 200 N/m and 3 N*s/m (a

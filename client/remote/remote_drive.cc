@@ -98,9 +98,7 @@ RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
 nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) {
   const LinkConditions& link = args.run.link;
   return {{"mode", args.run.local_model ? "local_model" : "server_force"},
-          {"operator", args.run.motion == OperatorMotion::kPress   ? "press"
-                       : args.run.motion == OperatorMotion::kSlide ? "slide"
-                                                                   : "tap"},
+          {"operator", OperatorName(args.run.motion)},
           {"latency_ms", link.latency_ms},
           {"jitter_ms", link.jitter_ms},
           {"loss", link.loss},
@@ -119,6 +117,7 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"poses_lost", s.poses_lost},
           {"frames_lost", s.frames_lost},
           {"models_rejected", s.models_rejected},
+          {"models_restarted", s.models_restarted},
           {"beyond_validity_ticks", s.beyond_validity_ticks}};
 }
 

@@ -76,6 +76,8 @@ RemoteSummary RemoteRun::Summary(std::span<const Vector3d> reference) const {
   s.poses_lost = up_.lost();
   s.frames_lost = down_.lost();
   s.models_rejected = models_rejected_;
+  s.models_restarted = loop_.restarted_models();
+  s.models_restarted = loop_.restarted_models();
   s.beyond_validity_ticks = loop_.beyond_validity_ticks();
   return s;
 }

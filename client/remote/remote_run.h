@@ -77,6 +77,9 @@ struct RemoteSummary {
   int64_t poses_lost = 0;
   int64_t frames_lost = 0;
   int64_t models_rejected = 0;
+  /// Models whose device pose the loop no longer held (the proxy restarted
+  /// at the server's).
+  int64_t models_restarted = 0;
   int64_t beyond_validity_ticks = 0;
 };
 

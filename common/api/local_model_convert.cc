@@ -54,6 +54,7 @@ void LocalModelToProto(const LocalModel& model, const std::vector<std::string>& 
   out->set_friction(model.friction);
   out->set_touching(model.touching);
   VectorToProto(model.touch_point_W, out->mutable_touch_point_w_m());
+  VectorToProto(model.p_WD, out->mutable_device_position_w_m());
   for (const ConstraintPlane& plane : model.planes) {
     pb::ConstraintPlane* p = out->add_planes();
     p->set_object(names[plane.object]);
@@ -83,6 +84,8 @@ absl::StatusOr<LocalModel> LocalModelFromProto(const pb::LocalModel& model) {
   out.touching = model.touching();
   HS_ASSIGN_OR_RETURN(out.touch_point_W,
                       VectorFromProto(model.touch_point_w_m(), "local_model.touch_point_W_m"));
+  HS_ASSIGN_OR_RETURN(
+      out.p_WD, VectorFromProto(model.device_position_w_m(), "local_model.device_position_W_m"));
   out.planes.reserve(model.planes_size());
   for (int i = 0; i < model.planes_size(); ++i) {
     HS_ASSIGN_OR_RETURN(

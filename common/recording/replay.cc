@@ -41,7 +41,9 @@ class ReplayedScene {
     absl::StatusOr<Isometry3d> X_WD = ExactPoseFromProto(input.device_pose());
     if (!X_WD.ok()) return X_WD.status();
     const ObjectId id = FindTool(*loaded_, input.tool());
-    if (id >= 0 && loaded_->scene->SetDevicePose(id, *X_WD).ok()) applied_[input.tool()] = *X_WD;
+    if (id >= 0 && ApplyDevicePose(*loaded_->scene, id, *X_WD, input.seat()).ok()) {
+      applied_[input.tool()] = *X_WD;
+    }
     return absl::OkStatus();
   }
 

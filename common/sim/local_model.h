@@ -41,6 +41,10 @@ struct ConstraintPlane {
 struct LocalModel {
   /// The proxy pose the model was taken at, world frame, metres.
   Isometry3d X_WP = Isometry3d::Identity();
+  /// The device's origin the proxy was moved toward, world frame, metres:
+  /// a device's loop finds the tick it rendered at that position to learn
+  /// how far its own proxy had drifted from the server's.
+  Vector3d p_WD = Vector3d::Zero();
   /// How far from the proxy's origin the model holds, metres: every face
   /// of a fixed object within this distance of the tool is behind one of
   /// the planes. A device must not move its proxy farther.

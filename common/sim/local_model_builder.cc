@@ -185,10 +185,11 @@ void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures
 
 }  // namespace
 
-void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
+void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                      std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                      const LocalModelOptions& options, LocalModel& model) {
   model.X_WP = proxy.X_WP;
+  model.p_WD = p_WD;
   model.validity_radius_m = options.radius_m;
   model.force_clamp_n = options.force_clamp_n;
   model.friction = options.friction;

@@ -20,13 +20,14 @@ struct LocalModelOptions {
   bool friction = false;
 };
 
-/// Fills `model` for `tool` (its pose field ignored) at `proxy`, among
+/// Fills `model` for `tool` (its pose field ignored) at `proxy`, moved
+/// toward the device at `p_WD`, among
 /// `obstacles` (fixed objects, ids `ids`; `proxy.obstacle` is an id). A
 /// plane is taken for each face whose box comes within the radius of the
 /// tool's box and whose plane the tool is in front of by at most the
 /// radius; planes that coincide are taken once. Allocates nothing once
 /// `model.planes` and the query buffers are large enough.
-void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy,
+void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                      std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                      const LocalModelOptions& options, LocalModel& model);
 

@@ -72,15 +72,25 @@ absl::Status Scene::SetThreads(int threads, const std::function<void()>& on_work
   return absl::OkStatus();
 }
 
-absl::Status Scene::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
+absl::Status Scene::CheckDevicePose(ObjectId id, const Isometry3d& X_WD) const {
   if (id < 0 || id >= objects_.size()) {
     return absl::NotFoundError(absl::StrCat("no object ", id));
   }
   if (objects_[id].kind != ObjectKind::kTool) {
     return absl::FailedPreconditionError(absl::StrCat("object ", id, " is not a tool"));
   }
-  HS_RETURN_IF_ERROR(ValidateRigidPose(X_WD, "device"));
+  return ValidateRigidPose(X_WD, "device");
+}
+
+absl::Status Scene::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
+  HS_RETURN_IF_ERROR(CheckDevicePose(id, X_WD));
   tools_.SetDevicePose(id, X_WD);
+  return absl::OkStatus();
+}
+
+absl::Status Scene::SeatDevice(ObjectId id, const Isometry3d& X_WD) {
+  HS_RETURN_IF_ERROR(CheckDevicePose(id, X_WD));
+  tools_.SeatDevice(id, X_WD);
   return absl::OkStatus();
 }
 

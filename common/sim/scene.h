@@ -48,6 +48,12 @@ class Scene {
   /// INVALID_ARGUMENT when the pose is not finite or not rigid; nothing
   /// changes on error.
   absl::Status SetDevicePose(ObjectId id, const Isometry3d& X_WD);
+  /// Like SetDevicePose, for a device that has just taken tool `id`: its
+  /// pose does not follow the last device's, so nothing is swept between
+  /// them, and the proxy comes to it from the tool's home pose (where the
+  /// scene placed the tool) instead of from where the last device left it,
+  /// stopping at what lies between as a proxy does.
+  absl::Status SeatDevice(ObjectId id, const Isometry3d& X_WD);
 
   /// Steps the tools on up to `threads` threads (the stepping one
   /// included): tools never meet each other, so each is stepped alone, its
@@ -69,6 +75,8 @@ class Scene {
   const SceneOptions& options() const { return options_; }
 
  private:
+  // SetDevicePose's errors.
+  absl::Status CheckDevicePose(ObjectId id, const Isometry3d& X_WD) const;
   explicit Scene(const SceneOptions& options) : options_(options) {}
 
   SceneOptions options_;
@@ -80,5 +88,10 @@ class Scene {
   StageStatsTable stats_{};
   StepFrame frame_;
 };
+
+/// SeatDevice for a device's first pose on the tool, else SetDevicePose.
+inline absl::Status ApplyDevicePose(Scene& scene, ObjectId id, const Isometry3d& X_WD, bool seat) {
+  return seat ? scene.SeatDevice(id, X_WD) : scene.SetDevicePose(id, X_WD);
+}
 
 }  // namespace hs

@@ -29,7 +29,12 @@ void AddStats(StageStatsTable& to, StageStatsTable& from) {
 void ToolStage::Add(ObjectId id, const Isometry3d& X_WO) {
   if (static_cast<int>(index_.size()) <= id) index_.resize(id + 1, -1);
   index_[id] = static_cast<int>(tools_.size());
-  tools_.push_back(Tool{id, X_WO, X_WO, X_WO, X_WO, true});
+  tools_.push_back(Tool{.id = id,
+                        .X_WD_previous = X_WO,
+                        .X_WD = X_WO,
+                        .X_WP = X_WO,
+                        .X_WP_previous = X_WO,
+                        .X_WO_home = X_WO});
   scratch_.emplace_back();
 }
 
@@ -37,6 +42,15 @@ void ToolStage::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
   Tool& tool = tools_[index_[id]];
   tool.moved = tool.moved || !X_WD.isApprox(tool.X_WD, 0.0);
   tool.X_WD = X_WD;
+}
+
+void ToolStage::SeatDevice(ObjectId id, const Isometry3d& X_WD) {
+  Tool& tool = tools_[index_[id]];
+  tool.moved = true;
+  tool.seated = true;
+  tool.X_WD = X_WD;
+  tool.X_WD_previous = X_WD;
+  tool.X_WP = tool.X_WO_home;
 }
 
 bool ToolStage::AnyMoved() const {
@@ -84,10 +98,12 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
                   [&](int k) { StepHalf(halves_[k], stages, frames); });
   for (size_t i = 0; i < tools_.size(); ++i) {
     Tool& tool = tools_[i];
-    tool.X_WP_previous = tool.X_WP;
+    // A seated proxy came from the home pose: free bodies meet no motion.
+    tool.X_WP_previous = tool.seated ? frames[i].X_WP : tool.X_WP;
     tool.X_WP = frames[i].X_WP;
     tool.X_WD_previous = tool.X_WD;
     tool.moved = false;
+    tool.seated = false;
     AddStats(stats, scratch_[i].contact_stats);
     AddStats(stats, scratch_[i].proxy_stats);
   }
@@ -281,8 +297,8 @@ void ToolStage::StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
   }
   if (stages.Has(Effect::kLocalModel)) {
     StageTimer timer(stats[static_cast<int>(Effect::kLocalModel)]);
-    BuildLocalModel(objects_.Posed(tool.id, proxy.X_WP), proxy, objects_.obstacles(),
-                    objects_.obstacle_ids(),
+    BuildLocalModel(objects_.Posed(tool.id, proxy.X_WP), proxy, tool.X_WD.translation(),
+                    objects_.obstacles(), objects_.obstacle_ids(),
                     {.radius_m = options_.local_model_radius_m,
                      .force_clamp_n = options_.force_clamp_n,
                      .friction = stages.Has(Effect::kFriction)},

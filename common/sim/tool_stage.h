@@ -29,6 +29,10 @@ class ToolStage {
   void Add(ObjectId id, const Isometry3d& X_WO);
   /// The device pose of tool `id` for the next step; `id` must be a tool.
   void SetDevicePose(ObjectId id, const Isometry3d& X_WD);
+  /// The first pose of a device that has just taken tool `id`: nothing is
+  /// swept from the last device's pose, and the proxy moves to it from the
+  /// tool's home pose (where Add put it).
+  void SeatDevice(ObjectId id, const Isometry3d& X_WD);
   /// Some device moved since the last step.
   bool AnyMoved() const;
 
@@ -53,7 +57,9 @@ class ToolStage {
     Isometry3d X_WD;           // device pose for the next step
     Isometry3d X_WP;           // proxy pose
     Isometry3d X_WP_previous;  // proxy pose of the last step
+    Isometry3d X_WO_home;      // where Add put it
     bool moved = true;
+    bool seated = false;  // SeatDevice since the last step
   };
   // What one tool's step writes besides its frame, so that tools, and the
   // two halves of a tool's step, can be stepped at once: each half writes

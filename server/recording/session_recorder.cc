@@ -212,6 +212,7 @@ bool SessionRecorder::WriteEntry(const Entry& entry) {
     ExactPoseToProto(applied.X_WD, input->mutable_device_pose());
     input->set_sequence(applied.stamp.sequence);
     input->set_device_time_ns(applied.stamp.device_time_ns);
+    input->set_seat(applied.seat);
     if (!Append(record_)) return false;
   }
   record_.Clear();

@@ -42,6 +42,32 @@ TEST(StreamRegistryTest, ToolsAreHeldByOneDevice) {
   EXPECT_TRUE(streams.AttachDevice(&b, "probe", EffectSet::All(), AnyTool).ok());
 }
 
+// A device's first pose seats it, also when a later pose replaces it before
+// a step takes it; its later poses do not; the next device to take the tool
+// is seated again.
+TEST(StreamRegistryTest, ADevicesFirstPoseSeatsIt) {
+  StreamRegistry streams([](bool) {});
+  FreshPoses fresh;
+  RecordingSink first, second;
+  ASSERT_TRUE(streams.AttachDevice(&first, "probe", EffectSet::All(), AnyTool).ok());
+  auto taken = [&] {
+    streams.TakeFreshPoses(fresh);
+    EXPECT_EQ(fresh.count, 1u);
+    return fresh.taken().front().second;
+  };
+  streams.SetPose(&first, At(1), {1, 0});
+  streams.SetPose(&first, At(2), {2, 0});
+  const PendingPose seated = taken();
+  EXPECT_TRUE(seated.seat);
+  EXPECT_EQ(seated.X_WD.translation().x(), 2);
+  streams.SetPose(&first, At(3), {3, 0});
+  EXPECT_FALSE(taken().seat);
+  streams.Detach(&first);
+  ASSERT_TRUE(streams.AttachDevice(&second, "probe", EffectSet::All(), AnyTool).ok());
+  streams.SetPose(&second, At(4), {1, 0});
+  EXPECT_TRUE(taken().seat);
+}
+
 // The scene computes the union of what the streams need.
 TEST(StreamRegistryTest, NeedsAreTheUnion) {
   StreamRegistry streams([](bool) {});

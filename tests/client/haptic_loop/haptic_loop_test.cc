@@ -94,6 +94,81 @@ TEST(HapticLoopTest, ModelIsNotExtrapolatedPastItsRadius) {
   EXPECT_EQ(loop.beyond_validity_ticks(), 1);
 }
 
+// Pressed 2 mm into a floor 3 cm from the model's proxy (past its 2 cm
+// radius): the proxy is rendered at the sphere's edge, and the force is the
+// floor's push along its normal only (hand-computed: k * 2 mm = 2 N up),
+// not a pull back toward the sphere.
+TEST(HapticLoopTest, PastItsRadiusOnlyTheNormalPushIsFelt) {
+  HapticLoop loop({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)})));
+  HapticOutput out;
+  for (int i = 0; i <= 30; ++i) out = loop.Tick(At(Vector3d(0.001 * i, 0, -0.002)));
+  EXPECT_TRUE(out.beyond_validity);
+  EXPECT_NEAR(out.p_WP.norm(), 0.02, 1e-9);
+  EXPECT_NEAR(out.force_W.z(), 2.0, 1e-3);
+  EXPECT_NEAR(out.force_W.x(), 0, 1e-12);
+}
+
+// A model arrives 100 ticks after the pose it was taken at, with the
+// server's proxy where the loop's was then: the loop keeps its own proxy,
+// where the hand has slid it since, instead of jumping back 1 cm (which
+// would drag the hand back by k * 1 cm = 10 N).
+TEST(HapticLoopTest, AModelARoundTripOldKeepsTheProxyWhereTheHandTookIt) {
+  HapticLoop loop;
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)})));
+  auto device = [](int tick) { return Vector3d(0.0001 * tick, 0, -0.002); };
+  LocalModel late = Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)});
+  HapticOutput before;
+  for (int i = 0; i <= 150; ++i) {
+    before = loop.Tick(At(device(i)));
+    if (i == 50) {
+      late.p_WD = device(i);
+      late.X_WP.translation() = before.p_WP;
+    }
+  }
+  ASSERT_TRUE(loop.SetModel(late));
+  const HapticOutput after = loop.Tick(At(device(150)));
+  EXPECT_NEAR(after.p_WP.x(), before.p_WP.x(), 1e-9);
+  EXPECT_NEAR((after.force_W - before.force_W).norm(), 0, 1e-4);  // the stand-off, 2e-8 m
+}
+
+// A floor the proxy sticks to (static friction 10), the hand sliding 1 cm
+// along it. The server's proxy at tick 50 was 1 mm farther along x than
+// the loop's (it knew more of the surface): the loop's proxy moves by that
+// 1 mm when the model arrives, and a second model, from tick 60 and
+// agreeing with the corrected proxy, moves it no more (the correction is
+// not counted twice).
+TEST(HapticLoopTest, TheServersCorrectionIsAppliedOnce) {
+  ConstraintPlane sticky = Plane(Vector3d::UnitZ(), 0);
+  sticky.static_friction = sticky.dynamic_friction = 10;
+  LocalModel first = Model(Vector3d::Zero(), {sticky});
+  first.friction = true;
+  HapticLoop loop({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(loop.SetModel(first));
+  const Vector3d shift(0.001, 0, 0);
+  auto device = [](int tick) { return Vector3d(0.0001 * tick, 0, -0.002); };
+  LocalModel second = first;
+  HapticOutput out;
+  for (int i = 0; i <= 100; ++i) {
+    out = loop.Tick(At(device(i)));
+    if (i == 50) {
+      first.p_WD = device(i);
+      first.X_WP.translation() = out.p_WP + shift;
+    }
+  }
+  ASSERT_TRUE(loop.SetModel(first));
+  HapticOutput corrected = loop.Tick(At(device(100)));
+  // (A stuck proxy creeps by its stand-off, micrometres, each tick.)
+  EXPECT_NEAR(corrected.p_WP.x(), out.p_WP.x() + shift.x(), 1e-5);
+  // Tick 60 was rendered before the correction arrived; the server's proxy
+  // for it agrees with the corrected loop.
+  second.p_WD = device(60);
+  second.X_WP.translation() = shift;  // the loop's proxy stuck at 0 then
+  ASSERT_TRUE(loop.SetModel(second));
+  const HapticOutput again = loop.Tick(At(device(100)));
+  EXPECT_NEAR(again.p_WP.x(), corrected.p_WP.x(), 1e-5);
+}
+
 // Lost frames: the last model keeps rendering the floor. A new model whose
 // proxy is 5 mm off (the server's proxy moved) changes the force by 5 N at
 // once; the loop spreads it, no tick changing by more than the bound.

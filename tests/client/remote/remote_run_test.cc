@@ -1,9 +1,11 @@
 // Closed-loop runs of a remote device on the demo scene, in process and in
 // simulated time (the scene steps once per 1 ms tick), so they repeat
-// exactly: the hand presses the probe into the organ through a link of
-// 100 ms round trip.
+// exactly: the hand presses, slides and taps the probe on the organ
+// through a link of 100 ms round trip.
 
 #include "client/remote/remote_run.h"
+
+#include "client/haptic_loop/haptic_loop.h"
 
 #include <gtest/gtest.h>
 
@@ -21,9 +23,9 @@ const std::string kScene = std::string(HS_SCENES_DIR) + "/probe_on_torus.textpro
 // may hand back at most this much work to the hand over a run, joules.
 constexpr double kPassiveBoundJ = 1e-3;
 
-RemoteSummary RunPress(bool local_model, double latency_ms, double seconds,
-                       std::vector<Vector3d>* forces = nullptr,
-                       std::span<const Vector3d> reference = {}) {
+RemoteSummary RunOperator(OperatorMotion motion, bool local_model, double latency_ms,
+                          double seconds, std::vector<Vector3d>* forces = nullptr,
+                          std::span<const Vector3d> reference = {}) {
   absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(kScene);
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(kScene);
   EXPECT_TRUE(spec.ok() && loaded.ok());
@@ -36,7 +38,7 @@ RemoteSummary RunPress(bool local_model, double latency_ms, double seconds,
     if (o.name() == "probe") start = *PoseFromProto(o.pose(), "pose");
   }
   RemoteRunOptions options;
-  options.motion = OperatorMotion::kPress;
+  options.motion = motion;
   options.local_model = local_model;
   options.link = {.latency_ms = latency_ms, .seed = 1};
   RemoteRun run(options, start);
@@ -59,27 +61,40 @@ RemoteSummary RunPress(bool local_model, double latency_ms, double seconds,
   return run.Summary(reference);
 }
 
+class RemoteOperatorTest : public testing::TestWithParam<OperatorMotion> {};
+
 // At 100 ms round trip the device rendering from the local model keeps the
-// contact passive (it hands back no more work than the bound) and smooth
-// (no tick changes the force by more than the switch bound and what the
-// hand's own motion makes); applying the server's late forces instead puts
-// energy into the hand.
-TEST(RemoteRunTest, LocalModelKeepsAPressPassiveAt100Ms) {
-  std::vector<Vector3d> reference;
-  RunPress(true, 0, 4, &reference);
-  const RemoteSummary local = RunPress(true, 100, 4, nullptr, reference);
-  const RemoteSummary server = RunPress(false, 100, 4);
+// contact passive (it hands back no more work than the bound), smooth (no
+// tick changes the force by more than the zero-latency run does plus the
+// switch bound) and as shallow as with no latency (within 2 mm), for each
+// operator: a press, a slide across the organ's crest, fast taps. Applying
+// the server's late forces instead puts energy into the hand.
+TEST_P(RemoteOperatorTest, LocalModelKeepsTheContactPassiveAt100Ms) {
+  std::vector<Vector3d> reference_forces;
+  const RemoteSummary reference = RunOperator(GetParam(), true, 0, 4, &reference_forces);
+  const RemoteSummary local = RunOperator(GetParam(), true, 100, 4, nullptr, reference_forces);
+  const RemoteSummary server = RunOperator(GetParam(), false, 100, 4);
   std::cout << "local: energy " << local.energy_j << " J, max step " << local.max_force_step_n
             << " N, penetration p99 " << local.penetration_p99_m << " m, rms error "
             << local.force_rms_error_n << " N, max force " << local.max_force_n << " N\n"
             << "server: energy " << server.energy_j << " J, max step " << server.max_force_step_n
             << " N, penetration p99 " << server.penetration_p99_m << " m, max force "
             << server.max_force_n << " N\n";
-  EXPECT_GT(local.max_force_n, 0.5) << "the press must reach the organ";
+  EXPECT_GT(local.max_force_n, 0.5) << "the hand must reach the organ";
   EXPECT_LE(local.energy_j, kPassiveBoundJ);
+  EXPECT_LE(local.max_force_step_n,
+            reference.max_force_step_n + HapticLoopOptions{}.max_switch_step_n);
+  EXPECT_LE(local.penetration_p99_m, reference.penetration_p99_m + 2e-3);
   EXPECT_GT(server.energy_j, kPassiveBoundJ);
   EXPECT_NEAR(local.round_trip_p50_ms, 100, 2);
 }
+
+INSTANTIATE_TEST_SUITE_P(Operators, RemoteOperatorTest,
+                         testing::Values(OperatorMotion::kPress, OperatorMotion::kSlide,
+                                         OperatorMotion::kTap),
+                         [](const testing::TestParamInfo<OperatorMotion>& info) {
+                           return std::string(OperatorName(info.param));
+                         });
 
 }  // namespace
 }  // namespace hs::cli

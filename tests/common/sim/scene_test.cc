@@ -147,6 +147,44 @@ TEST(SceneTest, NoPopThroughThinPlate) {
   EXPECT_NEAR(rig.scene->Step().tools[0].X_WP.translation().z(), 0.01, 1e-6);
 }
 
+// A device takes the probe over a wall: its proxy follows it around (up,
+// over, down). A second device then takes the probe at its home pose, on
+// the near side. Seated, its proxy comes from the home pose and the force
+// is zero; a pose merely set instead leaves the proxy behind the wall,
+// pulling the new device through it at the clamp. A device seated inside
+// the floor gets the proxy on the floor's top, as any device would.
+TEST(SceneTest, ASeatedDeviceTakesTheProxyFromTheToolsHome) {
+  for (const bool seat : {true, false}) {
+    SCOPED_TRACE(seat);
+    Rig rig = MakeRig();
+    ASSERT_TRUE(rig.scene
+                    ->AddObject(*HapticObject::Create("wall", MakeBox(Vector3d(0.02, 1, 0.2))),
+                                ObjectKind::kFixed, At(0.2, 0, 0.1))
+                    .ok());
+    const Isometry3d home = At(0.1, 0.05, 0.02);
+    std::vector<Isometry3d> around;
+    for (int i = 1; i <= 30; ++i) around.push_back(At(0.1, 0.05, 0.02 + 0.01 * i));
+    for (int i = 1; i <= 20; ++i) around.push_back(At(0.1 + 0.01 * i, 0.05, 0.32));
+    for (int i = 1; i <= 30; ++i) around.push_back(At(0.3, 0.05, 0.32 - 0.01 * i));
+    const auto frames = Drive(rig, around);
+    ASSERT_NEAR(frames.back().tools[0].X_WP.translation().x(), 0.3, 1e-6);
+    ASSERT_TRUE(ApplyDevicePose(*rig.scene, rig.probe, home, seat).ok());
+    const ToolFrame& taken = rig.scene->Step().tools[0];
+    if (seat) {
+      EXPECT_TRUE(taken.X_WP.isApprox(home, 1e-9));
+      EXPECT_EQ(taken.force_W, Vector3d::Zero());
+    } else {
+      EXPECT_GT(taken.X_WP.translation().x(), 0.21);
+      EXPECT_TRUE(taken.force_clamped);
+    }
+  }
+  Rig rig = MakeRig();
+  ASSERT_TRUE(rig.scene->SeatDevice(rig.probe, At(0.1, 0.05, -0.02)).ok());
+  const ToolFrame& inside = rig.scene->Step().tools[0];
+  EXPECT_NEAR(inside.X_WP.translation().z(), 0.01, 1e-6);
+  EXPECT_GT(inside.force_W.z(), 0);
+}
+
 // With friction, a small sideways pull within the static cone leaves the
 // proxy stuck and gives a sideways force; without friction it slides.
 TEST(SceneTest, StaticFrictionSticks) {
