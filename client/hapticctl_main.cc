@@ -17,6 +17,7 @@
 #include "client/scenes_command.h"
 #include "client/simulate_command.h"
 #include "client/upload_command.h"
+#include "client/viewer/view_command.h"
 #include "client/watch_command.h"
 
 int main(int argc, char** argv) {
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   hs::cli::AddLoadtestCommand(app, exit_code);
   hs::cli::AddRecordingCommand(app, exit_code);
   hs::cli::AddReplayCommand(app, exit_code);
+  hs::cli::AddViewCommands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {

@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "absl/strings/str_cat.h"
+#include "common/api/scene_geometry.h"
 #include "common/core/check.h"
 #include "common/sim/frame_storage.h"
 #include "server/step_pacer.h"
@@ -217,6 +218,12 @@ absl::Status SceneRunner::Replace(haptics::v1::SceneSpec spec, LoadedScene scene
         ++revision_;
         if (recorder_) recorder_->RecordEdit(step_, spec_, revision_);
       });
+}
+
+void SceneRunner::Geometry(haptics::v1::SceneGeometry* out) const {
+  std::lock_guard lock(scene_mu_);
+  SceneGeometryToProto(*loaded_.scene, loaded_.names, revision_, out);
+  out->set_scene(spec_.name());
 }
 
 RunnerInfo SceneRunner::Info() const {

@@ -19,6 +19,7 @@
 #include "absl/status/statusor.h"
 #include "common/api/scene_file.h"
 #include "haptics/v1/scene.pb.h"
+#include "haptics/v1/scene_service.pb.h"
 #include "server/frame_fan_out.h"
 #include "server/metrics.h"
 #include "server/priority_inheriting_mutex.h"
@@ -82,6 +83,8 @@ class SceneRunner {
   absl::Status Replace(haptics::v1::SceneSpec spec, LoadedScene scene);
 
   RunnerInfo Info() const;
+  /// Every object's mesh at the current revision (SceneService.GetGeometry).
+  void Geometry(haptics::v1::SceneGeometry* out) const;
   double step_s() const { return step_s_; }
 
  private:

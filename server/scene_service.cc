@@ -163,6 +163,20 @@ grpc::ServerUnaryReactor* SceneServiceImpl::GetScene(grpc::CallbackServerContext
       });
 }
 
+grpc::ServerUnaryReactor* SceneServiceImpl::GetGeometry(grpc::CallbackServerContext* context,
+                                                        const grpc::ByteBuffer* raw_request,
+                                                        grpc::ByteBuffer* raw_response) {
+  return Respond<pb::GetGeometryRequest, pb::SceneGeometry>(
+      context, registry_.metrics(), "GetGeometry", raw_request, raw_response,
+      [&](const pb::GetGeometryRequest* request, pb::SceneGeometry* response) -> absl::Status {
+        HS_RETURN_IF_ERROR(access_.Check(*context, Access::kRead, request->scene()).status());
+        absl::StatusOr<std::shared_ptr<SceneRunner>> runner = registry_.Find(request->scene());
+        if (!runner.ok()) return runner.status();
+        (*runner)->Geometry(response);
+        return absl::OkStatus();
+      });
+}
+
 grpc::ServerUnaryReactor* SceneServiceImpl::ListScenes(grpc::CallbackServerContext* context,
                                                        const grpc::ByteBuffer* raw_request,
                                                        grpc::ByteBuffer* raw_response) {

@@ -14,15 +14,16 @@ namespace hs {
 // upload stream parses its chunks as gRPC does.
 using SceneServiceBase = haptics::v1::SceneService::WithRawCallbackMethod_CreateScene<
     haptics::v1::SceneService::WithRawCallbackMethod_GetScene<
-        haptics::v1::SceneService::WithRawCallbackMethod_ListScenes<
-            haptics::v1::SceneService::WithRawCallbackMethod_DeleteScene<
-                haptics::v1::SceneService::WithRawCallbackMethod_AddObject<
-                    haptics::v1::SceneService::WithRawCallbackMethod_UpdateObject<
-                        haptics::v1::SceneService::WithRawCallbackMethod_RemoveObject<
-                            haptics::v1::SceneService::WithRawCallbackMethod_SetEffects<
-                                haptics::v1::SceneService::WithRawCallbackMethod_DeleteModel<
-                                    haptics::v1::SceneService::WithCallbackMethod_UploadModel<
-                                        haptics::v1::SceneService::Service>>>>>>>>>>;
+        haptics::v1::SceneService::WithRawCallbackMethod_GetGeometry<
+            haptics::v1::SceneService::WithRawCallbackMethod_ListScenes<
+                haptics::v1::SceneService::WithRawCallbackMethod_DeleteScene<
+                    haptics::v1::SceneService::WithRawCallbackMethod_AddObject<
+                        haptics::v1::SceneService::WithRawCallbackMethod_UpdateObject<
+                            haptics::v1::SceneService::WithRawCallbackMethod_RemoveObject<
+                                haptics::v1::SceneService::WithRawCallbackMethod_SetEffects<
+                                    haptics::v1::SceneService::WithRawCallbackMethod_DeleteModel<
+                                        haptics::v1::SceneService::WithCallbackMethod_UploadModel<
+                                            haptics::v1::SceneService::Service>>>>>>>>>>>;
 
 class SceneServiceImpl final : public SceneServiceBase {
  public:
@@ -38,6 +39,10 @@ class SceneServiceImpl final : public SceneServiceBase {
   grpc::ServerUnaryReactor* GetScene(grpc::CallbackServerContext* context,
                                      const grpc::ByteBuffer* request,
                                      grpc::ByteBuffer* response) override;
+  // A GetGeometryRequest, answered with a SceneGeometry.
+  grpc::ServerUnaryReactor* GetGeometry(grpc::CallbackServerContext* context,
+                                        const grpc::ByteBuffer* request,
+                                        grpc::ByteBuffer* response) override;
   // A ListScenesRequest, answered with a ListScenesResponse.
   grpc::ServerUnaryReactor* ListScenes(grpc::CallbackServerContext* context,
                                        const grpc::ByteBuffer* request,

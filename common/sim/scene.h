@@ -72,6 +72,9 @@ class Scene {
   const StepFrame& Step();
 
   const StageStatsTable& stats() const { return stats_; }
+  /// The objects as the scene holds them (HDS, kind, pose), by ObjectId.
+  int num_objects() const { return objects_.size(); }
+  const SceneObjects::Object& object(ObjectId id) const { return objects_[id]; }
   const SceneOptions& options() const { return options_; }
 
  private:

@@ -4,7 +4,8 @@
 // role and scene pattern.
 //
 // Roles, each allowing what the one before allows:
-//   watch: GetScene, ListScenes (only the scenes it may see) and Watch
+//   watch: GetScene, GetGeometry, ListScenes (only the scenes it may see)
+//   and Watch
 //   drive: and Interact (driving a tool)
 //   admin: and every change: CreateScene, DeleteScene, AddObject,
 //          UpdateObject, RemoveObject, SetEffects, UploadModel
@@ -25,7 +26,7 @@ namespace hs {
 
 /// What a call does, as far as access goes.
 enum class Access {
-  kRead,   ///< GetScene, ListScenes
+  kRead,   ///< GetScene, GetGeometry, ListScenes
   kWatch,  ///< Watch
   kDrive,  ///< Interact
   kAdmin,  ///< changes to scenes and models

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <set>
 #include <thread>
 
 #include "common/hash/sha256.h"
@@ -462,6 +463,56 @@ TEST(SceneServiceTest, HeldToolCannotBeRemoved) {
   while (stream->Read(&frame)) {
   }
   EXPECT_TRUE(stream->Finish().ok());
+}
+
+// GetGeometry returns each object's HDS: closed boxes, so Euler's formula
+// (V - E + F = 2) holds, every edge joins two vertices of some face, the
+// table is at its pose; after a vertex move the revision is GetScene's and
+// the vertex is where it was moved. An unknown scene is NOT_FOUND.
+TEST(SceneServiceTest, GeometryIsTheSceneHds) {
+  TestServer server;
+  server.Create(SmallScene("geo"));
+  auto geometry = [&](const std::string& scene, pb::SceneGeometry& out) {
+    pb::GetGeometryRequest request;
+    request.set_scene(scene);
+    return server.scenes().GetGeometry(ContextWithin(10).get(), request, &out);
+  };
+  pb::SceneGeometry got;
+  ASSERT_TRUE(geometry("geo", got).ok());
+  ASSERT_EQ(got.objects_size(), 2);
+  EXPECT_EQ(got.scene(), "geo");
+  for (const pb::ObjectGeometry& o : got.objects()) {
+    SCOPED_TRACE(o.name());
+    const int v = o.vertices_m_size() / 3, f = o.triangles_size() / 3, e = o.edges_size() / 2;
+    EXPECT_EQ(v - e + f, 2);
+    EXPECT_EQ(o.face_materials_size(), f);
+    std::set<std::pair<int, int>> face_edges;
+    for (int i = 0; i < f; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = o.triangles(3 * i + k), b = o.triangles(3 * i + (k + 1) % 3);
+        face_edges.insert({std::min(a, b), std::max(a, b)});
+      }
+    }
+    for (int i = 0; i < e; ++i) {
+      EXPECT_TRUE(face_edges.count({o.edges(2 * i), o.edges(2 * i + 1)})) << "edge " << i;
+    }
+  }
+  EXPECT_EQ(got.objects(0).name(), "table");
+  EXPECT_EQ(got.objects(0).kind(), pb::OBJECT_KIND_FIXED);
+  EXPECT_EQ(got.objects(1).kind(), pb::OBJECT_KIND_TOOL);
+
+  pb::UpdateObjectRequest update;
+  update.set_scene("geo");
+  update.set_object("table");
+  pb::VertexMove* move = update.add_vertex_moves();
+  move->set_vertex_id(0);
+  move->mutable_position_m()->set_z(-0.05);
+  pb::SceneInfo info;
+  ASSERT_TRUE(server.scenes().UpdateObject(ContextWithin(10).get(), update, &info).ok());
+  ASSERT_TRUE(geometry("geo", got).ok());
+  EXPECT_EQ(got.revision(), server.Get("geo").revision());
+  EXPECT_EQ(got.objects(0).vertices_m(2), -0.05);
+  EXPECT_EQ(geometry("missing", got).error_code(), grpc::StatusCode::NOT_FOUND);
 }
 
 // A change whose build outlasts the call's deadline is not applied: the

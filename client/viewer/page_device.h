@@ -1,0 +1,47 @@
+#pragma once
+// A viewer page driving a tool: one Interact stream that the page's poses
+// go out on. The stream says whether the page got the tool: its first
+// frame means held; its end, released or refused (another device holds
+// the tool, no such tool), with the server's message.
+
+#include <grpcpp/grpcpp.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "common/core/types.h"
+#include "haptics/v1/session_service.grpc.pb.h"
+
+namespace hs::cli {
+
+class PageDevice {
+ public:
+  /// Called from the stream's reader thread: "held", then "released" or
+  /// "refused" with a message.
+  using Report = std::function<void(const std::string& state, const std::string& message)>;
+
+  /// Opens the stream for `tool` of `scene`.
+  PageDevice(const std::shared_ptr<grpc::Channel>& channel, const std::string& scene,
+             const std::string& tool, Report report);
+  /// Ends the stream (the tool is released).
+  ~PageDevice();
+  PageDevice(const PageDevice&) = delete;
+  PageDevice& operator=(const PageDevice&) = delete;
+
+  /// Sends the device pose (validated by the caller). One thread only.
+  void SendPose(const Isometry3d& X_WD);
+  const std::string& tool() const { return tool_; }
+
+ private:
+  const std::string tool_;
+  std::unique_ptr<haptics::v1::SessionService::Stub> stub_;
+  grpc::ClientContext context_;
+  std::unique_ptr<grpc::ClientReaderWriter<haptics::v1::InteractRequest, haptics::v1::Frame>>
+      stream_;
+  uint64_t sequence_ = 0;
+  std::thread reader_;
+};
+
+}  // namespace hs::cli

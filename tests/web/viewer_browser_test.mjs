@@ -1,0 +1,465 @@
+// Browser test of the viewer (web/viewer/ served by `hapticctl view`).
+//
+//   node tests/web/viewer_browser_test.mjs --server-bin build/bin/haptic-server \
+//     --hapticctl build/bin/hapticctl --scene-file scenes/probe_on_torus.textproto \
+//     --artifacts build/web-test [--chromium /usr/bin/chromium]
+//
+// Exit 0: passed. Exit 1: failed (the reason on stderr, with the tails of the
+// children's logs and the pages' console). Exit 77: skipped, because chromium
+// (or the playwright-core npm package: run scripts/setup.sh) is not there or
+// cannot be launched; CTest registers it with SKIP_RETURN_CODE 77.
+//
+// Needs only node and playwright-core (package.json); the browser is
+// Debian's /usr/bin/chromium, never one Playwright downloads. Headless
+// chromium renders WebGL with SwiftShader (software): --enable-unsafe-swiftshader
+// opts in to that (Playwright passes it too, today); as root chromium also
+// needs --no-sandbox.
+//
+// What it does, all within 60 s (a watchdog fails it at 55 s):
+//   1. launches chromium (skip if it cannot);
+//   2. starts haptic-server --listen 127.0.0.1:0 --scene FILE, as
+//      scripts/start_server.sh does, and reads "listening on port N" from its log;
+//   3. starts `hapticctl view --server 127.0.0.1:N --scene NAME --http 127.0.0.1:0`
+//      and reads "viewer on http://127.0.0.1:M/" from its stdout;
+//   4. opens two pages (A, B) there; waits for viewerState.connected and frames > 0;
+//   5. A takes the probe (viewerTest.take), does one real mouse drag on the
+//      canvas (posesSent must grow), puts the probe back above its start with
+//      viewerTest.moveBy, then lowers it 1 cm at a time until there is a contact,
+//      and presses 5 mm further;
+//   6. asserts on A: a contact, highlighted features on both sides, the force
+//      and reversing-vector arrows, probe force > 0; on B: the same probe
+//      device_p as A (within 1e-6) and a holder for the probe;
+//   7. saves DIR/viewer-a.png and DIR/viewer-b.png (also when failing), and
+//      always stops the server and the bridge.
+//
+// The page's test interface (web/viewer/): window.viewerState = { connected,
+// frames, posesSent, heldTool, contacts: [...], highlighted: { tool_vertices,
+// tool_edges, tool_faces, object_vertices, object_edges, object_faces },
+// arrows: { force, reversing_vector }, tools: { probe: { device_p: [x,y,z],
+// force_magnitude_n, holder } } } and window.viewerTest = { take(tool),
+// moveBy([dx,dy,dz]) } (metres, world frame, z up).
+//
+// The demo scene (scenes/probe_on_torus.textproto): the probe, a 2 cm cube,
+// starts at (0.1, 0, 0.1), so its bottom face is at z = 0.09; the organ, a
+// torus of major radius 0.1 and minor radius 0.04 lying at z = 0.04, has the
+// top of its tube under the probe at (0.1, 0, 0.08). So the probe is 1 cm
+// above the organ and moving it down (-z) touches it after about 1 cm.
+
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { parseArgs } from 'node:util';
+
+const TEST_BUDGET_MS = 55_000;
+const SKIP = 77;
+
+/** A test failure with a message that says it all (no stack trace printed). */
+class Failure extends Error {}
+
+// ---- arguments -------------------------------------------------------------
+
+let args;
+try {
+  ({ values: args } = parseArgs({
+    options: {
+      'server-bin': { type: 'string' },
+      'hapticctl': { type: 'string' },
+      'scene-file': { type: 'string' },
+      'artifacts': { type: 'string' },
+      'chromium': { type: 'string', default: '/usr/bin/chromium' },
+    },
+  }));
+  for (const name of ['server-bin', 'hapticctl', 'scene-file', 'artifacts']) {
+    if (!args[name]) throw new Error(`--${name} is required`);
+  }
+} catch (e) {
+  console.error(`viewer_browser_test: ${e.message}`);
+  console.error('usage: node viewer_browser_test.mjs --server-bin PATH --hapticctl PATH ' +
+                '--scene-file PATH --artifacts DIR [--chromium PATH]');
+  process.exit(1);
+}
+
+// ---- children, cleanup and exits ------------------------------------------
+
+const children = [];   // {name, proc, log: string[]}
+const consoleLines = [];  // the pages' console errors and page errors
+let browser = null;
+const pages = {};      // a, b
+let step = 'starting';
+let finishing = false;
+
+function log(message) {
+  console.log(`viewer_browser_test: ${message}`);
+}
+
+function startChild(name, file, argv) {
+  try {
+    fs.accessSync(file, fs.constants.X_OK);
+  } catch (e) {
+    throw new Failure(`${name}: ${file} is not an executable file (${e.code})`);
+  }
+  const proc = spawn(file, argv, { stdio: ['ignore', 'pipe', 'pipe'] });
+  const child = { name, proc, log: [], listeners: [] };
+  // Output comes in arbitrary pieces: split each stream into whole lines.
+  const lineReader = () => {
+    let partial = '';
+    return (data) => {
+      const lines = (partial + data.toString()).split('\n');
+      partial = lines.pop();
+      for (const line of lines) {
+        if (!line) continue;
+        child.log.push(line);
+        if (child.log.length > 40) child.log.shift();
+        for (const listener of child.listeners) listener(line);
+      }
+    };
+  };
+  proc.stdout.on('data', lineReader());
+  proc.stderr.on('data', lineReader());
+  proc.on('error', (e) => child.log.push(`(${name} could not start: ${e.message})`));
+  children.push(child);
+  return child;
+}
+
+function alive(proc) {
+  return proc.exitCode === null && proc.signalCode === null && proc.pid !== undefined;
+}
+
+/** Resolves with the first match of `re` in the child's output, or rejects. */
+function waitForLine(child, re, timeoutMs) {
+  return new Promise((resolve, reject) => {
+    const done = (fn, value) => {
+      clearTimeout(timer);
+      child.listeners = child.listeners.filter((l) => l !== listener);
+      child.proc.off('exit', onExit);
+      child.proc.off('error', onExit);
+      fn(value);
+    };
+    const listener = (line) => {
+      const m = line.match(re);
+      if (m) done(resolve, m);
+    };
+    const onExit = () => done(reject, new Failure(
+      `${child.name} ended (exit ${child.proc.exitCode ?? child.proc.signalCode ?? 'error'}) ` +
+      `before printing ${re}`));
+    const timer = setTimeout(() => done(reject, new Failure(
+      `${child.name} did not print ${re} within ${timeoutMs / 1000} s`)), timeoutMs);
+    for (const line of child.log) {
+      const m = line.match(re);
+      if (m) { clearTimeout(timer); resolve(m); return; }
+    }
+    if (!alive(child.proc)) { onExit(); return; }
+    child.listeners.push(listener);
+    child.proc.on('exit', onExit);
+    child.proc.on('error', onExit);
+  });
+}
+
+async function stopChildren() {
+  await Promise.all(children.map(({ proc }) => new Promise((resolve) => {
+    if (!alive(proc)) { resolve(); return; }
+    const kill = setTimeout(() => { if (alive(proc)) proc.kill('SIGKILL'); }, 3000);
+    proc.once('exit', () => { clearTimeout(kill); resolve(); });
+    proc.kill('SIGTERM');
+  })));
+}
+
+/** Best effort: saves whatever pages there are to the artifacts directory. */
+async function saveScreenshots() {
+  try {
+    fs.mkdirSync(args.artifacts, { recursive: true });
+  } catch (e) {
+    log(`cannot create ${args.artifacts}: ${e.message}`);
+    return;
+  }
+  for (const [key, page] of Object.entries(pages)) {
+    const file = path.join(args.artifacts, `viewer-${key}.png`);
+    try {
+      await page.screenshot({ path: file, timeout: 5000 });
+    } catch (e) {
+      log(`screenshot ${file} failed: ${e.message.split('\n')[0]}`);
+    }
+  }
+}
+
+function withTimeout(promise, ms) {
+  return Promise.race([promise, new Promise((resolve) => setTimeout(resolve, ms))]);
+}
+
+async function finish(code, message) {
+  if (finishing) return;
+  finishing = true;
+  clearTimeout(watchdog);
+  if (code === 1) {
+    console.error(`viewer_browser_test: FAIL (${step}): ${message}`);
+    for (const child of children) {
+      if (child.log.length === 0) continue;
+      console.error(`--- last lines of ${child.name}:`);
+      for (const line of child.log) console.error(`  ${line}`);
+    }
+    if (consoleLines.length > 0) {
+      console.error('--- page console errors:');
+      for (const line of consoleLines.slice(-20)) console.error(`  ${line}`);
+    }
+  } else if (code === SKIP) {
+    console.error(`viewer_browser_test: SKIP: ${message}`);
+  } else {
+    log(message);
+  }
+  // Screenshots and shutdown get at most 4 s each: the whole test stays under 60 s.
+  if (Object.keys(pages).length > 0) await withTimeout(saveScreenshots(), 4000);
+  if (browser) await withTimeout(browser.close().catch(() => {}), 4000);
+  await withTimeout(stopChildren(), 4000);
+  process.exit(code);
+}
+
+// Last resort: whatever happens, no child outlives this process.
+process.on('exit', () => {
+  for (const { proc } of children) if (alive(proc)) proc.kill('SIGKILL');
+});
+for (const signal of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
+  process.on(signal, () => finish(1, `got ${signal}`));
+}
+process.on('uncaughtException', (e) => finish(1, e.stack || String(e)));
+process.on('unhandledRejection', (e) => finish(1, e?.stack || String(e)));
+
+const watchdog = setTimeout(
+  () => finish(1, `timed out: the test did not end within ${TEST_BUDGET_MS / 1000} s`),
+  TEST_BUDGET_MS);
+
+function check(condition, message) {
+  if (!condition) throw new Failure(message);
+}
+
+// ---- the page --------------------------------------------------------------
+
+const state = (page) => page.evaluate(() => JSON.parse(JSON.stringify(window.viewerState ?? null)));
+
+/** The numbers of a position, whether [x, y, z] or {x, y, z}. */
+function vec3(p) {
+  if (Array.isArray(p) && p.length === 3 && p.every(Number.isFinite)) return p;
+  if (p && [p.x, p.y, p.z].every(Number.isFinite)) return [p.x, p.y, p.z];
+  return null;
+}
+
+const probeOf = (s) => s?.tools?.probe;
+const devicePOf = (s) => vec3(probeOf(s)?.device_p);
+const holderOf = (s) => probeOf(s)?.holder ?? s?.holders?.probe;
+
+function sumKeys(obj, prefix) {
+  return Object.entries(obj ?? {})
+    .filter(([k, v]) => k.startsWith(prefix) && Number.isFinite(v))
+    .reduce((sum, [, v]) => sum + v, 0);
+}
+
+function brief(s) {
+  const text = JSON.stringify(s);
+  return text && text.length > 1500 ? `${text.slice(0, 1500)}...` : text;
+}
+
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
+/** Polls the page until the probe's device_p stops changing (or `ms` passes). */
+async function settledDeviceP(page, ms) {
+  const end = Date.now() + ms;
+  let last = devicePOf(await state(page));
+  let stableSince = Date.now();
+  while (Date.now() < end) {
+    await sleep(100);
+    const now = devicePOf(await state(page));
+    const same = now && last && now.every((v, i) => Math.abs(v - last[i]) < 1e-9);
+    if (!same) stableSince = Date.now();
+    else if (Date.now() - stableSince >= 300) return now;
+    last = now;
+  }
+  return last;
+}
+
+// ---- the test ---------------------------------------------------------------
+
+async function main() {
+  const sceneText = fs.readFileSync(args['scene-file'], 'utf8');
+  const sceneName = sceneText.match(/^name:\s*"([^"]*)"/m)?.[1] ?? 'probe on torus';
+  // The probe's start: 1 cm above the top of the organ's tube (see the header).
+  const probeStart = [0.1, 0, 0.1];
+
+  step = 'loading playwright-core';
+  let chromium;
+  try {
+    ({ chromium } = await import('playwright-core'));
+  } catch (e) {
+    return finish(SKIP, `playwright-core is not installed (run scripts/setup.sh): ${e.message}`);
+  }
+
+  step = 'launching chromium';
+  if (!fs.existsSync(args.chromium)) {
+    return finish(SKIP, `${args.chromium} does not exist (Debian package chromium; run scripts/setup.sh)`);
+  }
+  const launchArgs = ['--enable-unsafe-swiftshader'];
+  if (process.getuid?.() === 0) launchArgs.push('--no-sandbox');
+  try {
+    browser = await chromium.launch({
+      executablePath: args.chromium, headless: true, args: launchArgs, timeout: 15_000,
+    });
+  } catch (e) {
+    return finish(SKIP, `chromium cannot be launched: ${e.message.split('\n').slice(0, 8).join(' | ')}`);
+  }
+
+  step = 'starting haptic-server';
+  const server = startChild('haptic-server', args['server-bin'],
+    ['--listen', '127.0.0.1:0', '--scene', args['scene-file']]);
+  const port = Number((await waitForLine(server, /listening on port (\d+)/, 15_000))[1]);
+  log(`haptic-server on 127.0.0.1:${port}`);
+
+  step = 'starting hapticctl view';
+  const bridge = startChild('hapticctl view', args.hapticctl,
+    ['view', '--server', `127.0.0.1:${port}`, '--scene', sceneName, '--http', '127.0.0.1:0']);
+  const url = (await waitForLine(bridge, /viewer on (http:\/\/127\.0\.0\.1:\d+\/\S*)/, 15_000))[1];
+  log(`viewer on ${url}`);
+
+  step = 'opening two pages';
+  const context = await browser.newContext({ viewport: { width: 1000, height: 700 } });
+  for (const key of ['a', 'b']) {
+    const page = await context.newPage();
+    page.on('console', (m) => { if (m.type() === 'error') consoleLines.push(`${key}: ${m.text()}`); });
+    page.on('pageerror', (e) => consoleLines.push(`${key}: page error: ${e.message}`));
+    pages[key] = page;
+    await page.goto(url, { timeout: 10_000 });
+  }
+  const { a, b } = pages;
+  for (const [key, page] of Object.entries(pages)) {
+    try {
+      await page.waitForFunction(
+        () => window.viewerState?.connected && window.viewerState.frames > 0,
+        null, { timeout: 20_000 });
+    } catch {
+      throw new Failure(`page ${key} is not connected with frames within 20 s: ` +
+                        `viewerState = ${brief(await state(page))}`);
+    }
+  }
+
+  step = 'page A takes the probe';
+  await a.evaluate(() => window.viewerTest.take('probe'));
+  try {
+    await a.waitForFunction(() => window.viewerState.heldTool === 'probe', null, { timeout: 5000 });
+  } catch {
+    throw new Failure(`heldTool is not 'probe' 5 s after take('probe'): ${brief(await state(a))}`);
+  }
+
+  step = 'a mouse drag on page A';
+  const canvas = await a.locator('canvas').first().boundingBox();
+  check(canvas, 'page A has no visible canvas');
+  const posesBefore = (await state(a)).posesSent ?? 0;
+  const x0 = canvas.x + canvas.width / 2;
+  const y0 = canvas.y + canvas.height / 2;
+  await a.mouse.move(x0, y0);
+  await a.mouse.down();
+  await a.mouse.move(x0 + 40, y0 - 20, { steps: 10 });
+  await a.mouse.up();
+  try {
+    await a.waitForFunction((n) => window.viewerState.posesSent > n, posesBefore, { timeout: 3000 });
+  } catch {
+    throw new Failure(`posesSent did not grow after a mouse drag (was ${posesBefore}): ` +
+                      brief(await state(a)));
+  }
+
+  step = 'moving the probe onto the organ';
+  // The drag moved the probe by an unknown amount: put it back above its start.
+  const dragged = await settledDeviceP(a, 3000);
+  check(dragged, `no tools.probe.device_p on page A: ${brief(await state(a))}`);
+  const back = probeStart.map((v, i) => v - dragged[i]);
+  await a.evaluate((d) => window.viewerTest.moveBy(d), back);
+  await settledDeviceP(a, 2000);
+  let contact = false;
+  for (let i = 0; i < 10 && !contact; i++) {
+    await a.evaluate(() => window.viewerTest.moveBy([0, 0, -0.01]));
+    contact = await a.waitForFunction(() => window.viewerState.contacts?.length > 0, null,
+      { timeout: 1500 }).then(() => true, () => false);
+  }
+  check(contact, `no contact after lowering the probe 10 cm: ${brief(await state(a))}`);
+  // The first contact may be a bare touch (no depth, no force): press 5 mm in.
+  await a.evaluate(() => window.viewerTest.moveBy([0, 0, -0.005]));
+
+  step = 'checking page A';
+  // Frames keep coming: give the arrows and highlights a moment to catch up.
+  await a.waitForFunction(() => {
+    const s = window.viewerState;
+    const sum = (p) => Object.entries(s.highlighted ?? {})
+      .filter(([k, v]) => k.startsWith(p) && v > 0).length;
+    return s.contacts?.length > 0 && sum('tool_') > 0 && sum('object_') > 0 &&
+           s.arrows?.force && s.arrows?.reversing_vector && s.tools?.probe?.force_magnitude_n > 0;
+  }, null, { timeout: 5000 }).catch(() => {});
+  const sa = await state(a);
+  const problems = [];
+  if (!(sa.contacts?.length > 0)) problems.push('no contacts');
+  if (!(sumKeys(sa.highlighted, 'object_') > 0)) problems.push('no object-side feature highlighted');
+  if (!(sumKeys(sa.highlighted, 'tool_') > 0)) problems.push('no tool-side feature highlighted');
+  if (sa.arrows?.reversing_vector !== true) problems.push('no reversing-vector arrow');
+  if (sa.arrows?.force !== true) problems.push('no force arrow');
+  if (!(probeOf(sa)?.force_magnitude_n > 0)) problems.push('tools.probe.force_magnitude_n is not > 0');
+  check(problems.length === 0, `page A: ${problems.join('; ')}: ${brief(sa)}`);
+  log(`page A: ${sa.contacts.length} contact(s), highlighted ${JSON.stringify(sa.highlighted)}, ` +
+      `force ${probeOf(sa).force_magnitude_n} N`);
+
+  step = 'checking page B';
+  let pa = null, pb = null, sb = null;
+  const end = Date.now() + 5000;
+  while (Date.now() < end) {
+    pa = devicePOf(await state(a));
+    sb = await state(b);
+    pb = devicePOf(sb);
+    if (pa && pb && pa.every((v, i) => Math.abs(v - pb[i]) <= 1e-6)) break;
+    await sleep(100);
+  }
+  check(pa && pb && pa.every((v, i) => Math.abs(v - pb[i]) <= 1e-6),
+        `page B's probe device_p ${JSON.stringify(pb)} is not page A's ${JSON.stringify(pa)}`);
+  const holder = holderOf(sb);
+  check(typeof holder === 'string' ? holder.length > 0 : holder != null && holder !== '',
+        `page B shows no holder for the probe: ${brief(sb)}`);
+  log(`page B: probe at ${JSON.stringify(pb)}, held by ${JSON.stringify(holder)}`);
+
+  step = 'bad page messages';
+  // From page B, a socket of its own sends what no page sends: each is
+  // dropped and counted (the frames' rejected_messages), none moves the probe.
+  const before = devicePOf(await state(a));
+  const rejected = await b.evaluate(() => new Promise((resolve, reject) => {
+    const ws = new WebSocket(`ws://${location.host}/ws`);
+    let sent = false;
+    ws.onopen = () => {
+      for (const bad of ['garbage', '{"type":"pose","tool":"probe","p":[0,0,1e999],"q":[1,0,0,0]}',
+                         '{"type":"pose","tool":"probe","p":[0,0,0.5],"q":[1,0,0,0]}',
+                         '{"type":"fly","tool":"probe"}']) ws.send(bad);
+      sent = true;
+    };
+    ws.onmessage = (event) => {
+      const m = JSON.parse(event.data);
+      if (sent && m.type === 'frame' && m.rejected_messages >= 4) {
+        ws.close();
+        resolve(m.rejected_messages);
+      }
+    };
+    setTimeout(() => reject(new Error('no frame counted the rejected messages')), 5000);
+  }));
+  const after = devicePOf(await state(a));
+  check(before && after && before.every((v, i) => Math.abs(v - after[i]) <= 1e-9),
+        `a refused message moved the probe: ${JSON.stringify(before)} -> ${JSON.stringify(after)}`);
+  log(`bad page messages: ${rejected} rejected, probe unmoved`);
+
+  step = 'hapticctl snapshot';
+  // The same page, headless, to a PNG: the probe still pressed into the organ.
+  const png = path.join(args.artifacts, 'snapshot.png');
+  const shot = startChild('hapticctl snapshot', args.hapticctl,
+    ['snapshot', '--server', `127.0.0.1:${port}`, '--scene', 'probe on torus', '--out', png,
+     '--width', '800', '--height', '600']);
+  const shotStatus = await new Promise((resolve) => shot.proc.on('exit', resolve));
+  check(shotStatus === 0, `hapticctl snapshot exited with ${shotStatus}`);
+  const magic = fs.readFileSync(png).subarray(0, 8);
+  check(magic.equals(Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a])),
+        `${png} is not a PNG`);
+  log(`snapshot: ${png}, ${fs.statSync(png).size} bytes`);
+
+  step = 'screenshots';
+  return finish(0, `PASS (screenshots in ${args.artifacts})`);
+}
+
+main().catch((e) => finish(1, e instanceof Failure ? e.message : (e?.stack || String(e))));
