@@ -66,6 +66,7 @@ struct ViewServer::Impl {
   int next_page_id = 1;
   uint64_t last_frame_count = 0;
   bool last_connected = false;
+  int64_t last_revision = -1;
   std::string last_message;
   std::atomic<int64_t> open_pages{0};
   std::atomic<int64_t> rejected{0};
@@ -323,14 +324,17 @@ void ViewServer::Impl::Tick() {
   timer.async_wait([this](beast::error_code ec) {
     if (ec) return;
     const SceneLink::State s = link.state();
-    if (s.connected != last_connected || s.message != last_message) {
+    // A new revision may add or remove tools: the pages hear the list again.
+    const bool changed = s.connected != last_connected || s.message != last_message;
+    if (changed || s.revision != last_revision) {
       last_connected = s.connected;
       last_message = s.message;
+      last_revision = s.revision;
       const auto status = Text(Status(s));
       const auto hello = Text(Hello(s));
       for (const auto& page : pages) {
         if (s.connected) page->Send(hello);
-        page->Send(status);
+        if (changed) page->Send(status);
       }
     }
     const SceneLink::Latest latest = link.latest();

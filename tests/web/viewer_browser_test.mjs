@@ -29,6 +29,12 @@
 //   6. asserts on A: a contact, highlighted features on both sides, the force
 //      and reversing-vector arrows, probe force > 0; on B: the same probe
 //      device_p as A (within 1e-6) and a holder for the probe;
+//   6b. adds a second tool (hapticctl objects add): page B drives it while
+//      A drives the probe, and both pages see both tools where they were put;
+//      a socket's malformed and unheld messages are counted and move nothing;
+//      hapticctl snapshot writes DIR/snapshot.png; a bridge for an unknown
+//      scene says so in its page and runs on; when the server goes away,
+//      page A shows it and the bridge runs on;
 //   7. saves DIR/viewer-a.png and DIR/viewer-b.png (also when failing), and
 //      always stops the server and the bridge.
 //
@@ -418,6 +424,33 @@ async function main() {
         `page B shows no holder for the probe: ${brief(sb)}`);
   log(`page B: probe at ${JSON.stringify(pb)}, held by ${JSON.stringify(holder)}`);
 
+  step = 'two pages, two tools';
+  // A second tool joins the scene; page B drives it while page A drives the
+  // probe, and each page sees both tools where their drivers put them.
+  const add = startChild('hapticctl objects add', args.hapticctl,
+    ['objects', 'add', '--server', `127.0.0.1:${port}`, 'probe on torus', 'stylus', '--kind', 'tool',
+     '--box', '0.01,0.01,0.01', '--pose', '0.05,0,0.15,0,0,0']);
+  const addStatus = await new Promise((resolve) => add.proc.on('exit', resolve));
+  check(addStatus === 0, `hapticctl objects add exited with ${addStatus}`);
+  await b.waitForFunction(() => window.viewerState.tools?.stylus, null, { timeout: 5000 });
+  await b.evaluate(() => window.viewerTest.take('stylus'));
+  await b.waitForFunction(() => window.viewerState.heldTool === 'stylus', null, { timeout: 5000 });
+  await Promise.all([a.evaluate(() => window.viewerTest.moveBy([0, 0, 0.002])),
+                     b.evaluate(() => window.viewerTest.moveBy([0.01, 0, 0]))]);
+  const toolP = (s, tool) => vec3(s?.tools?.[tool]?.device_p);
+  const same = (p, q) => p && q && p.every((v, i) => Math.abs(v - q[i]) <= 1e-6);
+  let both = false, sa2 = null, sb2 = null;
+  for (const end2 = Date.now() + 5000; Date.now() < end2 && !both; await sleep(100)) {
+    sa2 = await state(a);
+    sb2 = await state(b);
+    both = same(toolP(sa2, 'stylus'), toolP(sb2, 'stylus')) &&
+           same(toolP(sa2, 'probe'), toolP(sb2, 'probe')) &&
+           Math.abs(toolP(sb2, 'stylus')[0] - 0.06) <= 1e-6 && sa2.heldTool === 'probe';
+  }
+  check(both, `the two tools do not agree across the pages: A ${brief(sa2?.tools)}, B ${brief(sb2?.tools)}`);
+  log(`two tools: probe at ${JSON.stringify(toolP(sa2, 'probe'))} (A), ` +
+      `stylus at ${JSON.stringify(toolP(sb2, 'stylus'))} (B)`);
+
   step = 'bad page messages';
   // From page B, a socket of its own sends what no page sends: each is
   // dropped and counted (the frames' rejected_messages), none moves the probe.
@@ -457,6 +490,28 @@ async function main() {
   check(magic.equals(Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a])),
         `${png} is not a PNG`);
   log(`snapshot: ${png}, ${fs.statSync(png).size} bytes`);
+
+  step = 'an unknown scene';
+  // A bridge for a scene the server lacks: its page says so; the bridge runs on.
+  const lost = startChild('hapticctl view (unknown scene)', args.hapticctl,
+    ['view', '--server', `127.0.0.1:${port}`, '--scene', 'no such scene', '--http', '127.0.0.1:0']);
+  const lostUrl = (await waitForLine(lost, /viewer on (http:\/\/127\.0\.0\.1:\d+\/\S*)/, 15_000))[1];
+  const c = await context.newPage();
+  await c.goto(lostUrl, { timeout: 10_000 });
+  await c.waitForFunction(() => /no scene 'no such scene'/.test(document.body.innerText), null,
+    { timeout: 5000 }).catch(() => {});
+  check(/no scene 'no such scene'/.test(await c.evaluate(() => document.body.innerText)),
+        `the page of an unknown scene does not say so: ${brief(await state(c))}`);
+  check(alive(lost.proc), 'the bridge of an unknown scene ended');
+
+  step = 'the server goes away';
+  server.proc.kill('SIGTERM');
+  await a.waitForFunction(() => !window.viewerState.connected, null, { timeout: 10_000 })
+    .catch(() => {});
+  const gone = await state(a);
+  check(gone && !gone.connected, `page A still shows a connection: ${brief(gone)}`);
+  check(alive(bridge.proc), 'the bridge ended with the server');
+  log(`server gone: page A says "${gone.status}"`);
 
   step = 'screenshots';
   return finish(0, `PASS (screenshots in ${args.artifacts})`);
