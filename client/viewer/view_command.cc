@@ -8,10 +8,12 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <thread>
 
+#include "absl/cleanup/cleanup.h"
 #include "client/channel.h"
 #include "client/exit_codes.h"
 #include "client/server_call.h"
@@ -106,17 +108,17 @@ int RunView(const ViewArgs& args, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
-// Runs `argv` and waits up to `timeout_s`; -1 when it could not start or
-// ran out of time (then killed).
-int RunBrowser(const std::vector<std::string>& argv, double timeout_s) {
+// Runs `argv` with its output to `log` and waits up to `timeout_s`; -1 when
+// it could not start or ran out of time (then killed).
+int RunBrowser(const std::vector<std::string>& argv, const std::string& log, double timeout_s) {
   std::vector<char*> raw;
   for (const std::string& a : argv) raw.push_back(const_cast<char*>(a.c_str()));
   raw.push_back(nullptr);
-  // Its chatter (no D-Bus, software GL) is not ours to print.
+  // Its chatter (no D-Bus, software GL) is not ours to print, unless it fails.
   posix_spawn_file_actions_t quiet;
   posix_spawn_file_actions_init(&quiet);
-  posix_spawn_file_actions_addopen(&quiet, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&quiet, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&quiet, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT, 0600);
+  posix_spawn_file_actions_adddup2(&quiet, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = 0;
   const int spawned = posix_spawn(&pid, raw[0], &quiet, nullptr, raw.data(), environ);
   posix_spawn_file_actions_destroy(&quiet);
@@ -133,6 +135,19 @@ int RunBrowser(const std::vector<std::string>& argv, double timeout_s) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The last `lines` lines of `path`, indented.
+std::string Tail(const std::string& path, size_t lines) {
+  std::ifstream in(path);
+  std::vector<std::string> kept;
+  for (std::string line; std::getline(in, line);) {
+    kept.push_back(line);
+    if (kept.size() > lines) kept.erase(kept.begin());
+  }
+  std::string out;
+  for (const std::string& line : kept) out += "  " + line + "\n";
+  return out;
 }
 
 bool IsPng(const std::string& path) {
@@ -159,6 +174,17 @@ int RunSnapshot(const SnapshotArgs& args, std::ostream& out, std::ostream& err) 
   }
   const std::string url =
       "http://127.0.0.1:" + std::to_string(bridge->server->port()) + "/?snapshot=1";
+  // A profile of its own: with the user's, a Chromium already running
+  // would take the request and this one would end at once, drawing nothing.
+  std::string scratch =
+      (std::filesystem::temp_directory_path() / "hapticctl-snapshot-XXXXXX").string();
+  if (!mkdtemp(scratch.data()))
+    return ReportError("snapshot", "cannot make a temporary folder", err);
+  const absl::Cleanup remove_scratch = [&] {
+    std::error_code ignored;
+    std::filesystem::remove_all(scratch, ignored);
+  };
+  const std::string log = scratch + "/chromium.log";
   // --no-sandbox: Chromium's sandbox cannot start as root (CI); the page
   // is our own, from loopback. --enable-unsafe-swiftshader: WebGL on the
   // CPU, where there is no GPU. The virtual time budget lets the page's
@@ -166,6 +192,7 @@ int RunSnapshot(const SnapshotArgs& args, std::ostream& out, std::ostream& err) 
   const std::vector<std::string> argv = {
       args.browser,
       "--headless=new",
+      "--user-data-dir=" + scratch + "/profile",
       "--no-sandbox",
       "--enable-unsafe-swiftshader",
       "--hide-scrollbars",
@@ -174,12 +201,13 @@ int RunSnapshot(const SnapshotArgs& args, std::ostream& out, std::ostream& err) 
       "--screenshot=" + args.out,
       url};
   std::remove(args.out.c_str());
-  const int status = RunBrowser(argv, args.timeout_s);
+  const int status = RunBrowser(argv, log, args.timeout_s);
   if (status != 0 || !IsPng(args.out)) {
     err << "snapshot: " << args.browser
         << (status < 0 ? " did not start or did not finish in time"
-                       : " failed with status " + std::to_string(status))
-        << "; no PNG written\n";
+                       : " ended with status " + std::to_string(status))
+        << "; no PNG written. Its last lines:\n"
+        << Tail(log, 10);
     std::remove(args.out.c_str());
     return kExitFailure;
   }
