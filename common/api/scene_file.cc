@@ -1,9 +1,5 @@
 #include "common/api/scene_file.h"
 
-#include <google/protobuf/io/tokenizer.h>
-#include <google/protobuf/text_format.h>
-#include <google/protobuf/util/json_util.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/api/names.h"
 #include "common/api/proto_convert.h"
+#include "common/api/proto_file.h"
 #include "common/core/status_macros.h"
 #include "common/model/import.h"
 #include "common/model/procedural.h"
@@ -220,19 +217,6 @@ absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
   return options;
 }
 
-// Keeps the text parser's first error for the status instead of logging it.
-class FirstError : public google::protobuf::io::ErrorCollector {
- public:
-  void AddError(int line, int column, const std::string& message) override {
-    if (text_.empty())
-      text_ = absl::StrCat("line ", line + 1, ", column ", column + 1, ": ", message);
-  }
-  const std::string& text() const { return text_; }
-
- private:
-  std::string text_;
-};
-
 }  // namespace
 
 ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
@@ -243,25 +227,8 @@ ObjectId FindTool(const LoadedScene& scene, const std::string& name) {
 }
 
 absl::StatusOr<pb::SceneSpec> ReadSceneFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return absl::NotFoundError(absl::StrCat(path, ": cannot open"));
-  std::stringstream text;
-  text << in.rdbuf();
   pb::SceneSpec spec;
-  if (path.ends_with(".json")) {
-    const auto status = google::protobuf::util::JsonStringToMessage(text.str(), &spec);
-    if (!status.ok()) {
-      return absl::InvalidArgumentError(absl::StrCat(path, ": ", status.message().as_string()));
-    }
-  } else {
-    FirstError errors;
-    google::protobuf::TextFormat::Parser parser;
-    parser.RecordErrorsTo(&errors);
-    if (!parser.ParseFromString(text.str(), &spec)) {
-      return absl::InvalidArgumentError(
-          absl::StrCat(path, ": not a SceneSpec in text format: ", errors.text()));
-    }
-  }
+  HS_RETURN_IF_ERROR(ReadProtoFile(path, spec));
   return spec;
 }
 

@@ -1,0 +1,16 @@
+#pragma once
+// A training run's summary as JSON (`hapticctl score` and `train`
+// --json; report.json).
+
+#include "common/training/scorer.h"
+#include "nlohmann/json.hpp"
+
+namespace hs::cli {
+
+/// {"score", "completed", "duration_s", "targets_reached", "targets",
+/// "path_length_m", "economy", "max_force_n", "force_limit_exceeded_s",
+/// "excess_impulse_ns", "forbidden_contacts", "jerk_rms", "target_results",
+/// "forbidden_list"}.
+nlohmann::ordered_json SummaryJson(const ScoreSummary& s);
+
+}  // namespace hs::cli

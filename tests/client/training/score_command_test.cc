@@ -1,0 +1,136 @@
+// `hapticctl score --path` on the bundled exercise: the bundled path
+// completes it; the same path pressed 1 cm into the organ (4 N against the
+// 3 N limit) and the same path after a touch of the forbidden table score
+// lower. Bad exercises name the field at fault.
+
+#include "client/training/score_command.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "client/device_path.h"
+#include "common/api/exercise_file.h"
+#include "nlohmann/json.hpp"
+#include "tests/common/scratch_dir.h"
+
+namespace hs::cli {
+namespace {
+
+const std::string kExercise = std::string(HS_SCENES_DIR) + "/exercises/three_points.textproto";
+const std::string kPath = std::string(HS_SCENES_DIR) + "/exercises/three_points_path.jsonl";
+
+nlohmann::json Score(const std::string& path) {
+  std::ostringstream out, err;
+  EXPECT_EQ(RunScore({.exercise = kExercise, .path = path, .json = true}, out, err), 0)
+      << err.str();
+  return nlohmann::json::parse(out.str());
+}
+
+// Writes `poses` as JSON lines (the poses' rotations are the identity).
+std::string WritePath(const std::string& name, const std::vector<TimedPose>& poses) {
+  const std::string file = (ScratchDir("paths") / name).string();
+  std::ofstream out(file);
+  for (const TimedPose& p : poses) {
+    const Vector3d& x = p.X_WD.translation();
+    out << nlohmann::json{{"t_s", p.t_s}, {"pose", {x.x(), x.y(), x.z(), 0, 0, 0}}}.dump() << "\n";
+  }
+  return file;
+}
+
+TimedPose At(double t, const Vector3d& p) {
+  TimedPose pose{.t_s = t};
+  pose.X_WD.translation() = p;
+  return pose;
+}
+
+TEST(ScoreCommandTest, GentleBeatsPressedAndForbidden) {
+  absl::StatusOr<std::vector<TimedPose>> gentle = ReadDevicePath(kPath, 1000);
+  ASSERT_TRUE(gentle.ok()) << gentle.status();
+  // Pressed: every point held 3 mm in (z = 0.087) is held 1 cm in.
+  std::vector<TimedPose> pressed = *gentle;
+  for (TimedPose& p : pressed) {
+    if (p.X_WD.translation().z() < 0.0875) p.X_WD.translation().z() = 0.08;
+  }
+  // Forbidden: first over to the table beside the organ and 2 mm into it.
+  const Vector3d home = gentle->front().X_WD.translation();
+  std::vector<TimedPose> table = {At(0, home), At(0.3, Vector3d(0.3, 0, 0.1)),
+                                  At(0.6, Vector3d(0.3, 0, 0.008)), At(0.9, Vector3d(0.3, 0, 0.1)),
+                                  At(1.2, home)};
+  for (const TimedPose& p : *gentle) table.push_back(At(1.5 + p.t_s, p.X_WD.translation()));
+
+  const nlohmann::json g = Score(kPath);
+  const nlohmann::json p = Score(WritePath("pressed.jsonl", pressed));
+  const nlohmann::json t = Score(WritePath("table.jsonl", table));
+  std::cout << "gentle " << g.dump() << "\npressed " << p.dump() << "\ntable " << t.dump() << "\n";
+  EXPECT_TRUE(g["completed"]);
+  EXPECT_EQ(g["targets_reached"], 3);
+  EXPECT_EQ(g["forbidden_contacts"], 0);
+  EXPECT_EQ(g["excess_impulse_ns"], 0);
+  EXPECT_LE(g["max_force_n"].get<double>(), 3);
+  EXPECT_GT(p["excess_impulse_ns"].get<double>(), 0);
+  EXPECT_GT(p["force_limit_exceeded_s"].get<double>(), 0);
+  EXPECT_GE(t["forbidden_contacts"].get<int>(), 1);
+  EXPECT_GT(g["score"].get<double>(), p["score"].get<double>());
+  EXPECT_GT(g["score"].get<double>(), t["score"].get<double>());
+  for (const char* key : {"score", "completed", "duration_s", "targets_reached", "path_length_m",
+                          "economy", "max_force_n", "force_limit_exceeded_s", "excess_impulse_ns",
+                          "forbidden_contacts", "jerk_rms"}) {
+    EXPECT_TRUE(g.contains(key)) << key;
+  }
+}
+
+// Each bad exercise is refused with the field named; a path of poses that
+// are not finite is refused too.
+TEST(ScoreCommandTest, BadExercisesNameTheField) {
+  const std::filesystem::path dir = ScratchDir("exercises");
+  std::filesystem::copy(std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto",
+                        dir / "probe_on_torus.textproto");
+  const std::string good = R"(scene_file: "probe_on_torus.textproto" tool: "probe"
+    targets { object: "organ" sphere { center_m { x: 0.1 z: 0.04 } radius_m: 0.01 } }
+    force_limits { object: "organ" limit_n: 3 } time_limit_s: 10 )";
+  auto load = [&](const std::string& text) {
+    const std::string file = (dir / "e.textproto").string();
+    std::ofstream(file) << text;
+    return LoadExerciseFile(file).status();
+  };
+  ASSERT_TRUE(load(good).ok()) << load(good);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"(scene_file: "probe_on_torus.textproto" tool: "probe" time_limit_s: 10)", "targets"},
+      {R"(scene_file: "probe_on_torus.textproto" tool: "organ"
+          targets { object: "organ" sphere { radius_m: 0.01 } } time_limit_s: 10)",
+       "tool"},
+      {R"(scene_file: "probe_on_torus.textproto" tool: "probe"
+          targets { object: "liver" sphere { radius_m: 0.01 } } time_limit_s: 10)",
+       "targets[0].object"},
+      {R"(scene_file: "probe_on_torus.textproto" tool: "probe"
+          targets { object: "organ" sphere { radius_m: -0.01 } } time_limit_s: 10)",
+       "targets[0].sphere.radius_m"},
+      {R"(scene_file: "probe_on_torus.textproto" tool: "probe"
+          targets { object: "organ" sphere { radius_m: 0.01 } min_force_n: -1 } time_limit_s: 10)",
+       "targets[0].min_force_n"},
+      {R"(scene_file: "probe_on_torus.textproto" tool: "probe"
+          targets { object: "organ" sphere { radius_m: 0.01 } }
+          force_limits { object: "organ" limit_n: -3 } time_limit_s: 10)",
+       "force_limits[0].limit_n"},
+      {R"(scene_file: "probe_on_torus.textproto" tool: "probe"
+          targets { object: "organ" sphere { radius_m: 0.01 } } forbidden { object: "floor" }
+          time_limit_s: 10)",
+       "forbidden[0].object"},
+      {R"(scene_file: "probe_on_torus.textproto" tool: "probe"
+          targets { object: "organ" sphere { radius_m: 0.01 } })",
+       "time_limit_s"},
+      {R"(scene_file: "missing.textproto" tool: "probe")", "missing.textproto"},
+      {R"(this is not an exercise)", "ExerciseSpec"},
+  };
+  for (const auto& [text, field] : cases) {
+    const absl::Status status = load(text);
+    EXPECT_FALSE(status.ok()) << text;
+    EXPECT_NE(status.message().find(field), std::string::npos)
+        << status << " should name " << field;
+  }
+}
+
+}  // namespace
+}  // namespace hs::cli
