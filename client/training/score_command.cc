@@ -1,6 +1,9 @@
 #include "client/training/score_command.h"
 
+#include <algorithm>
 #include <iostream>
+
+#include "absl/strings/str_cat.h"
 
 #include "client/device_path.h"
 #include "client/exit_codes.h"
@@ -8,6 +11,8 @@
 #include "client/training/score_json.h"
 #include "common/api/exercise_file.h"
 #include "common/api/scene_file.h"
+#include "common/core/status_macros.h"
+#include "common/recording/replay.h"
 #include "common/training/step_scoring.h"
 
 namespace hs::cli {
@@ -26,38 +31,71 @@ void PrintSummary(const ScoreSummary& s, std::ostream& out) {
       << ", jerk rms " << s.jerk_rms << " m/s^3\n";
 }
 
-}  // namespace
+// What a step must compute for the scorer: contacts and their points, and
+// the device's force.
+const EffectSet kScoringNeeds{Effect::kCollision, Effect::kContactSet, Effect::kReversingVector,
+                              Effect::kForce, Effect::kFriction};
 
-int RunScore(const ScoreArgs& args, std::ostream& out, std::ostream& err) {
-  absl::StatusOr<LoadedExercise> exercise = LoadExerciseFile(args.exercise);
-  if (!exercise.ok()) return ReportError("score", exercise.status(), err);
-  absl::StatusOr<LoadedScene> scene = LoadSceneFile(exercise->scene_file);
-  if (!scene.ok()) return ReportError("score", scene.status(), err);
-  const ObjectId tool = FindTool(*scene, exercise->exercise.tool);
-  const double step_s = scene->scene->options().step_s;
-  absl::StatusOr<std::vector<TimedPose>> path = ReadDevicePath(args.path, 1 / step_s);
-  if (!path.ok()) return ReportError("score", path.status(), err);
-  if (path->empty()) return ReportError("score", args.path + ": no poses", err);
-  Scene& s = *scene->scene;
-  s.SetNeeded({Effect::kCollision, Effect::kContactSet, Effect::kReversingVector, Effect::kForce,
-               Effect::kFriction});
-  Scorer scorer(exercise->exercise);
+// Steps the exercise's scene along the device path `file`.
+absl::Status ScorePath(const LoadedExercise& exercise, const std::string& file, Scorer& scorer) {
+  HS_ASSIGN_OR_RETURN(LoadedScene scene, LoadSceneFile(exercise.scene_file));
+  const ObjectId tool = FindTool(scene, exercise.exercise.tool);
+  const double step_s = scene.scene->options().step_s;
+  HS_ASSIGN_OR_RETURN(const std::vector<TimedPose> path, ReadDevicePath(file, 1 / step_s));
+  if (path.empty()) return absl::InvalidArgumentError(file + ": no poses");
+  Scene& s = *scene.scene;
+  s.SetNeeded(kScoringNeeds);
   size_t next = 0;
-  const double end_s = path->back().t_s + kSettleS;
+  const double end_s = path.back().t_s + kSettleS;
   for (int64_t k = 0; !scorer.done() && static_cast<double>(k) * step_s <= end_s; ++k) {
     // The newest pose due by this step (held until the next).
     bool moved = false;
-    while (next < path->size() && (*path)[next].t_s <= static_cast<double>(k) * step_s + 1e-12) {
+    while (next < path.size() && path[next].t_s <= static_cast<double>(k) * step_s + 1e-12) {
       ++next;
       moved = true;
     }
-    if (moved) {
-      if (absl::Status set = s.SetDevicePose(tool, (*path)[next - 1].X_WD); !set.ok()) {
-        return ReportError("score", set, err);
-      }
-    }
-    scorer.Add(ScoringFrameFromStep(s.Step(), tool, scene->names));
+    if (moved) HS_RETURN_IF_ERROR(s.SetDevicePose(tool, path[next - 1].X_WD));
+    scorer.Add(ScoringFrameFromStep(s.Step(), tool, scene.names));
   }
+  return absl::OkStatus();
+}
+
+// Re-runs the recorded session `file` of the exercise's scene.
+absl::Status ScoreRecording(const LoadedExercise& exercise, const std::string& file,
+                            Scorer& scorer) {
+  HS_ASSIGN_OR_RETURN(const RecordedSession session, ReadSession(file));
+  const std::string& recorded = session.records.front().start().spec().name();
+  if (recorded != exercise.scene.name()) {
+    return absl::InvalidArgumentError(absl::StrCat(file, " records scene '", recorded,
+                                                   "', the exercise's scene is '",
+                                                   exercise.scene.name(), "'"));
+  }
+  ReplayOptions options;
+  options.extra_needs = kScoringNeeds;
+  options.on_step = [&](double time_s, const StepFrame& frame,
+                        const std::vector<std::string>& names) {
+    const auto tool = std::find(names.begin(), names.end(), exercise.exercise.tool);
+    const ObjectId id = tool == names.end() ? -1 : static_cast<ObjectId>(tool - names.begin());
+    ScoringFrame scored = ScoringFrameFromStep(frame, id, names);
+    scored.time_s = time_s;
+    scorer.Add(scored);
+  };
+  return ReplayRecording(file, options).status();
+}
+
+}  // namespace
+
+int RunScore(const ScoreArgs& args, std::ostream& out, std::ostream& err) {
+  if (args.path.empty() == args.recording.empty()) {
+    err << "score: give one of --path and --recording\n";
+    return kExitUsage;
+  }
+  absl::StatusOr<LoadedExercise> exercise = LoadExerciseFile(args.exercise);
+  if (!exercise.ok()) return ReportError("score", exercise.status(), err);
+  Scorer scorer(exercise->exercise);
+  const absl::Status scored = args.path.empty() ? ScoreRecording(*exercise, args.recording, scorer)
+                                                : ScorePath(*exercise, args.path, scorer);
+  if (!scored.ok()) return ReportError("score", scored, err);
   const ScoreSummary summary = scorer.Summary();
   if (args.json) {
     out << SummaryJson(summary).dump() << "\n";
@@ -73,8 +111,9 @@ void AddScoreCommand(CLI::App& app, int& exit_code) {
       "score", "Score a training exercise offline along a device path (docs/training.md)");
   cmd->add_option("EXERCISE", args->exercise, "Exercise file (haptics.v1.ExerciseSpec)")
       ->required();
-  cmd->add_option("--path", args->path, "Device path: CSV (one pose per step) or JSON lines")
-      ->required();
+  cmd->add_option("--path", args->path, "Device path: CSV (one pose per step) or JSON lines");
+  cmd->add_option("--recording", args->recording,
+                  "A recorded session of the exercise's scene (its first file)");
   cmd->add_flag("--json", args->json, "One JSON summary object");
   cmd->callback([args, &exit_code] { exit_code = RunScore(*args, std::cout, std::cerr); });
 }

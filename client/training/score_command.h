@@ -1,8 +1,8 @@
 #pragma once
-// `hapticctl score EXERCISE --path FILE.csv|FILE.jsonl [--json]`: runs the
-// exercise's scene offline along a device path for the exercise's tool
-// and scores it (common/training/scorer.h), the same scorer a live or
-// recorded session goes through.
+// `hapticctl score EXERCISE (--path FILE.csv|FILE.jsonl | --recording FILE)
+// [--json]`: scores the exercise's tool (common/training/scorer.h) along a
+// device path, run offline in the exercise's scene, or through a recorded
+// session, re-run (common/recording/replay.h).
 
 #include <ostream>
 #include <string>
@@ -16,6 +16,8 @@ struct ScoreArgs {
   /// A device path (device_path.h): CSV, one pose per step, or JSON lines
   /// with times (each pose held until the next).
   std::string path;
+  /// Or a recorded session of the exercise's scene (its first file).
+  std::string recording;
   bool json = false;
 };
 

@@ -19,8 +19,9 @@ namespace pb = haptics::v1;
 // them for a rebuild), edits that rebuild the scene between steps.
 class ReplayedScene {
  public:
-  ReplayedScene(std::string models_dir, double step_s, pb::FrameRecording mode)
-      : models_dir_(std::move(models_dir)), step_s_(step_s), mode_(mode) {}
+  ReplayedScene(std::string models_dir, double step_s, pb::FrameRecording mode,
+                const ReplayOptions& options)
+      : models_dir_(std::move(models_dir)), step_s_(step_s), mode_(mode), options_(options) {}
 
   int64_t step() const { return step_; }
 
@@ -53,9 +54,12 @@ class ReplayedScene {
     absl::StatusOr<EffectSet> needs =
         EffectsFromProto(recorded.needs(), EffectSet(), absl::StrCat("frame ", recorded.step()));
     if (!needs.ok()) return needs.status();
-    loaded_->scene->SetNeeded(*needs);
+    loaded_->scene->SetNeeded(*needs | options_.extra_needs);
     const StepFrame& frame = loaded_->scene->Step();
     ++step_;
+    if (options_.on_step) {
+      options_.on_step(static_cast<double>(step_) * step_s_, frame, loaded_->names);
+    }
     FillRecordedFrame(step_, static_cast<double>(step_) * step_s_, frame, loaded_->names, *needs,
                       mode_, &replayed_);
     return &replayed_;
@@ -85,6 +89,7 @@ class ReplayedScene {
   const std::string models_dir_;
   const double step_s_;
   const pb::FrameRecording mode_;
+  const ReplayOptions& options_;
   std::optional<LoadedScene> loaded_;
   std::map<std::string, Isometry3d> applied_;
   int64_t step_ = 0;
@@ -119,7 +124,7 @@ absl::StatusOr<ReplayReport> ReplayRecording(const std::string& file,
   report.files = session->files;
   ReplayedScene scene(options.uploaded_models_dir.empty() ? start.uploaded_models_dir()
                                                           : options.uploaded_models_dir,
-                      start.step_s(), start.frames());
+                      start.step_s(), start.frames(), options);
   if (absl::Status s = scene.Start(start); !s.ok()) return s;
   for (size_t i = 1; i < session->records.size(); ++i) {
     const pb::Record& record = session->records[i];

@@ -5,17 +5,28 @@
 // each frame with the recorded one.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "common/recording/session_reader.h"
+#include "common/sim/step_frame.h"
 
 namespace hs {
 
 struct ReplayOptions {
   /// Where uploaded models are read; "" for the folder the recording names.
   std::string uploaded_models_dir;
+  /// Effects every step computes besides those it was asked for (a scorer
+  /// needs contacts and forces); frames then differ from the recorded ones
+  /// where these add to them.
+  EffectSet extra_needs;
+  /// Called after each re-run step with the runner's simulated time
+  /// (seconds since the session's scene first stepped), the frame and the
+  /// object names by ObjectId.
+  std::function<void(double time_s, const StepFrame& frame, const std::vector<std::string>& names)>
+      on_step;
 };
 
 struct ReplayReport {

@@ -12,6 +12,9 @@
 
 #include "client/device_path.h"
 #include "common/api/exercise_file.h"
+#include "common/api/scene_file.h"
+#include "common/recording/record_file.h"
+#include "common/recording/recorded_step.h"
 #include "nlohmann/json.hpp"
 #include "tests/common/scratch_dir.h"
 
@@ -21,9 +24,11 @@ namespace {
 const std::string kExercise = std::string(HS_SCENES_DIR) + "/exercises/three_points.textproto";
 const std::string kPath = std::string(HS_SCENES_DIR) + "/exercises/three_points_path.jsonl";
 
-nlohmann::json Score(const std::string& path) {
+nlohmann::json Score(const std::string& path, const std::string& recording = "") {
   std::ostringstream out, err;
-  EXPECT_EQ(RunScore({.exercise = kExercise, .path = path, .json = true}, out, err), 0)
+  EXPECT_EQ(RunScore({.exercise = kExercise, .path = path, .recording = recording, .json = true},
+                     out, err),
+            0)
       << err.str();
   return nlohmann::json::parse(out.str());
 }
@@ -79,6 +84,65 @@ TEST(ScoreCommandTest, GentleBeatsPressedAndForbidden) {
                           "forbidden_contacts", "jerk_rms"}) {
     EXPECT_TRUE(g.contains(key)) << key;
   }
+}
+
+// A recorded session of the same motion: the server's inputs are the
+// path's poses at the steps the offline run applies them (step k + 1 takes
+// the newest pose due by k * step_s), the first one seating the device, as
+// a server records a device's stream. Scored through the recording (re-run
+// by replay), it gives the offline run's summary exactly. A recording of
+// another scene is refused by name.
+std::string RecordPath(const std::string& name, const std::vector<TimedPose>& path,
+                       const std::string& scene_name) {
+  namespace pb = haptics::v1;
+  const std::string file = (ScratchDir("recordings") / name).string();
+  absl::StatusOr<RecordFileWriter> writer = RecordFileWriter::Create(file);
+  EXPECT_TRUE(writer.ok()) << writer.status();
+  absl::StatusOr<pb::SceneSpec> spec =
+      ReadSceneFile(std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto");
+  EXPECT_TRUE(spec.ok());
+  spec->set_name(scene_name);
+  pb::Record record;
+  pb::RecordingStart* start = record.mutable_start();
+  *start->mutable_spec() = *spec;
+  start->set_step_s(0.001);
+  start->set_frames(pb::FRAME_RECORDING_DIGEST);
+  EXPECT_TRUE(writer->Append(record).ok());
+  size_t next = 0;
+  const int64_t steps = static_cast<int64_t>((path.back().t_s + 0.5) / 0.001) + 1;
+  for (int64_t k = 0; k < steps; ++k) {
+    bool moved = false;
+    while (next < path.size() && path[next].t_s <= static_cast<double>(k) * 0.001 + 1e-12) {
+      ++next;
+      moved = true;
+    }
+    if (moved) {
+      record.Clear();
+      pb::DeviceInput* input = record.mutable_input();
+      input->set_step(k + 1);
+      input->set_tool("probe");
+      input->set_seat(k == 0);
+      ExactPoseToProto(path[next - 1].X_WD, input->mutable_device_pose());
+      EXPECT_TRUE(writer->Append(record).ok());
+    }
+    record.Clear();
+    record.mutable_frame()->set_step(k + 1);
+    record.mutable_frame()->set_sha256("not compared");
+    EXPECT_TRUE(writer->Append(record).ok());
+  }
+  return file;
+}
+
+TEST(ScoreCommandTest, ARecordingOfThePathScoresTheSame) {
+  absl::StatusOr<std::vector<TimedPose>> path = ReadDevicePath(kPath, 1000);
+  ASSERT_TRUE(path.ok());
+  const nlohmann::json offline = Score(kPath);
+  const nlohmann::json recorded = Score("", RecordPath("same.hsrec", *path, "probe on torus"));
+  EXPECT_EQ(offline.dump(), recorded.dump());
+  std::ostringstream out, err;
+  const std::string other = RecordPath("other.hsrec", *path, "another scene");
+  EXPECT_NE(RunScore({.exercise = kExercise, .recording = other}, out, err), 0);
+  EXPECT_NE(err.str().find("records scene 'another scene'"), std::string::npos) << err.str();
 }
 
 // Each bad exercise is refused with the field named; a path of poses that
