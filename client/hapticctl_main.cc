@@ -17,6 +17,7 @@
 #include "client/scenes_command.h"
 #include "client/simulate_command.h"
 #include "client/training/score_command.h"
+#include "client/training/train_command.h"
 #include "client/upload_command.h"
 #include "client/viewer/view_command.h"
 #include "client/watch_command.h"
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   hs::cli::AddReplayCommand(app, exit_code);
   hs::cli::AddViewCommands(app, exit_code);
   hs::cli::AddScoreCommand(app, exit_code);
+  hs::cli::AddTrainCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {

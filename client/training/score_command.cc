@@ -8,7 +8,7 @@
 #include "client/device_path.h"
 #include "client/exit_codes.h"
 #include "client/server_call.h"
-#include "client/training/score_json.h"
+#include "client/training/score_output.h"
 #include "common/api/exercise_file.h"
 #include "common/api/scene_file.h"
 #include "common/core/status_macros.h"
@@ -21,15 +21,6 @@ namespace {
 // After the path's last pose the device stays there this long, so that a
 // hold begun at the end can finish, seconds.
 constexpr double kSettleS = 0.5;
-
-void PrintSummary(const ScoreSummary& s, std::ostream& out) {
-  out << "score " << s.score << " / 100, " << (s.completed ? "completed" : "not completed")
-      << " in " << s.duration_s << " s: targets " << s.targets_reached << " of " << s.targets
-      << ", path " << s.path_length_m << " m (economy " << s.economy << "), max force "
-      << s.max_force_n << " N, over the limit " << s.force_limit_exceeded_s << " s (excess "
-      << s.excess_impulse_ns << " N*s), forbidden contacts " << s.forbidden_contacts
-      << ", jerk rms " << s.jerk_rms << " m/s^3\n";
-}
 
 // What a step must compute for the scorer: contacts and their points, and
 // the device's force.

@@ -155,20 +155,20 @@ ScoreSummary Scorer::Summary() const {
   s.target_results = targets_;
   s.forbidden_list = forbidden_;
 
-  // Each part in [0, 1], weighed (docs/training.md).
+  // Each part in [0, 1], weighed (docs/training.md). How well the work was
+  // done counts for the share of it that was done: doing nothing scores 0.
   const ScoreWeights& w = exercise_.weights;
   const double part_targets = static_cast<double>(s.targets_reached) / s.targets;
   const double part_time =
       s.completed ? std::clamp(1 - s.duration_s / exercise_.time_limit_s, 0.0, 1.0) : 0;
-  const double part_economy = s.economy > 0 ? std::min(1.0, 1 / s.economy) * part_targets : 0;
+  const double part_economy = s.economy > 0 ? std::min(1.0, 1 / s.economy) : 0;
   const double part_force = 1 / (1 + s.excess_impulse_ns / kExcessImpulseScaleNs);
   const double part_forbidden = 1.0 / (1 + s.forbidden_contacts);
   const double part_smooth = 1 / (1 + s.jerk_rms / kJerkScaleMPerS3);
   const double sum = w.targets + w.time + w.economy + w.force + w.forbidden + w.smoothness;
-  s.score = 100 *
-            (w.targets * part_targets + w.time * part_time + w.economy * part_economy +
-             w.force * part_force + w.forbidden * part_forbidden + w.smoothness * part_smooth) /
-            sum;
+  const double quality = w.time * part_time + w.economy * part_economy + w.force * part_force +
+                         w.forbidden * part_forbidden + w.smoothness * part_smooth;
+  s.score = 100 * (w.targets * part_targets + part_targets * quality) / sum;
   return s;
 }
 

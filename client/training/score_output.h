@@ -1,6 +1,8 @@
 #pragma once
-// A training run's summary as JSON (`hapticctl score` and `train`
-// --json; report.json).
+// A training run's summary, for people (one line) and as JSON (`hapticctl
+// score` and `train`).
+
+#include <ostream>
 
 #include "common/training/scorer.h"
 #include "nlohmann/json.hpp"
@@ -12,5 +14,8 @@ namespace hs::cli {
 /// "excess_impulse_ns", "forbidden_contacts", "jerk_rms", "target_results",
 /// "forbidden_list"}.
 nlohmann::ordered_json SummaryJson(const ScoreSummary& s);
+
+/// One line: score, completion, targets, path, forces, errors, jerk.
+void PrintSummary(const ScoreSummary& s, std::ostream& out);
 
 }  // namespace hs::cli

@@ -1,4 +1,4 @@
-#include "client/training/score_json.h"
+#include "client/training/score_output.h"
 
 namespace hs::cli {
 
@@ -31,6 +31,15 @@ nlohmann::ordered_json SummaryJson(const ScoreSummary& s) {
           {"jerk_rms", s.jerk_rms},
           {"target_results", targets},
           {"forbidden_list", forbidden}};
+}
+
+void PrintSummary(const ScoreSummary& s, std::ostream& out) {
+  out << "score " << s.score << " / 100, " << (s.completed ? "completed" : "not completed")
+      << " in " << s.duration_s << " s: targets " << s.targets_reached << " of " << s.targets
+      << ", path " << s.path_length_m << " m (economy " << s.economy << "), max force "
+      << s.max_force_n << " N, over the limit " << s.force_limit_exceeded_s << " s (excess "
+      << s.excess_impulse_ns << " N*s), forbidden contacts " << s.forbidden_contacts
+      << ", jerk rms " << s.jerk_rms << " m/s^3\n";
 }
 
 }  // namespace hs::cli
