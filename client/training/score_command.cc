@@ -8,6 +8,7 @@
 #include "client/device_path.h"
 #include "client/exit_codes.h"
 #include "client/server_call.h"
+#include "client/training/report.h"
 #include "client/training/score_output.h"
 #include "common/api/exercise_file.h"
 #include "common/api/scene_file.h"
@@ -88,6 +89,16 @@ int RunScore(const ScoreArgs& args, std::ostream& out, std::ostream& err) {
                                                 : ScorePath(*exercise, args.path, scorer);
   if (!scored.ok()) return ReportError("score", scored, err);
   const ScoreSummary summary = scorer.Summary();
+  if (!args.report_dir.empty()) {
+    const absl::Status written = WriteReport(
+        args.report_dir, {.exercise = &exercise->exercise,
+                          .scene = exercise->scene.name(),
+                          .summary = summary,
+                          .trace = &scorer.trace(),
+                          .ended = scorer.done() ? "done" : "the path or recording ended",
+                          .compare = args.compare});
+    if (!written.ok()) return ReportError("score", written, err);
+  }
   if (args.json) {
     out << SummaryJson(summary).dump() << "\n";
   } else {
@@ -106,6 +117,9 @@ void AddScoreCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--recording", args->recording,
                   "A recorded session of the exercise's scene (its first file)");
   cmd->add_flag("--json", args->json, "One JSON summary object");
+  cmd->add_option("--report", args->report_dir,
+                  "Write report.json, report.html and the plots in this folder");
+  cmd->add_option("--compare", args->compare, "Earlier report folders, oldest first");
   cmd->callback([args, &exit_code] { exit_code = RunScore(*args, std::cout, std::cerr); });
 }
 

@@ -6,6 +6,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "CLI/CLI.hpp"
 
@@ -19,6 +20,9 @@ struct ScoreArgs {
   /// Or a recorded session of the exercise's scene (its first file).
   std::string recording;
   bool json = false;
+  /// Write a report here (report.h), comparing with these earlier ones.
+  std::string report_dir;
+  std::vector<std::string> compare;
 };
 
 /// Prints the summary to `out` (one JSON object with --json). kExitOk;

@@ -2,12 +2,14 @@
 
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <iostream>
 #include <set>
 #include <thread>
 
 #include "client/channel.h"
 #include "client/exit_codes.h"
+#include "client/training/report.h"
 #include "client/training/score_output.h"
 #include "common/api/exercise_file.h"
 #include "common/api/frame_scoring.h"
@@ -107,6 +109,17 @@ int RunTrain(const TrainArgs& args, std::ostream& out, std::ostream& err,
                     : StatusCodeName(status.error_code()) + ": " + status.error_message();
   for (const Trainee& t : trainees) {
     const ScoreSummary summary = t.scorer.Summary();
+    if (!args.report_dir.empty()) {
+      const absl::Status written =
+          WriteReport((std::filesystem::path(args.report_dir) / t.exercise.exercise.tool).string(),
+                      {.exercise = &t.exercise.exercise,
+                       .scene = t.exercise.scene.name(),
+                       .summary = summary,
+                       .trace = &t.scorer.trace(),
+                       .ended = t.scorer.done() ? "done" : ended,
+                       .compare = args.compare});
+      if (!written.ok()) return ReportError("train", written, err);
+    }
     if (args.json) {
       nlohmann::ordered_json line = {{"tool", t.exercise.exercise.tool},
                                      {"exercise", t.exercise.exercise.name},
@@ -131,6 +144,8 @@ void AddTrainCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("EXERCISE", args->exercises, "Exercise files, one per trainee's tool")
       ->required();
   cmd->add_flag("--json", args->json, "The summaries as JSON lines (no progress lines)");
+  cmd->add_option("--report", args->report_dir, "Write each trainee's report in DIR/TOOL");
+  cmd->add_option("--compare", args->compare, "Earlier report folders, oldest first");
   cmd->callback([args, &exit_code] {
     std::signal(SIGINT, OnInterrupt);
     static const std::atomic<bool> never{false};

@@ -201,6 +201,11 @@ int RunSnapshot(const SnapshotArgs& args, std::ostream& out, std::ostream& err) 
       "--screenshot=" + args.out,
       url};
   std::remove(args.out.c_str());
+  // Chromium writes the file but makes no folder for it.
+  const std::filesystem::path folder = std::filesystem::path(args.out).parent_path();
+  std::error_code made;
+  if (!folder.empty()) std::filesystem::create_directories(folder, made);
+  if (made) return ReportError("snapshot", folder.string() + ": " + made.message(), err);
   const int status = RunBrowser(argv, log, args.timeout_s);
   if (status != 0 || !IsPng(args.out)) {
     err << "snapshot: " << args.browser

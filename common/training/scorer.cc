@@ -57,6 +57,7 @@ void Scorer::Add(const ScoringFrame& frame) {
   ScoreLimits(frame, force, dt);
   ScoreForbidden(frame, force, dt);
   ScoreTargets(frame, force, dt);
+  trace_.push_back({frame.time_s - start_s_, force, limit_now_, frame.p_WD});
 }
 
 void Scorer::SampleJerk(const ScoringFrame& frame) {

@@ -61,6 +61,15 @@ struct ForbiddenContact {
   double max_force_n = 0;
 };
 
+/// One scored frame, for a report's plots.
+struct TracePoint {
+  double t_s = 0;  // since the first frame
+  double force_n = 0;
+  /// The limit of the object pressed then (0: none).
+  double limit_n = 0;
+  Vector3d p_WD = Vector3d::Zero();
+};
+
 struct ScoreSummary {
   double score = 0;  // 0-100
   bool completed = false;
@@ -102,6 +111,8 @@ class Scorer {
   bool done() const;
   ScoreProgress progress() const;
   ScoreSummary Summary() const;
+  /// Every scored frame, in order.
+  const std::vector<TracePoint>& trace() const { return trace_; }
   const Exercise& exercise() const { return exercise_; }
 
  private:
@@ -138,6 +149,7 @@ class Scorer {
   double held_s_ = 0;
   double finished_at_s_ = -1;
   std::vector<TargetResult> targets_;
+  std::vector<TracePoint> trace_;
   std::vector<ForbiddenContact> forbidden_;
   // Per forbidden region: its entry in forbidden_ while in contact, else -1.
   std::vector<int> open_forbidden_;

@@ -145,6 +145,43 @@ TEST(ScoreCommandTest, ARecordingOfThePathScoresTheSame) {
   EXPECT_NE(err.str().find("records scene 'another scene'"), std::string::npos) << err.str();
 }
 
+// --report writes report.json (the summary and the attempts' scores),
+// the plots, and report.html holding them inline with nothing to fetch;
+// --compare adds the earlier attempts; a compared folder without a report
+// is refused.
+TEST(ScoreCommandTest, ReportIsSelfContained) {
+  const std::filesystem::path dir = ScratchDir("reports");
+  auto score = [&](const std::string& name, std::vector<std::string> compare) {
+    std::ostringstream out, err;
+    const int status = RunScore({.exercise = kExercise,
+                                 .path = kPath,
+                                 .report_dir = (dir / name).string(),
+                                 .compare = std::move(compare)},
+                                out, err);
+    return std::make_pair(status, err.str());
+  };
+  ASSERT_EQ(score("first", {}).first, 0);
+  const auto [status, err] = score("second", {(dir / "first").string()});
+  ASSERT_EQ(status, 0) << err;
+  std::ifstream json_file(dir / "second" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(json_file);
+  EXPECT_EQ(report["attempt_scores"].size(), 2u);
+  EXPECT_TRUE(report["completed"]);
+  for (const char* png : {"force.png", "path.png", "attempts.png"}) {
+    EXPECT_TRUE(std::filesystem::file_size(dir / "second" / png) > 1000) << png;
+  }
+  std::ifstream html_file(dir / "second" / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(html_file)), {});
+  size_t images = 0;
+  for (size_t at = html.find("data:image/png;base64,"); at != std::string::npos;
+       at = html.find("data:image/png;base64,", at + 1)) {
+    ++images;
+  }
+  EXPECT_EQ(images, 3u);
+  EXPECT_EQ(html.find("http"), std::string::npos) << "the report must need no network";
+  EXPECT_NE(score("third", {(dir / "nothing_here").string()}).first, 0);
+}
+
 // Each bad exercise is refused with the field named; a path of poses that
 // are not finite is refused too.
 TEST(ScoreCommandTest, BadExercisesNameTheField) {
