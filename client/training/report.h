@@ -19,7 +19,7 @@ struct ReportInput {
   std::string scene;
   ScoreSummary summary;
   const std::vector<TracePoint>* trace = nullptr;
-  /// How the run ended: "done", "stopped", or why it was cut short.
+  /// How the run ended: "done", "interrupted", or why it was cut short.
   std::string ended;
   /// Earlier reports' folders (their report.json), oldest first.
   std::vector<std::string> compare;

@@ -104,7 +104,7 @@ int RunTrain(const TrainArgs& args, std::ostream& out, std::ostream& err,
   const bool cancelled = status.error_code() == grpc::StatusCode::CANCELLED;
   const std::string ended =
       done          ? "done"
-      : cancelled   ? "stopped"
+      : cancelled   ? "interrupted"
       : status.ok() ? "the scene's stream ended"
                     : StatusCodeName(status.error_code()) + ": " + status.error_message();
   for (const Trainee& t : trainees) {

@@ -29,7 +29,7 @@ struct TrainArgs {
 };
 
 /// Scores until done or `*stop` turns true. kExitOk when every exercise
-/// ended (done or stopped); the gRPC status's exit code when the stream
+/// ended (done or interrupted); the gRPC status's exit code when the stream
 /// failed (the partial summaries still printed); kExitFailure for bad
 /// exercises.
 int RunTrain(const TrainArgs& args, std::ostream& out, std::ostream& err,
