@@ -152,7 +152,10 @@ class PageSocket : public std::enable_shared_from_this<PageSocket> {
     }
     if (auto* take = std::get_if<TakeTool>(&*message)) return Take(take->tool);
     if (auto* release = std::get_if<ReleaseTool>(&*message)) {
-      if (device_ && device_->tool() == release->tool) device_.reset();
+      if (device_ && device_->tool() == release->tool) {
+        device_.reset();  // its stream's end is told as "released"
+        held_tool_.clear();
+      }
       return;
     }
     const MoveTool& move = std::get<MoveTool>(*message);
@@ -167,25 +170,27 @@ class PageSocket : public std::enable_shared_from_this<PageSocket> {
   void Take(const std::string& tool) {
     device_.reset();
     held_tool_.clear();
+    const uint64_t stream = ++stream_;
     std::weak_ptr<PageSocket> weak = weak_from_this();
     net::io_context& io = server_.io;
     device_ = std::make_unique<PageDevice>(
         server_.link.channel(), server_.link.scene(), tool,
-        [weak, &io, tool](const std::string& state, const std::string& why) {
-          net::post(io, [weak, tool, state, why] {
-            if (auto self = weak.lock()) self->Reported(tool, state, why);
+        [weak, &io, tool, stream](const std::string& state, const std::string& why) {
+          net::post(io, [weak, tool, stream, state, why] {
+            if (auto self = weak.lock()) self->Reported(stream, tool, state, why);
           });
         });
   }
 
-  // The stream's word on the tool, on the io thread.
-  void Reported(const std::string& tool, const std::string& state, const std::string& why) {
-    if (!device_ || device_->tool() != tool) {
-      if (state != "held") return;  // an older stream's end
-    }
+  // Stream `stream`'s word on `tool`, on the io thread. A stream released or
+  // replaced since (Release, another Take) has its end told, nothing more.
+  void Reported(uint64_t stream, const std::string& tool, const std::string& state,
+                const std::string& why) {
+    const bool current = device_ && stream == stream_;
+    if (!current && state == "held") return;
     if (state == "held") {
       held_tool_ = tool;
-    } else if (device_ && device_->tool() == tool) {
+    } else if (current) {
       held_tool_.clear();
       // Ends on the io thread: its reader thread has returned from Report.
       auto ended = std::move(device_);
@@ -211,6 +216,8 @@ class PageSocket : public std::enable_shared_from_this<PageSocket> {
   std::deque<std::pair<std::shared_ptr<const std::string>, bool>> queue_;
   uint64_t replaced_ = 0;
   std::unique_ptr<PageDevice> device_;
+  // Counts the page's Takes: which stream a report is from.
+  uint64_t stream_ = 0;
   std::string held_tool_;
 };
 
