@@ -3,13 +3,21 @@
 #include <cmath>
 #include <fstream>
 
+#include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
+#include "absl/strings/strip.h"
 #include "client/pose_args.h"
 #include "client/tool_path.h"
 #include "nlohmann/json.hpp"
 
 namespace hs::cli {
 namespace {
+
+// {"scene": "NAME"} with no pose: the header line of a JSON lines path.
+bool IsHeader(const nlohmann::json& entry) {
+  return entry.is_object() && !entry.contains("pose") && entry.contains("scene") &&
+         entry["scene"].is_string();
+}
 
 absl::StatusOr<std::vector<TimedPose>> ReadJsonLines(const std::string& path, double rate_hz) {
   std::ifstream in(path);
@@ -20,6 +28,7 @@ absl::StatusOr<std::vector<TimedPose>> ReadJsonLines(const std::string& path, do
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const std::string where = path + ":" + std::to_string(number) + ": ";
     const nlohmann::json entry = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (poses.empty() && IsHeader(entry)) continue;
     if (!entry.is_object() || !entry.contains("pose") || !entry["pose"].is_array() ||
         entry["pose"].size() != 6) {
       return absl::InvalidArgumentError(where + R"(expected {"t_s": T, "pose": [x,y,z,rx,ry,rz]})");
@@ -56,6 +65,26 @@ absl::StatusOr<std::vector<TimedPose>> ReadDevicePath(const std::string& path, d
     poses[i] = {static_cast<double>(i) / rate_hz, (*csv)[i]};
   }
   return poses;
+}
+
+absl::StatusOr<std::string> DevicePathScene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return absl::NotFoundError(path + ": cannot open");
+  const bool json_lines = absl::EndsWith(path, ".jsonl");
+  constexpr absl::string_view kCsvHeader = "# scene:";
+  for (std::string line; std::getline(in, line);) {
+    const absl::string_view text = absl::StripAsciiWhitespace(line);
+    if (text.empty()) continue;
+    if (json_lines) {
+      const nlohmann::json entry = nlohmann::json::parse(std::string(text), nullptr, false);
+      return IsHeader(entry) ? entry["scene"].get<std::string>() : "";
+    }
+    if (absl::StartsWith(text, kCsvHeader)) {
+      return std::string(absl::StripAsciiWhitespace(text.substr(kCsvHeader.size())));
+    }
+    if (!absl::StartsWith(text, "#")) return "";
+  }
+  return "";
 }
 
 absl::StatusOr<Motion> ParseMotion(const std::string& name) {

@@ -20,11 +20,17 @@ struct TimedPose {
 
 /// The poses of a path file with their send times. A file ending in
 /// ".jsonl" holds one JSON object per line, {"t_s": 0.01, "pose": [x, y,
-/// z, rx, ry, rz]} ("t_s" optional: i / rate_hz); any other file is CSV
+/// z, rx, ry, rz]} ("t_s" optional: i / rate_hz), after an optional
+/// header line (DevicePathScene); any other file is CSV
 /// (tool_path.h), pose i sent at i / rate_hz. NOT_FOUND when the file
 /// cannot be opened, INVALID_ARGUMENT naming the line otherwise (times
 /// must not decrease).
 absl::StatusOr<std::vector<TimedPose>> ReadDevicePath(const std::string& path, double rate_hz);
+
+/// The scene a path file says it moves in, "" when it names none: a JSON
+/// lines file's header line {"scene": "NAME"} (before its poses), or a
+/// CSV comment line "# scene: NAME". NOT_FOUND when it cannot be opened.
+absl::StatusOr<std::string> DevicePathScene(const std::string& path);
 
 /// The built-in motions.
 enum class Motion {

@@ -33,11 +33,18 @@ absl::Status ScorePath(const LoadedExercise& exercise, const std::string& file, 
   HS_ASSIGN_OR_RETURN(LoadedScene scene, LoadSceneFile(exercise.scene_file));
   const ObjectId tool = FindTool(scene, exercise.exercise.tool);
   const double step_s = scene.scene->options().step_s;
+  HS_ASSIGN_OR_RETURN(const std::string path_scene, DevicePathScene(file));
+  if (!path_scene.empty() && path_scene != exercise.scene.name()) {
+    return absl::InvalidArgumentError(absl::StrCat(file, " is a path in scene '", path_scene,
+                                                   "', the exercise's scene is '",
+                                                   exercise.scene.name(), "'"));
+  }
   HS_ASSIGN_OR_RETURN(const std::vector<TimedPose> path, ReadDevicePath(file, 1 / step_s));
   if (path.empty()) return absl::InvalidArgumentError(file + ": no poses");
   Scene& s = *scene.scene;
   s.SetNeeded(kScoringNeeds);
   size_t next = 0;
+  int seated = 0;
   const double end_s = path.back().t_s + kSettleS;
   for (int64_t k = 0; !scorer.done() && static_cast<double>(k) * step_s <= end_s; ++k) {
     // The newest pose due by this step (held until the next).
@@ -46,7 +53,9 @@ absl::Status ScorePath(const LoadedExercise& exercise, const std::string& file, 
       ++next;
       moved = true;
     }
-    if (moved) HS_RETURN_IF_ERROR(s.SetDevicePose(tool, path[next - 1].X_WD));
+    // The first pose seats the device on the tool, as a server does for a
+    // device that takes it.
+    if (moved) HS_RETURN_IF_ERROR(ApplyDevicePose(s, tool, path[next - 1].X_WD, seated++ == 0));
     scorer.Add(ScoringFrameFromStep(s.Step(), tool, scene.names));
   }
   return absl::OkStatus();

@@ -75,6 +75,8 @@ absl::StatusOr<Exercise> ExerciseFromSpec(const pb::ExerciseSpec& spec,
     return InvalidField("tool", "'" + spec.tool() + "' is not a tool");
   }
   e.tool = spec.tool();
+  const pb::Vector3& home = tool->pose().position_m();
+  e.tool_home_W = Vector3d(home.x(), home.y(), home.z());
   if (spec.targets().empty()) return InvalidField("targets", "must list at least one target");
   for (int i = 0; i < spec.targets_size(); ++i) {
     const pb::ExerciseTarget& t = spec.targets(i);

@@ -57,6 +57,11 @@ struct Exercise {
   std::vector<ForceLimit> force_limits;
   double time_limit_s = 0;
   ScoreWeights weights;
+  /// The tool's position in the scene, world frame, metres: the
+  /// exercise's clock starts at the first frame whose device has left it,
+  /// so a recording or a live scene that idles first is scored from the
+  /// trainee's first motion. None: from the first frame.
+  std::optional<Vector3d> tool_home_W;
 };
 
 }  // namespace hs

@@ -37,6 +37,7 @@ bool Scorer::Touches(const ScoringFrame& frame, const std::string& object,
 void Scorer::Add(const ScoringFrame& frame) {
   if (done()) return;
   if (!started_) {
+    if (exercise_.tool_home_W && frame.p_WD == *exercise_.tool_home_W) return;
     started_ = true;
     start_s_ = last_s_ = frame.time_s;
     start_p_ = frame.p_WD;

@@ -1,7 +1,9 @@
-// `hapticctl train` against an in-process server: the bundled exercise
-// driven live along its bundled path is completed as it is offline; two
-// trainees on two tools are scored at once by one train; a scene deleted
-// mid-exercise ends it with a partial summary marked incomplete.
+// `hapticctl train` and `score` against an in-process server: the bundled
+// exercise driven live along its bundled path is completed as it is
+// offline; the recording of that drive scores exactly as the path the
+// server applied; two trainees on two tools are scored at once by one
+// train while an instructor watches; a scene deleted mid-exercise ends it
+// with a partial summary marked incomplete.
 
 #include "client/training/train_command.h"
 
@@ -15,8 +17,11 @@
 #include "client/device_path.h"
 #include "client/exit_codes.h"
 #include "client/training/score_command.h"
+#include "client/watch_command.h"
 #include "common/api/proto_convert.h"
 #include "common/api/scene_file.h"
+#include "common/recording/recorded_step.h"
+#include "common/recording/session_reader.h"
 #include "nlohmann/json.hpp"
 #include "tests/common/scratch_dir.h"
 #include "tests/server/test_server.h"
@@ -116,9 +121,72 @@ TEST(TrainCommandTest, LiveRunIsScoredAsOffline) {
               0.1 * offline["max_force_n"].get<double>());
 }
 
+// The device inputs of a recorded session as a JSON lines path: each pose
+// at the time of the step before the one it was applied to, so that
+// `score --path` applies it where the server did.
+std::string PathOfRecording(const std::string& recording, const std::string& out) {
+  absl::StatusOr<RecordedSession> session = ReadSession(recording);
+  EXPECT_TRUE(session.ok()) << session.status();
+  std::ofstream file(out);
+  file << nlohmann::json{{"scene", session->records.front().start().spec().name()}}.dump() << "\n";
+  const double step_s = session->records.front().start().step_s();
+  for (const pb::Record& record : session->records) {
+    if (!record.has_input()) continue;
+    absl::StatusOr<Isometry3d> X_WD = ExactPoseFromProto(record.input().device_pose());
+    EXPECT_TRUE(X_WD.ok());
+    const Eigen::AngleAxisd r(X_WD->rotation());
+    const Vector3d v = r.axis() * r.angle();
+    const Vector3d p = X_WD->translation();
+    file << nlohmann::json{{"t_s", static_cast<double>(record.input().step() - 1) * step_s},
+                           {"pose",
+                            nlohmann::json::array({p.x(), p.y(), p.z(), v.x(), v.y(), v.z()})}}
+                .dump()
+         << "\n";
+  }
+  return out;
+}
+
+// The bundled path driven through a recording server: scoring the
+// recording and scoring the poses the server applied, as a path, give the
+// same summary, field for field.
+TEST(TrainCommandTest, RecordingScoresAsThePathItApplied) {
+  const std::filesystem::path dir = ScratchDir("score_recording");
+  RecordingOptions recording;
+  recording.dir = (dir / "recordings").string();
+  absl::StatusOr<pb::SceneSpec> spec = ReadSceneFile(kScenes + "/probe_on_torus.textproto");
+  ASSERT_TRUE(spec.ok());
+  absl::StatusOr<std::vector<TimedPose>> path =
+      ReadDevicePath(kScenes + "/exercises/three_points_path.jsonl", 1000);
+  ASSERT_TRUE(path.ok());
+  {
+    hs::testing::TestServer server({}, recording);
+    server.Create(*spec);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the scene idles first
+    Drive(server, spec->name(), "probe", *path);
+  }  // the server's end closes the recording
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(recording.dir)) {
+    files.push_back(entry.path().string());
+  }
+  ASSERT_EQ(files.size(), 1u);
+  const std::string applied = PathOfRecording(files[0], (dir / "applied.jsonl").string());
+  auto score = [](ScoreArgs args) {
+    args.exercise = kExercise;
+    args.json = true;
+    std::ostringstream out, err;
+    EXPECT_EQ(RunScore(args, out, err), kExitOk) << err.str();
+    return nlohmann::json::parse(out.str());
+  };
+  const nlohmann::json from_recording = score({.recording = files[0]});
+  const nlohmann::json from_path = score({.path = applied});
+  std::cout << "recording " << from_recording.dump() << "\npath " << from_path.dump() << "\n";
+  EXPECT_TRUE(from_recording["completed"]);
+  EXPECT_EQ(from_recording, from_path);
+}
+
 // A scene of two tools (the demo scene and a stylus over the organ's west
 // side) and an exercise each: each pressed onto its own point, both
-// scored at once by one train.
+// scored at once by one train, while an instructor's watch sees both.
 TEST(TrainCommandTest, TwoTraineesAtOnce) {
   const std::filesystem::path dir = ScratchDir("two_trainees");
   absl::StatusOr<pb::SceneSpec> spec = ReadSceneFile(kScenes + "/probe_on_torus.textproto");
@@ -153,9 +221,28 @@ TEST(TrainCommandTest, TwoTraineesAtOnce) {
     }
     return path;
   };
+  // The instructor watches both at once.
+  std::ostringstream watch_out, watch_err;
+  int watch_status = -1;
+  std::thread instructor([&] {
+    WatchArgs args{.scene = "two trainees", .parts = {"contacts"}, .json = true, .duration_s = 1.5};
+    args.server.address = server.address();
+    watch_status = RunWatch(args, watch_out, watch_err);
+  });
   std::thread second([&] { Drive(server, "two trainees", "stylus", press(-0.1)); });
   Drive(server, "two trainees", "probe", press(0.1));
   second.join();
+  instructor.join();
+  ASSERT_EQ(watch_status, kExitOk) << watch_err.str();
+  // Some frame shows both trainees pressing the organ.
+  const std::vector<nlohmann::json> seen = Lines(watch_out.str());
+  ASSERT_FALSE(seen.empty());
+  std::cout << seen.back().dump() << "\n";
+  EXPECT_TRUE(std::any_of(seen.begin(), seen.end(), [](const nlohmann::json& frame) {
+    int touching = 0;
+    for (const nlohmann::json& tool : frame["tools"]) touching += tool.contains("contacts");
+    return touching == 2;
+  }));
   train.stop = true;
   train.Join();
   ASSERT_EQ(train.status, kExitOk) << train.err.str();

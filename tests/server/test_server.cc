@@ -40,10 +40,11 @@ pb::SceneSpec SmallScene(const std::string& name, bool second_tool) {
   return spec;
 }
 
-TestServer::TestServer(const ServerLimits& limits) {
+TestServer::TestServer(const ServerLimits& limits, const RecordingOptions& recording) {
   ServerOptions options;
   options.listen = "127.0.0.1:0";
   options.limits = limits;
+  options.recording = recording;
   absl::StatusOr<std::unique_ptr<HapticServer>> server = HapticServer::Start(options, metrics_);
   EXPECT_TRUE(server.ok()) << server.status();
   server_ = std::move(server).value();

@@ -25,7 +25,8 @@ pb::Pose PoseAt(double x, double y, double z);
 
 class TestServer {
  public:
-  explicit TestServer(const ServerLimits& limits = {});
+  /// Records sessions when `recording.dir` is set.
+  explicit TestServer(const ServerLimits& limits = {}, const RecordingOptions& recording = {});
   ~TestServer();
 
   HapticServer& server() { return *server_; }

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "client/device_path.h"
+#include "client/exit_codes.h"
 #include "common/api/exercise_file.h"
 #include "common/api/scene_file.h"
 #include "common/recording/record_file.h"
@@ -143,6 +144,21 @@ TEST(ScoreCommandTest, ARecordingOfThePathScoresTheSame) {
   const std::string other = RecordPath("other.hsrec", *path, "another scene");
   EXPECT_NE(RunScore({.exercise = kExercise, .recording = other}, out, err), 0);
   EXPECT_NE(err.str().find("records scene 'another scene'"), std::string::npos) << err.str();
+}
+
+// A path whose header names another scene is refused, naming both.
+TEST(ScoreCommandTest, APathOfAnotherSceneIsRefused) {
+  const std::string file = (ScratchDir("other_scene_path") / "other.jsonl").string();
+  std::ofstream(file) << R"({"scene": "linked rings"})"
+                      << "\n"
+                      << R"({"t_s": 0, "pose": [0.1, 0, 0.1, 0, 0, 0]})"
+                      << "\n";
+  std::ostringstream out, err;
+  EXPECT_EQ(RunScore({.exercise = kExercise, .path = file}, out, err), kExitFailure);
+  EXPECT_NE(
+      err.str().find("a path in scene 'linked rings', the exercise's scene is 'probe on torus'"),
+      std::string::npos)
+      << err.str();
 }
 
 // --report writes report.json (the summary and the attempts' scores),

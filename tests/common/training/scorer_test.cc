@@ -64,6 +64,26 @@ TEST(ScorerTest, ReachesATargetWithHandComputedMetrics) {
   EXPECT_NEAR(s.score, (50 + 10 * 0.987 + 10 + 15 + 10 + 5 * smooth), 1e-9);
 }
 
+// The same run after 500 steps resting at the tool's home (z = 0.01): the
+// clock starts at the first frame away from home (step 501, 1 mm down),
+// so the hand-computed figures are those of the run above less the first
+// frame: 12 ms, 9 mm of path from the start at z = 0.009.
+TEST(ScorerTest, ClockStartsAtTheFirstMotionFromHome) {
+  Exercise e = OneTarget();
+  e.tool_home_W = Vector3d(0, 0, 0.01);
+  Scorer scorer(e);
+  for (int i = 0; i <= 500; ++i) scorer.Add(At(i, Vector3d(0, 0, 0.01)));
+  EXPECT_EQ(scorer.progress().elapsed_s, 0);
+  for (int i = 1; i <= 10; ++i) scorer.Add(At(500 + i, Vector3d(0, 0, 0.01 - 0.001 * i)));
+  for (int i = 11; i <= 13; ++i) scorer.Add(At(500 + i, Vector3d::Zero(), 2, "organ"));
+  ASSERT_TRUE(scorer.done());
+  const ScoreSummary s = scorer.Summary();
+  EXPECT_NEAR(s.duration_s, 0.012, 1e-12);
+  EXPECT_NEAR(s.path_length_m, 0.009, 1e-12);
+  EXPECT_NEAR(s.economy, 1, 1e-9);
+  EXPECT_EQ(scorer.trace().size(), 13u);
+}
+
 // z = a t^3: its jerk is 6a everywhere, and a third difference of a cubic
 // is exact, so the rms is 6a (a = 2 m/s^3: 12 m/s^3).
 TEST(ScorerTest, JerkOfACubicIsSixTimesItsCoefficient) {
