@@ -9,11 +9,11 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libfcl-dev libccd-dev
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler libabsl-dev libssl-dev openssl
-  libassimp-dev libcoin-dev libseccomp-dev libboost-dev libsqlite3-dev
+  libassimp-dev libcoin-dev libseccomp-dev libboost-dev libsqlite3-dev libcurl4-openssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev
   prometheus-cpp-dev libcli11-dev nlohmann-json3-dev libcgal-dev
   gnuplot-nox clang-14 libclang-rt-14-dev clang-format
-  chromium nodejs npm
+  chromium nodejs npm yamllint
 )
 
 missing=()

@@ -75,6 +75,15 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
                    .Name("hs_rejected_requests_total")
                    .Help("Requests that failed, by method and status code")
                    .Register(*registry_);
+  agones_requests_ = &BuildCounter()
+                          .Name("hs_agones_sdk_requests_total")
+                          .Help("Requests to the Agones SDK, by call and result (ok, error)")
+                          .Register(*registry_);
+  agones_up_ = &BuildGauge()
+                    .Name("hs_agones_sdk_up")
+                    .Help("1 while the Agones SDK answered the last request, else 0")
+                    .Register(*registry_)
+                    .Add({});
 }
 
 Metrics::~Metrics() = default;
@@ -119,6 +128,11 @@ void Metrics::AddRecordingSkippedSteps(int64_t n) {
 
 void Metrics::AddRejected(const std::string& method, const std::string& code) {
   rejected_->Add({{"method", method}, {"code", code}}).Increment();
+}
+
+void Metrics::AddAgonesRequest(const std::string& call, bool ok) {
+  agones_requests_->Add({{"call", call}, {"result", ok ? "ok" : "error"}}).Increment();
+  agones_up_->Set(ok ? 1 : 0);
 }
 
 std::string Metrics::Text() const {

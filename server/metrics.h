@@ -48,6 +48,10 @@ class Metrics {
   void AddRecordingSkippedSteps(int64_t n);
   /// A request of `method` failed with status `code` (a gRPC code name).
   void AddRejected(const std::string& method, const std::string& code);
+  /// A request to the Agones SDK (`call`: ready, health, label, allocate,
+  /// shutdown) answered (ok) or failed; the SDK counts as up while its
+  /// last request was answered.
+  void AddAgonesRequest(const std::string& call, bool ok);
 
   /// The text exposition of every metric (as /metrics serves it).
   std::string Text() const;
@@ -67,6 +71,8 @@ class Metrics {
   prometheus::Counter* recorded_bytes_;
   prometheus::Counter* recording_skipped_steps_;
   prometheus::Family<prometheus::Counter>* rejected_;
+  prometheus::Family<prometheus::Counter>* agones_requests_;
+  prometheus::Gauge* agones_up_;
 };
 
 }  // namespace hs

@@ -41,6 +41,7 @@ SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics
                          int realtime_priority, std::unique_ptr<SessionRecorder> recorder)
     : metrics_(metrics),
       step_s_(scene.scene->options().step_s),
+      name_(spec.name()),
       spec_(std::move(spec)),
       loaded_(std::move(scene)),
       names_(std::make_shared<const std::vector<std::string>>(loaded_.names)),

@@ -83,6 +83,10 @@ class SceneRunner {
   absl::Status Replace(haptics::v1::SceneSpec spec, LoadedScene scene);
 
   RunnerInfo Info() const;
+  /// The scene's name, which never changes.
+  const std::string& name() const { return name_; }
+  /// The streams attached now (without Info's copy of the spec).
+  StreamRegistry::Counts stream_counts() const { return streams_.counts(); }
   /// Every object's mesh at the current revision (SceneService.GetGeometry).
   void Geometry(haptics::v1::SceneGeometry* out) const;
   double step_s() const { return step_s_; }
@@ -98,6 +102,7 @@ class SceneRunner {
 
   Metrics& metrics_;
   const double step_s_;
+  const std::string name_;
 
   // The simulation; only the runner's thread steps it, Replace swaps it.
   // Taken after the registry's lock when both are held.

@@ -4,13 +4,17 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <thread>
 
 #include "CLI/CLI.hpp"
+#include "absl/strings/numbers.h"
 #include "common/api/scene_file.h"
 #include "common/net/address.h"
+#include "server/agones/agones_lifecycle.h"
+#include "server/agones/server_activity.h"
 #include "server/haptic_server.h"
 
 int main(int argc, char** argv) {
@@ -99,7 +103,24 @@ int main(int argc, char** argv) {
                  "default scheduler. A scene whose step outlasts its period then holds its cores")
       ->check(CLI::Range(0, 99))
       ->capture_default_str();
+  hs::AgonesOptions agones_options;
+  app.add_option("--agones-health-interval-s", agones_options.health_interval_s,
+                 "On Agones (AGONES_SDK_HTTP_PORT set): seconds between health pings")
+      ->check(CLI::Range(0.1, 300.0))
+      ->capture_default_str();
+  app.add_option("--agones-idle-shutdown-s", agones_options.idle_shutdown_s,
+                 "On Agones: ask to be shut down once the last client has left and this many "
+                 "seconds passed")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (const char* port = std::getenv("AGONES_SDK_HTTP_PORT"); port != nullptr && *port != 0) {
+    if (!absl::SimpleAtoi(port, &agones_options.sdk_port) || agones_options.sdk_port < 1 ||
+        agones_options.sdk_port > 65535) {
+      std::cerr << "haptic-server: AGONES_SDK_HTTP_PORT='" << port << "' is not a port\n";
+      return 1;
+    }
+  }
   options.recording.frames = record_frames == "digest" ? haptics::v1::FRAME_RECORDING_DIGEST
                                                        : haptics::v1::FRAME_RECORDING_FULL;
   options.recording.all_scenes = record_scenes == "all";
@@ -165,6 +186,12 @@ int main(int argc, char** argv) {
               << " into " << options.recording.dir << " (frames: " << record_frames << ")\n";
   }
   std::cerr << "haptic-server: listening on port " << (*server)->port() << std::endl;
+  std::unique_ptr<hs::AgonesLifecycle> agones;
+  if (agones_options.sdk_port != 0) {
+    agones = std::make_unique<hs::AgonesLifecycle>(
+        agones_options, [&server] { return hs::ActivityOf((*server)->registry()); }, metrics,
+        std::cerr);
+  }
 
   int signal = 0;
   while (sigwait(&signals, &signal) == 0 && signal == SIGHUP) {
@@ -179,5 +206,6 @@ int main(int argc, char** argv) {
   std::cerr << "haptic-server: " << (signal == SIGTERM ? "SIGTERM" : "SIGINT")
             << ", shutting down\n";
   (*server)->Shutdown();
+  agones.reset();
   return 0;
 }

@@ -90,8 +90,7 @@ TEST(FrameFanOutTest, StalledHandOverDropsTheOldest) {
   EXPECT_EQ(steps[0], 1);
   EXPECT_EQ(steps[1], 2 + 6);  // steps 2-7 were dropped
   EXPECT_EQ(steps.back(), 1 + queued);
-  EXPECT_NE(metrics.Text().find("hs_frames_dropped_total 6"), std::string::npos)
-      << metrics.Text();
+  EXPECT_NE(metrics.Text().find("hs_frames_dropped_total 6"), std::string::npos) << metrics.Text();
 }
 
 // WaitForOffers returns only once an offer under way has ended: after a

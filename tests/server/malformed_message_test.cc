@@ -60,8 +60,8 @@ TEST(MalformedMessageTest, EverySceneServiceMethodSaysInvalidArgument) {
   TestServer server;
   server.Create(SmallScene("s"));
   const int64_t revision = server.Get("s").revision();
-  for (const char* method : {"CreateScene", "GetScene", "GetGeometry", "ListScenes", "DeleteScene", "AddObject",
-                             "UpdateObject", "RemoveObject", "SetEffects"}) {
+  for (const char* method : {"CreateScene", "GetScene", "GetGeometry", "ListScenes", "DeleteScene",
+                             "AddObject", "UpdateObject", "RemoveObject", "SetEffects"}) {
     const grpc::Status status =
         CallUnary(server, std::string("/haptics.v1.SceneService/") + method);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT)

@@ -25,6 +25,7 @@
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/server/server_process.h"
 #include "tests/server/test_server.h"
 
 namespace hs {
@@ -32,78 +33,11 @@ namespace {
 
 namespace pb = haptics::v1;
 
-const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
-
-// The built haptic-server, started on a free port with the demo scene and
-// `extra` arguments.
-class ServerProcess {
- public:
-  explicit ServerProcess(const std::vector<std::string>& extra = {}) {
-    int fds[2];
-    EXPECT_EQ(pipe(fds), 0);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
-    posix_spawn_file_actions_addclose(&actions, fds[0]);
-    const std::string scene = kScenes + "/probe_on_torus.textproto";
-    std::vector<const char*> argv = {HS_HAPTIC_SERVER, "--listen", "127.0.0.1:0", "--scene",
-                                     scene.c_str()};
-    for (const std::string& arg : extra) argv.push_back(arg.c_str());
-    argv.push_back(nullptr);
-    EXPECT_EQ(posix_spawn(&pid_, HS_HAPTIC_SERVER, &actions, nullptr,
-                          const_cast<char* const*>(argv.data()), environ),
-              0);
-    posix_spawn_file_actions_destroy(&actions);
-    close(fds[1]);
-    stderr_ = fdopen(fds[0], "r");
-    // "haptic-server: listening on port N"
-    char line[512];
-    while (port_ == 0 && fgets(line, sizeof line, stderr_) != nullptr) {
-      startup_ += line;
-      if (const char* at = strstr(line, "listening on port ")) port_ = atoi(at + 18);
-    }
-  }
-  ~ServerProcess() {
-    if (pid_ > 0 && !waited_) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-    if (stderr_ != nullptr) fclose(stderr_);
-  }
-  int port() const { return port_; }
-  // What it wrote to stderr until it listened (or ended).
-  const std::string& startup() const { return startup_; }
-  // The next line of its stderr that holds `text`; empty at its end.
-  std::string LineWith(const char* text) {
-    char line[512];
-    while (fgets(line, sizeof line, stderr_) != nullptr) {
-      if (strstr(line, text) != nullptr) return line;
-    }
-    return "";
-  }
-  void Signal(int signal) { kill(pid_, signal); }
-  // Sends `signal` and returns the exit status (-1 unless it exited).
-  int StopWith(int signal) {
-    kill(pid_, signal);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    waited_ = true;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  FILE* stderr_ = nullptr;
-  int port_ = 0;
-  bool waited_ = false;
-  std::string startup_;
-};
-
 // The binary serves the scene given with --scene on the port it picked,
 // and on SIGTERM ends an open device stream with UNAVAILABLE after the
 // frames it had and exits 0.
 TEST(ServerMainTest, ServesSceneAndStopsGracefullyOnSigterm) {
-  ServerProcess server;
+  testing::ServerProcess server;
   ASSERT_GT(server.port(), 0);
   auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(server.port()),
                                      grpc::InsecureChannelCredentials());
@@ -117,11 +51,9 @@ TEST(ServerMainTest, ServesSceneAndStopsGracefullyOnSigterm) {
 
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
-  auto stream = pb::SessionService::NewStub(channel)->Interact(&context);
-  pb::InteractRequest open;
-  open.mutable_open()->set_scene("probe on torus");
-  open.mutable_open()->set_tool("probe");
-  ASSERT_TRUE(stream->Write(open));
+  auto stub = pb::SessionService::NewStub(channel);
+  auto stream = testing::OpenDevice(*stub, context, "probe on torus", "probe");
+  ASSERT_NE(stream, nullptr);
   pb::Frame frame;
   ASSERT_TRUE(stream->Read(&frame));
 
@@ -155,7 +87,7 @@ grpc::Status GetScene(pb::SceneService::Stub& stub, const std::string& name, pb:
 TEST(ServerMainTest, ScenesSurviveAKill) {
   const std::string state = ScratchDir("state").string();
   {
-    ServerProcess server({"--state-dir", state});
+    testing::ServerProcess server({"--state-dir", state});
     ASSERT_GT(server.port(), 0) << server.startup();
     auto stub = SceneStub(server.port());
     grpc::ClientContext create_context;
@@ -170,7 +102,7 @@ TEST(ServerMainTest, ScenesSurviveAKill) {
     ASSERT_TRUE(stub->SetEffects(&edit_context, edit, &info).ok());
     server.StopWith(SIGKILL);
   }
-  ServerProcess again({"--state-dir", state});
+  testing::ServerProcess again({"--state-dir", state});
   ASSERT_GT(again.port(), 0) << again.startup();
   auto stub = SceneStub(again.port());
   pb::SceneInfo info;
@@ -180,7 +112,7 @@ TEST(ServerMainTest, ScenesSurviveAKill) {
   EXPECT_EQ(info.spec().objects_size(), 2);
   EXPECT_TRUE(GetScene(*stub, "probe on torus", info).ok());
 
-  ServerProcess in_memory;
+  testing::ServerProcess in_memory;
   EXPECT_NE(in_memory.startup().find("no --state-dir"), std::string::npos) << in_memory.startup();
 }
 
@@ -250,7 +182,7 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
   const std::string cube = ReadFile(std::string(HS_TEST_DATA_DIR) + "/cube.obj");
   ASSERT_FALSE(cube.empty());
   {  // 1. Killed during a burst of poses, after an upload and a create.
-    ServerProcess server(flags);
+    testing::ServerProcess server(flags);
     ASSERT_GT(server.port(), 0) << server.startup();
     auto stub = SceneStub(server.port());
     pb::UploadModelResponse uploaded;
@@ -270,7 +202,7 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
     server.StopWith(SIGKILL);
   }
   {  // 2. Killed during an upload: half its chunks sent.
-    ServerProcess server(flags);
+    testing::ServerProcess server(flags);
     ASSERT_GT(server.port(), 0) << server.startup();
     auto stub = SceneStub(server.port());
     const std::string big(1 << 20, '#');
@@ -287,7 +219,7 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
     server.StopWith(SIGKILL);
   }
   {  // 3. Killed during an edit sent in the middle of a burst, its reply not awaited.
-    ServerProcess server(flags);
+    testing::ServerProcess server(flags);
     ASSERT_GT(server.port(), 0) << server.startup();
     auto stub = SceneStub(server.port());
     std::thread editor;
@@ -314,7 +246,7 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
   std::ofstream(recordings.back(), std::ios::binary | std::ios::app)
       << std::string("\x40\0\0\0abc", 7);
 
-  ServerProcess again(flags);
+  testing::ServerProcess again(flags);
   ASSERT_GT(again.port(), 0) << again.startup();
   EXPECT_NE(again.startup().find("cut short by a crash"), std::string::npos) << again.startup();
   auto stub = SceneStub(again.port());
@@ -355,7 +287,7 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
 TEST(ServerMainTest, ForeignCatalogueStopsTheStart) {
   const std::filesystem::path state = ScratchDir("foreign");
   std::ofstream(state / "scenes.db") << "not a database, though long enough to be read as one";
-  ServerProcess server({"--state-dir", state.string()});
+  testing::ServerProcess server({"--state-dir", state.string()});
   EXPECT_EQ(server.port(), 0);
   EXPECT_NE(server.startup().find((state / "scenes.db").string()), std::string::npos)
       << server.startup();
@@ -386,7 +318,7 @@ void WriteAdminToken(const std::string& path, const std::string& token) {
 TEST(ServerMainTest, TokensFileIsReReadOnSighup) {
   const std::string tokens = (ScratchDir("sighup") / "tokens").string();
   WriteAdminToken(tokens, "first");
-  ServerProcess server({"--tokens", tokens});
+  testing::ServerProcess server({"--tokens", tokens});
   ASSERT_GT(server.port(), 0);
   EXPECT_EQ(GetSceneAs(server.port(), "first"), grpc::StatusCode::OK);
   EXPECT_EQ(GetSceneAs(server.port(), "second"), grpc::StatusCode::UNAUTHENTICATED);

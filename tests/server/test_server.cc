@@ -95,6 +95,20 @@ grpc::Status UploadModel(pb::SceneService::Stub& stub, const std::string& name,
   return writer->Finish();
 }
 
+std::unique_ptr<DeviceStream> OpenDevice(pb::SessionService::Stub& stub,
+                                         grpc::ClientContext& context, const std::string& scene,
+                                         const std::string& tool) {
+  std::unique_ptr<DeviceStream> stream = stub.Interact(&context);
+  pb::InteractRequest open;
+  open.mutable_open()->set_scene(scene);
+  open.mutable_open()->set_tool(tool);
+  if (!stream->Write(open)) {
+    ADD_FAILURE() << "cannot ask for " << tool << " of " << scene;
+    return nullptr;
+  }
+  return stream;
+}
+
 std::unique_ptr<grpc::ClientContext> ContextWithin(double seconds) {
   auto context = std::make_unique<grpc::ClientContext>();
   context->set_deadline(std::chrono::system_clock::now() +

@@ -52,6 +52,13 @@ class TestServer {
 /// A client context whose call gives up after `seconds`.
 std::unique_ptr<grpc::ClientContext> ContextWithin(double seconds);
 
+using DeviceStream = grpc::ClientReaderWriter<pb::InteractRequest, pb::Frame>;
+/// An Interact stream on `context` that has asked for `tool` of `scene`
+/// (null, failing the test, when the request cannot be written).
+std::unique_ptr<DeviceStream> OpenDevice(pb::SessionService::Stub& stub,
+                                         grpc::ClientContext& context, const std::string& scene,
+                                         const std::string& tool);
+
 /// UploadModel through `stub`: `data` in chunks of `chunk_bytes`, the
 /// header (name, format, size, `sha256`) on the first.
 grpc::Status UploadModel(pb::SceneService::Stub& stub, const std::string& name,

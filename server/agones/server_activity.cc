@@ -1,0 +1,16 @@
+#include "server/agones/server_activity.h"
+
+namespace hs {
+
+ServerActivity ActivityOf(const SceneRegistry& registry) {
+  ServerActivity activity;
+  for (const std::shared_ptr<SceneRunner>& runner : registry.List()) {
+    if (activity.scene.empty()) activity.scene = runner->name();
+    const StreamRegistry::Counts counts = runner->stream_counts();
+    activity.devices += counts.devices;
+    activity.viewers += counts.viewers;
+  }
+  return activity;
+}
+
+}  // namespace hs

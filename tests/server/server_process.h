@@ -1,0 +1,43 @@
+#pragma once
+// The built haptic-server as a child process of a test: started on a free
+// 127.0.0.1 port with the demo scene, its stderr read line by line, killed
+// when the fixture goes.
+
+#include <sys/types.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace hs::testing {
+
+class ServerProcess {
+ public:
+  /// Starts the binary with `extra` arguments after the demo scene, and
+  /// `environment` ("NAME=value") added to this process's; returns once it
+  /// listens (or ended: port() is then 0).
+  explicit ServerProcess(const std::vector<std::string>& extra = {},
+                         const std::vector<std::string>& environment = {});
+  /// SIGKILL unless it was ended with StopWith.
+  ~ServerProcess();
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+
+  int port() const { return port_; }
+  /// What it wrote to stderr until it listened (or ended).
+  const std::string& startup() const { return startup_; }
+  /// The next line of its stderr that holds `text`; empty at its end.
+  std::string LineWith(const char* text);
+  void Signal(int signal);
+  /// Sends `signal` and returns the exit status (-1 unless it exited).
+  int StopWith(int signal);
+
+ private:
+  pid_t pid_ = -1;
+  FILE* stderr_ = nullptr;
+  int port_ = 0;
+  bool waited_ = false;
+  std::string startup_;
+};
+
+}  // namespace hs::testing
