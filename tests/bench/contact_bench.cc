@@ -518,12 +518,92 @@ void BM_Fcl(benchmark::State& state, int index, bool enable_contact) {
 }
 
 // ----------------------------------------------------------------------------
+// Coherent sequences: each case's moving object slides along world x at
+// kSlideMps and turns about the world vertical through its own origin at
+// kTurnRadPs, from the case's pose, for kCoherentSteps steps at 1 kHz: what
+// a hand-held tool does between two haptic steps. The query's direction
+// stays the case's approach direction (pressing down while sliding). Each
+// iteration of a Coherent benchmark is one step of the sequence, in order,
+// wrapping round at its end, so its time is the time per step.
+
+constexpr int kCoherentSteps = 1000;
+constexpr double kCoherentStepS = 0.001;
+constexpr double kSlideMps = 0.1;
+constexpr double kTurnRadPs = 1.0;
+
+const std::vector<Isometry3d>& CoherentPoses(int index) {
+  static std::array<std::vector<Isometry3d>, kNumCases> poses;
+  std::vector<Isometry3d>& out = poses[index];
+  if (out.empty()) {
+    const Isometry3d& X0 = GetCase(index).moving->X_WO;
+    for (int k = 0; k < kCoherentSteps; ++k) {
+      const double t = k * kCoherentStepS;
+      Isometry3d X = X0;
+      X.translation() += Vector3d(kSlideMps * t, 0, 0);
+      X.linear() =
+          Eigen::AngleAxisd(kTurnRadPs * t, Vector3d::UnitZ()).toRotationMatrix() * X0.linear();
+      out.push_back(X);
+    }
+  }
+  return out;
+}
+
+// The exact or the paper's method along the sequence, one step per
+// iteration, reusing one ContactSet as a scene does.
+void BM_CoherentContact(benchmark::State& state, int index, ContactMethod method) {
+  const Case& c = GetCase(index);
+  const std::vector<Isometry3d>& poses = CoherentPoses(index);
+  PosedObject moving = c.moving->posed();
+  const PosedObject fixed = c.fixed->posed();
+  const ContactQuery query = Query(c, method);
+  ContactSet set;
+  size_t k = 0;
+  int64_t colliding = 0, steps = 0;
+  for (auto _ : state) {
+    moving.X_WO = poses[k];
+    k = (k + 1) % poses.size();
+    if (absl::Status s = ComputeContact(moving, fixed, query, set); !s.ok()) {
+      state.SkipWithError(std::string(s.message()).c_str());
+      break;
+    }
+    colliding += set.colliding;
+    ++steps;
+    benchmark::DoNotOptimize(set.depth_m);
+  }
+  state.counters["colliding_fraction"] = steps ? static_cast<double>(colliding) / steps : 0;
+}
+
+// FCL's exhaustive collide with contacts on the same poses.
+void BM_CoherentFcl(benchmark::State& state, int index) {
+  const Case& c = GetCase(index);
+  const std::vector<Isometry3d>& poses = CoherentPoses(index);
+  fcl::CollisionObjectd moving(c.moving->fcl_bvh, c.moving->X_WO);
+  const fcl::CollisionObjectd fixed(c.fixed->fcl_bvh, c.fixed->X_WO);
+  const fcl::CollisionRequestd request = FclRequest(true);
+  size_t k = 0;
+  for (auto _ : state) {
+    moving.setTransform(poses[k]);
+    moving.computeAABB();
+    k = (k + 1) % poses.size();
+    fcl::CollisionResultd result;
+    fcl::collide(&moving, &fixed, request, result);
+    benchmark::DoNotOptimize(result.numContacts());
+  }
+}
+
+// ----------------------------------------------------------------------------
 // The summary: a reporter that keeps each run's time, then Table 1.
 
 constexpr const char* kVariants[] = {"pairs", "sweep3d", "paper2d", "fcl_contacts", "fcl_pairs"};
 
 std::string BenchmarkName(int index, const char* variant) {
   return "Table1/case" + std::to_string(index + 1) + "/" + variant;
+}
+
+constexpr const char* kCoherentVariants[] = {"sweep3d", "paper2d", "fcl_contacts"};
+
+std::string CoherentName(int index, const char* variant) {
+  return "Coherent/case" + std::to_string(index + 1) + "/" + variant;
 }
 
 // CPU time rather than real time: the machine is shared (2 cores, builds
@@ -537,9 +617,9 @@ class SummaryReporter : public benchmark::ConsoleReporter {
       const double seconds =
           run.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(run.time_unit);
       if (run.run_type == Run::RT_Iteration) {
-        iterations_[run.run_name.str()].push_back(seconds);
+        iterations_[run.run_name.function_name].push_back(seconds);
       } else if (run.aggregate_name == "median") {
-        medians_[run.run_name.str()] = seconds;
+        medians_[run.run_name.function_name] = seconds;
       }
     }
     ConsoleReporter::ReportRuns(runs);
@@ -574,7 +654,18 @@ std::string Ratio(double numerator, double denominator) {
   return buf;
 }
 
+// Whether any of case `index`'s Table 1 benchmarks ran.
+bool Table1Ran(const SummaryReporter& reporter, int index) {
+  for (const char* v : kVariants) {
+    if (reporter.Seconds(BenchmarkName(index, v)) >= 0) return true;
+  }
+  return false;
+}
+
 void PrintSummary(const SummaryReporter& reporter) {
+  bool ran_any = false;
+  for (int i = 0; i < kNumCases; ++i) ran_any = ran_any || Table1Ran(reporter, i);
+  if (!ran_any) return;
   std::printf("\nTable 1 (paper s.5) beside this run; CPU time per call, microseconds (median).\n");
   std::printf("%-6s | %14s %14s %10s | %14s %14s %8s | %8s %8s %8s %9s %9s | %11s %11s %11s\n",
               "case", "edges ours/pp", "verts ours/pp", "paper us", "pairs ours", "FCL cont/prs",
@@ -628,9 +719,7 @@ void PrintSummary(const SummaryReporter& reporter) {
       "time over our contact query's (above 1: ours is faster; the target is 2.0x on\n"
       "#3 and #4); FCLp/pairs = FCL's pair mode over our pair query alone.\n");
   for (int i = 0; i < kNumCases; ++i) {
-    bool ran = false;
-    for (const char* v : kVariants) ran = ran || reporter.Seconds(BenchmarkName(i, v)) >= 0;
-    if (!ran) continue;
+    if (!Table1Ran(reporter, i)) continue;
     const Case& c = GetCase(i);
     const Census& n = GetCensus(i);
     auto describe = [](const Census::Answer& a) {
@@ -659,9 +748,52 @@ void PrintSummary(const SummaryReporter& reporter) {
   }
 }
 
+// The coherent sequences: time per step of each method, FCL's over ours,
+// and the targets (sweep3d >= 5x faster than FCL on #3 and #4, #4 at or
+// under 0.2 ms a step).
+void PrintCoherentSummary(const SummaryReporter& reporter) {
+  bool any = false, timed_large = false, beats_fcl = true, case4_timed = false, case4_fast = false;
+  for (int i = 0; i < kNumCases; ++i) {
+    double t[std::size(kCoherentVariants)];
+    bool ran = false;
+    for (size_t v = 0; v < std::size(kCoherentVariants); ++v) {
+      t[v] = reporter.Seconds(CoherentName(i, kCoherentVariants[v]));
+      ran = ran || t[v] >= 0;
+    }
+    if (!ran) continue;
+    if (!any) {
+      std::printf(
+          "\nCoherent sequences (%d steps at 1 kHz, sliding %.1f m/s and turning %.1f rad/s);\n"
+          "CPU time per step, microseconds (median).\n%-6s | %9s %9s %9s | %11s %11s\n",
+          kCoherentSteps, kSlideMps, kTurnRadPs, "case", "sweep3d", "paper2d", "FCL cont",
+          "FCLc/sweep", "FCLc/paper");
+    }
+    any = true;
+    std::printf("case%-2d | %9s %9s %9s | %11s %11s\n", i + 1, Micros(t[0]).c_str(),
+                Micros(t[1]).c_str(), Micros(t[2]).c_str(), Ratio(t[2], t[0]).c_str(),
+                Ratio(t[2], t[1]).c_str());
+    if (i >= 2 && t[0] >= 0 && t[2] >= 0) {
+      timed_large = true;
+      beats_fcl = beats_fcl && t[2] >= 5 * t[0];
+    }
+    if (i == 3 && t[0] >= 0) {
+      case4_timed = true;
+      case4_fast = t[0] <= 0.2e-3;
+    }
+  }
+  if (!any) return;
+  auto verdict = [](bool timed, bool met) {
+    return !timed ? "not measured" : met ? "met" : "NOT met";
+  };
+  std::printf(
+      "Targets, coherent sweep3d: >= 5x faster than FCL's contact query on #3 and #4: %s; "
+      "#4 at or under 200 us a step: %s\n",
+      verdict(timed_large, beats_fcl), verdict(case4_timed, case4_fast));
+}
+
 void RegisterAll() {
   for (int i = 0; i < kNumCases; ++i) {
-    std::vector<benchmark::internal::Benchmark*> runs = {
+    const std::vector<benchmark::internal::Benchmark*> table1 = {
         benchmark::RegisterBenchmark(BenchmarkName(i, "pairs").c_str(), BM_Pairs, i),
         benchmark::RegisterBenchmark(BenchmarkName(i, "sweep3d").c_str(), BM_Contact, i,
                                      ContactMethod::kSweep3d),
@@ -669,7 +801,17 @@ void RegisterAll() {
                                      ContactMethod::kPaper2d),
         benchmark::RegisterBenchmark(BenchmarkName(i, "fcl_contacts").c_str(), BM_Fcl, i, true),
         benchmark::RegisterBenchmark(BenchmarkName(i, "fcl_pairs").c_str(), BM_Fcl, i, false)};
-    for (benchmark::internal::Benchmark* run : runs) run->Unit(benchmark::kMicrosecond);
+    for (benchmark::internal::Benchmark* run : table1) run->Unit(benchmark::kMicrosecond);
+    // A coherent run is one pass over its sequence.
+    const std::vector<benchmark::internal::Benchmark*> coherent = {
+        benchmark::RegisterBenchmark(CoherentName(i, "sweep3d").c_str(), BM_CoherentContact, i,
+                                     ContactMethod::kSweep3d),
+        benchmark::RegisterBenchmark(CoherentName(i, "paper2d").c_str(), BM_CoherentContact, i,
+                                     ContactMethod::kPaper2d),
+        benchmark::RegisterBenchmark(CoherentName(i, "fcl_contacts").c_str(), BM_CoherentFcl, i)};
+    for (benchmark::internal::Benchmark* run : coherent) {
+      run->Unit(benchmark::kMicrosecond)->Iterations(kCoherentSteps);
+    }
   }
 }
 
@@ -683,6 +825,7 @@ int main(int argc, char** argv) {
   hs::SummaryReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   hs::PrintSummary(reporter);
+  hs::PrintCoherentSummary(reporter);
   benchmark::Shutdown();
   return 0;
 }
