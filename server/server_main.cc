@@ -146,8 +146,10 @@ int main(int argc, char** argv) {
     std::cerr << "haptic-server: " << server.status().message() << "\n";
     return 1;
   }
+  std::string first_scene;  // the game server's scene on Agones
   for (const std::string& file : scene_files) {
     absl::StatusOr<haptics::v1::SceneSpec> spec = hs::ReadSceneFile(file);
+    if (spec.ok() && first_scene.empty()) first_scene = spec->name();
     if (spec.ok() && (*server)->registry().Find(spec->name()).ok()) {
       std::cerr << "haptic-server: scene '" << spec->name() << "' restored from "
                 << options.state_dir << ", as last changed over the API; " << file
@@ -189,8 +191,9 @@ int main(int argc, char** argv) {
   std::unique_ptr<hs::AgonesLifecycle> agones;
   if (agones_options.sdk_port != 0) {
     agones = std::make_unique<hs::AgonesLifecycle>(
-        agones_options, [&server] { return hs::ActivityOf((*server)->registry()); }, metrics,
-        std::cerr);
+        agones_options,
+        [&server, first_scene] { return hs::ActivityOf((*server)->registry(), first_scene); },
+        metrics, std::cerr);
   }
 
   int signal = 0;

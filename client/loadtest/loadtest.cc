@@ -23,6 +23,7 @@
 #include "client/needs_args.h"
 #include "common/api/proto_convert.h"
 #include "common/net/address.h"
+#include "common/sim/scene_options.h"
 #include "haptics/v1/echo_service.grpc.pb.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
@@ -525,6 +526,9 @@ absl::Status CheckLoadtestOptions(const LoadtestOptions& options) {
   if (!(options.rate_hz >= 1 && options.rate_hz <= kMaxLoadRateHz)) {
     return absl::InvalidArgumentError(absl::StrCat("--rate must be 1..", kMaxLoadRateHz, " Hz"));
   }
+  if (options.step_s != 0 && !(options.step_s >= 1e-4 && options.step_s <= 1)) {
+    return absl::InvalidArgumentError("--step-s must be in [0.0001, 1] seconds");
+  }
   if (std::llround(options.duration_s * options.rate_hz) < 1) {
     return absl::InvalidArgumentError("--duration x --rate must make at least one pose");
   }
@@ -550,6 +554,8 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   absl::StatusOr<pb::SceneSpec> spec = LoadtestScene(
       options.scene ? *options.scene : BuiltInLoadScene(), options.clients, report.scene);
   if (!spec.ok()) return spec.status();
+  if (options.step_s > 0) spec->set_step_s(options.step_s);
+  report.step_s = spec->step_s() > 0 ? spec->step_s() : SceneOptions{}.step_s;
 
   absl::StatusOr<std::shared_ptr<grpc::Channel>> opened = MakeChannel(options.server);
   if (!opened.ok()) return opened.status();

@@ -25,7 +25,7 @@ namespace hs::cli {
 inline constexpr int kMaxLoadClients = 64;
 inline constexpr int kMaxLoadViewers = 16;
 inline constexpr double kMaxLoadSeconds = 60;
-inline constexpr double kMaxLoadRateHz = 5000;
+inline constexpr double kMaxLoadRateHz = 10000;
 
 struct LoadtestOptions {
   ConnectionOptions server;
@@ -41,6 +41,9 @@ struct LoadtestOptions {
   /// axis. Unset: the built-in demo (a ~9,200-triangle torus on a table, a
   /// 2 cm cube probe above the ring), as scenes/probe_on_torus.textproto.
   std::optional<haptics::v1::SceneSpec> scene;
+  /// The scene's step length, seconds, in [1e-4, 1] (1e-4: 10 kHz);
+  /// 0: the scene's own.
+  double step_s = 0;
   /// Watch streams (all parts).
   int viewers = 0;
   /// Servers off this machine's loopback are refused unless set.
@@ -84,6 +87,8 @@ struct LoadReport {
   int viewers = 0;
   double rate_hz = 0;
   double duration_s = 0;
+  /// The scene's step length, seconds.
+  double step_s = 0;
   /// What each device asked the scene for.
   EffectSet needs;
   double load_average_1m = -1;

@@ -40,8 +40,8 @@ void PrintReport(const LoadReport& r, std::ostream& out) {
   out << std::fixed << std::setprecision(3);
   out << "loadtest: " << r.clients << " device(s) x " << r.rate_hz << " Hz for " << r.duration_s
       << " s, " << r.viewers << " viewer(s), scene '" << r.scene << "' (" << r.triangles
-      << " triangles); devices need: " << NeedsNames(r.needs) << "; load average "
-      << r.load_average_1m << " at start\n";
+      << " triangles, steps of " << r.step_s * 1e3 << " ms); devices need: " << NeedsNames(r.needs)
+      << "; load average " << r.load_average_1m << " at start\n";
   out << "round trip, ms      count      p50      p99    p99.9      max  frames/s  dropped\n";
   PrintRow("devices", r.devices, out);
   for (size_t i = 0; i < r.per_device.size(); ++i) {
@@ -80,6 +80,7 @@ std::string LoadReportJson(const LoadReport& r) {
                                  {"clients", r.clients},
                                  {"viewers", r.viewers},
                                  {"rate_hz", r.rate_hz},
+                                 {"step_s", r.step_s},
                                  {"duration_s", r.duration_s},
                                  {"needs", NeedsNames(r.needs)},
                                  {"load_average_1m", r.load_average_1m},
@@ -147,13 +148,15 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
   AddConnectionOptions(*cmd, o.server);
   cmd->add_option("--clients", o.clients, "Device streams, each its own tool (1..64)")
       ->capture_default_str();
-  cmd->add_option("--rate", o.rate_hz, "Poses per second per device (1..5000)")
+  cmd->add_option("--rate", o.rate_hz, "Poses per second per device (1..10000)")
       ->capture_default_str();
   cmd->add_option("--duration", o.duration_s,
                   "Seconds of load, (0, 60]; the echo takes turns with the devices, as long again")
       ->capture_default_str();
   cmd->add_option("--scene", args->scene_file,
                   "Scene file; its first tool is copied per device (default: built-in demo)");
+  cmd->add_option("--step-s", o.step_s,
+                  "The scene's step, seconds, 0.0001..1 (0.0001: 10 kHz; default: the scene's)");
   cmd->add_option("--viewers", o.viewers, "Watch streams beside the devices (0..16)")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "The report as one JSON object");

@@ -2,8 +2,8 @@
 
 namespace hs {
 
-ServerActivity ActivityOf(const SceneRegistry& registry) {
-  ServerActivity activity;
+ServerActivity ActivityOf(const SceneRegistry& registry, const std::string& scene) {
+  ServerActivity activity{.scene = scene};
   for (const std::shared_ptr<SceneRunner>& runner : registry.List()) {
     if (activity.scene.empty()) activity.scene = runner->name();
     const StreamRegistry::Counts counts = runner->stream_counts();

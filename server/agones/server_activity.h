@@ -7,8 +7,10 @@
 
 namespace hs {
 
-/// The first scene by name (a game server runs one) and the devices and
-/// viewers over all scenes.
-ServerActivity ActivityOf(const SceneRegistry& registry);
+/// The game server's scene, `scene` (the first --scene file's), or the
+/// first by name when that is "" (a scene created over the API later does
+/// not relabel a server that has one), and the devices and viewers over
+/// all scenes.
+ServerActivity ActivityOf(const SceneRegistry& registry, const std::string& scene);
 
 }  // namespace hs

@@ -6,7 +6,10 @@
 // the median and p99 step time of each; the target is 1 kHz with margin,
 // p99 under 500 us on scenes of 50,000 triangles (fine_organ). Also the
 // heap allocations per step (a global operator new counter): DESIGN.md
-// asks for none in steady state.
+// asks for none in steady state. The 10,000-triangle scenes also step at
+// 10 kHz (step_s 0.0001) with a haptic device's needs, the path's poses
+// interpolated ten to a 1 kHz sample; the target there is p99 at or under
+// 100 us.
 
 #include <benchmark/benchmark.h>
 
@@ -28,14 +31,18 @@ struct DemoScene {
   const char* name;
   const char* scene;
   const char* path;
+  bool at_10khz;  // the 10,000-triangle class, also stepped at 10 kHz
 };
 
 constexpr DemoScene kScenes[] = {
-    {"probe_on_torus", "probe_on_torus.textproto", "press_and_slide.csv"},
-    {"peg_in_hole", "peg_in_hole.textproto", "peg_in_hole.csv"},
-    {"linked_rings", "linked_rings.textproto", "linked_rings.csv"},
-    {"fine_organ", "fine_organ.textproto", "fine_organ.csv"},  // 50,000 triangles
+    {"probe_on_torus", "probe_on_torus.textproto", "press_and_slide.csv", true},
+    {"peg_in_hole", "peg_in_hole.textproto", "peg_in_hole.csv", true},
+    {"linked_rings", "linked_rings.textproto", "linked_rings.csv", false},
+    {"fine_organ", "fine_organ.textproto", "fine_organ.csv", false},  // 50,000 triangles
 };
+
+// What a haptic device needs: its force, with friction.
+const EffectSet kHapticDevice{Effect::kForce, Effect::kFriction};
 
 std::vector<Isometry3d> ReadPath(const std::string& file) {
   std::vector<Isometry3d> poses;
@@ -47,9 +54,37 @@ std::vector<Isometry3d> ReadPath(const std::string& file) {
   return poses;
 }
 
-void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, int threads) {
+// `path` with `per_sample` poses per sample, the ones between interpolated
+// (translation linearly, rotation by slerp): the same motion at a higher
+// rate.
+std::vector<Isometry3d> Resampled(const std::vector<Isometry3d>& path, int per_sample) {
+  if (per_sample == 1 || path.size() < 2) return path;
+  std::vector<Isometry3d> out;
+  for (size_t k = 0; k + 1 < path.size(); ++k) {
+    const Eigen::Quaterniond a(path[k].linear()), b(path[k + 1].linear());
+    for (int j = 0; j < per_sample; ++j) {
+      const double f = static_cast<double>(j) / per_sample;
+      Isometry3d X = Isometry3d::Identity();
+      X.linear() = a.slerp(f, b).toRotationMatrix();
+      X.translation() = (1 - f) * path[k].translation() + f * path[k + 1].translation();
+      out.push_back(X);
+    }
+  }
+  out.push_back(path.back());
+  return out;
+}
+
+// Steps `demo` along its path at `rate_hz` (1,000: the scene's own step).
+void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, int threads,
+             int rate_hz) {
   const std::string dir = std::string(HS_SCENES_DIR) + "/";
-  absl::StatusOr<LoadedScene> loaded = LoadSceneFile(dir + demo.scene);
+  absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(dir + demo.scene);
+  if (!spec.ok()) {
+    state.SkipWithError(std::string(spec.status().message()).c_str());
+    return;
+  }
+  spec->set_step_s(1.0 / rate_hz);
+  absl::StatusOr<LoadedScene> loaded = BuildScene(*spec, dir);
   if (!loaded.ok()) {
     state.SkipWithError(std::string(loaded.status().message()).c_str());
     return;
@@ -59,7 +94,7 @@ void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, in
     state.SkipWithError(std::string(s.message()).c_str());
     return;
   }
-  const std::vector<Isometry3d> path = ReadPath(dir + demo.path);
+  const std::vector<Isometry3d> path = Resampled(ReadPath(dir + demo.path), rate_hz / 1000);
   std::vector<double> step_us;
   step_us.reserve(1 << 20);
   size_t i = 0;
@@ -103,14 +138,18 @@ void Register() {
     for (const DemoScene& demo : kScenes) {
       const std::string name = std::string("Step/") + demo.name;
       benchmark::RegisterBenchmark((name + "/all_effects" + suffix).c_str(), BM_Step, demo,
-                                   EffectSet::Default(), threads);
+                                   EffectSet::Default(), threads, 1000);
       benchmark::RegisterBenchmark((name + "/force_only" + suffix).c_str(), BM_Step, demo,
-                                   EffectSet{Effect::kForce, Effect::kFriction}, threads);
+                                   kHapticDevice, threads, 1000);
       benchmark::RegisterBenchmark(
           (name + "/remote_device" + suffix).c_str(), BM_Step, demo,
-          EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel}, threads);
+          EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel}, threads, 1000);
       benchmark::RegisterBenchmark((name + "/collision_only" + suffix).c_str(), BM_Step, demo,
-                                   EffectSet{Effect::kCollision}, threads);
+                                   EffectSet{Effect::kCollision}, threads, 1000);
+      if (demo.at_10khz) {
+        benchmark::RegisterBenchmark((name + "/force_only_10khz" + suffix).c_str(), BM_Step, demo,
+                                     kHapticDevice, threads, 10000);
+      }
     }
     if (server_threads == 1) break;  // one run is both
   }

@@ -20,7 +20,7 @@ void ExpectOrdered(const Percentiles& p, const std::string& what) {
 }
 
 // A small bounded run (2 devices x 200 Hz x 1 s, one viewer, the small
-// test scene) checks its own arithmetic: every pose sent is answered once,
+// test scene stepping at 2 kHz) checks its own arithmetic: every pose sent is answered once,
 // per-device counts add up to the totals, each stream's frames plus drops
 // cover its step range, percentiles are ordered, and the echo baseline ran
 // with as many round trips.
@@ -34,6 +34,7 @@ TEST(LoadtestCommandTest, SmallRunAddsUp) {
   options.viewers = 1;
   options.scene = hs::testing::SmallScene("base");
   options.needs = {Effect::kForce, Effect::kFriction};  // what a haptic device reads
+  options.step_s = 0.0005;
   absl::StatusOr<LoadReport> report = RunLoadtest(options);
   ASSERT_TRUE(report.ok()) << report.status();
   const LoadReport& r = *report;
@@ -83,6 +84,7 @@ TEST(LoadtestCommandTest, SmallRunAddsUp) {
   EXPECT_EQ(json["devices"]["sent"].get<int64_t>(), sent);
   EXPECT_EQ(json["per_device"].size(), 2u);
   EXPECT_EQ(json["needs"], "force friction");
+  EXPECT_EQ(json["step_s"].get<double>(), 0.0005);
   EXPECT_EQ(json["missed_steps_off_cpu"].get<int64_t>(), r.missed_steps_off_cpu);
 }
 
@@ -100,6 +102,15 @@ TEST(LoadtestCommandTest, Bounds) {
   EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
   EXPECT_NE(err.str().find("at least one pose"), std::string::npos) << err.str();
   args.options.duration_s = 1;
+  args.options.rate_hz = 10001;
+  EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
+  args.options.rate_hz = 1000;
+  for (const double step_s : {0.00009, 1.5, -1.0}) {
+    args.options.step_s = step_s;
+    EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage) << step_s;
+  }
+  EXPECT_NE(err.str().find("--step-s"), std::string::npos) << err.str();
+  args.options.step_s = 0;
   args.needs = {"gravity"};
   EXPECT_EQ(RunLoadtestCommand(args, out, err), kExitUsage);
   EXPECT_NE(err.str().find("gravity"), std::string::npos) << err.str();

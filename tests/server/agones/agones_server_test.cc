@@ -11,6 +11,7 @@
 #include <chrono>
 #include <thread>
 
+#include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "tests/server/agones/fake_agones_sdk.h"
 #include "tests/server/server_process.h"
@@ -58,6 +59,15 @@ TEST(AgonesServerTest, ReadyLabelledAllocatedThenShutDownWhenIdle) {
       EXPECT_EQ(r.body, R"({"key":"scene","value":"probe-on-torus"})");
     }
   }
+  // A scene created over the API, first by name, does not relabel it.
+  auto scenes = pb::SceneService::NewStub(grpc::CreateChannel(
+      "127.0.0.1:" + std::to_string(server.port()), grpc::InsecureChannelCredentials()));
+  pb::CreateSceneRequest create;
+  *create.mutable_spec() = testing::SmallScene("a scene first by name");
+  pb::SceneInfo info;
+  ASSERT_TRUE(scenes->CreateScene(testing::ContextWithin(10).get(), create, &info).ok());
+  ASSERT_TRUE(fake.WaitFor("POST", "/health", fake.Count("POST", "/health") + 3));
+  EXPECT_EQ(fake.Count("PUT", "/metadata/label"), 1);
   DeviceVisits(server.port(), 50);
   EXPECT_TRUE(fake.WaitFor("POST", "/allocate"));
   ASSERT_TRUE(fake.WaitFor("POST", "/shutdown"));
