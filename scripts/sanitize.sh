@@ -65,12 +65,12 @@ cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER=clang++-14 -DHS_SANITIZE=thread >/dev/null
 # The tests whose threads are the project's own: the scene runner and its
 # parts, the worker pool and a scene stepped on it, the registries, the
-# session recorder. Tests through gRPC are left out: Debian's gRPC and
+# session recorder, the Agones lifecycle. Tests through gRPC are left out: Debian's gRPC and
 # Abseil are not instrumented, so TSan sees their threads'
 # synchronization as races.
 tsan_tests=(scene_runner_test frame_outbox_test frame_fan_out_test stream_registry_test
             worker_pool_test tool_stage_test scene_registry_test caller_quotas_test
-            session_recorder_test)
+            session_recorder_test agones_lifecycle_test)
 cmake --build build-tsan -j2 --target "${tsan_tests[@]}"
 export TSAN_OPTIONS="suppressions=$here/scripts/sanitizers/tsan.supp:halt_on_error=1:second_deadlock_stack=1"
 for test in "${tsan_tests[@]}"; do build-tsan/tests/$test; done
