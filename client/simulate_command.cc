@@ -1,12 +1,16 @@
 #include "client/simulate_command.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <memory>
+#include <utility>
 
 #include "client/contact_json.h"
 #include "client/exit_codes.h"
 #include "client/needs_args.h"
 #include "client/tool_path.h"
 #include "common/api/scene_file.h"
+#include "common/core/status_macros.h"
 
 namespace hs::cli {
 namespace {
@@ -50,6 +54,57 @@ nlohmann::ordered_json FrameJson(const StepFrame& frame, const LoadedScene& load
           {"bodies", bodies}};
 }
 
+// A tool and the device poses it is driven along, one per step.
+struct DrivenTool {
+  ObjectId tool = -1;
+  std::vector<Isometry3d> poses;
+};
+
+// The tool an entry of --tool-path drives, and its file: "TOOL=FILE" when
+// TOOL names an object of the scene, else the whole entry is the first
+// tool's file.
+absl::StatusOr<std::pair<ObjectId, std::string>> ToolAndFile(const LoadedScene& scene,
+                                                             const std::string& entry) {
+  const size_t equals = entry.find('=');
+  if (equals != std::string::npos) {
+    const std::string name = entry.substr(0, equals);
+    const auto named = std::find(scene.names.begin(), scene.names.end(), name);
+    if (named != scene.names.end()) {
+      const ObjectId id = static_cast<ObjectId>(named - scene.names.begin());
+      if (std::find(scene.tools.begin(), scene.tools.end(), id) == scene.tools.end()) {
+        return absl::InvalidArgumentError("--tool-path " + entry + ": '" + name +
+                                          "' is not a tool");
+      }
+      return std::make_pair(id, entry.substr(equals + 1));
+    }
+    if (!std::filesystem::exists(entry)) {
+      return absl::InvalidArgumentError("--tool-path " + entry + ": no tool named '" + name + "'");
+    }
+  }
+  if (scene.tools.empty()) {
+    return absl::FailedPreconditionError("a tool path was given but the scene has no tool");
+  }
+  return std::make_pair(scene.tools.front(), entry);
+}
+
+absl::StatusOr<std::vector<DrivenTool>> ReadToolPaths(const LoadedScene& scene,
+                                                      const std::vector<std::string>& entries) {
+  std::vector<DrivenTool> driven;
+  for (const std::string& entry : entries) {
+    HS_ASSIGN_OR_RETURN(const auto tool_and_file, ToolAndFile(scene, entry));
+    const auto& [tool, file] = tool_and_file;
+    for (const DrivenTool& d : driven) {
+      if (d.tool == tool) {
+        return absl::InvalidArgumentError("--tool-path: tool '" + scene.names[tool] +
+                                          "' has two paths");
+      }
+    }
+    HS_ASSIGN_OR_RETURN(std::vector<Isometry3d> poses, ReadToolPath(file));
+    driven.push_back({tool, std::move(poses)});
+  }
+  return driven;
+}
+
 nlohmann::ordered_json StatsJson(const StageStatsTable& stats) {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
   for (int i = 0; i < kNumEffects; ++i) {
@@ -69,20 +124,16 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
   };
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(args.scene_file);
   if (!loaded.ok()) return fail(loaded.status());
-  absl::StatusOr<std::vector<Isometry3d>> path = ReadToolPath(args.tool_path);
-  if (!path.ok()) return fail(path.status());
+  absl::StatusOr<std::vector<DrivenTool>> driven = ReadToolPaths(*loaded, args.tool_paths);
+  if (!driven.ok()) return fail(driven.status());
   absl::StatusOr<EffectSet> needs = ParseNeeds(args.needs);
   if (!needs.ok()) return fail(needs.status());
-  if (!path->empty() && loaded->tools.empty()) {
-    return fail(absl::FailedPreconditionError("a tool path was given but the scene has no tool"));
-  }
   Scene& scene = *loaded->scene;
   scene.SetNeeded(*needs);
   for (int step = 0; step < args.steps; ++step) {
-    if (step < static_cast<int>(path->size())) {
-      if (absl::Status s = scene.SetDevicePose(loaded->tools.front(), (*path)[step]); !s.ok()) {
-        return fail(s);
-      }
+    for (const DrivenTool& d : *driven) {
+      if (step >= static_cast<int>(d.poses.size())) continue;
+      if (absl::Status s = scene.SetDevicePose(d.tool, d.poses[step]); !s.ok()) return fail(s);
     }
     const StepFrame& frame = scene.Step();
     if (args.json) {
@@ -117,8 +168,10 @@ void AddSimulateCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", args->scene_file, "Scene file (protobuf text format, or .json)")
       ->required();
   cmd->add_option("--steps", args->steps, "Number of steps")->check(CLI::Range(0, 10000000));
-  cmd->add_option("--tool-path", args->tool_path,
-                  "Device poses of the first tool, one 'x,y,z,rx,ry,rz' line per step");
+  cmd->add_option("--tool-path", args->tool_paths,
+                  "[TOOL=]FILE: device poses of TOOL (default: the first tool), one "
+                  "'x,y,z,rx,ry,rz' line per step; once per tool")
+      ->allow_extra_args(false);
   AddNeedsOption(*cmd, args->needs);
   cmd->add_flag("--json", args->json, "One JSON object per step, then the stage statistics");
   cmd->callback([args, &exit_code] { exit_code = RunSimulate(*args, std::cout, std::cerr); });

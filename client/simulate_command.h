@@ -1,6 +1,7 @@
 #pragma once
-// `hapticctl simulate SCENE --steps N [--tool-path FILE]`: runs a scene file
-// offline and prints every step's frame and the per-stage counters.
+// `hapticctl simulate SCENE --steps N [--tool-path [TOOL=]FILE]...`: runs a
+// scene file offline, each tool driven along its own path, and prints every
+// step's frame and the per-stage counters.
 
 #include <ostream>
 #include <string>
@@ -13,10 +14,11 @@ namespace hs::cli {
 struct SimulateArgs {
   std::string scene_file;
   int steps = 100;
-  /// One device pose per line, "x,y,z,rx,ry,rz" (metres, rotation vector in
-  /// radians), for the scene's first tool; '#' starts a comment. After the
-  /// last line the tool stays where it is.
-  std::string tool_path;
+  /// Device paths, "TOOL=FILE" for tool TOOL, or "FILE" for the scene's
+  /// first tool; at most one per tool. A file holds one device pose per
+  /// line, "x,y,z,rx,ry,rz" (metres, rotation vector in radians); '#'
+  /// starts a comment. After its last line the tool stays where it is.
+  std::vector<std::string> tool_paths;
   /// What the consumer needs (effect names); empty means everything.
   std::vector<std::string> needs;
   bool json = false;

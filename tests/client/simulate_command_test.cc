@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "client/exit_codes.h"
 #include "common/core/types.h"
+#include "tests/common/scratch_dir.h"
 
 namespace hs::cli {
 namespace {
@@ -23,7 +26,7 @@ std::vector<nlohmann::json> Lines(const std::string& text) {
 SimulateArgs DemoArgs() {
   return {.scene_file = kScenes + "/probe_on_torus.textproto",
           .steps = 60,
-          .tool_path = kScenes + "/press_and_slide.csv",
+          .tool_paths = {kScenes + "/press_and_slide.csv"},
           .needs = {},
           .json = true};
 }
@@ -81,7 +84,7 @@ TEST(SimulateCommandTest, EveryBundledDemoResistsItsPath) {
     std::ostringstream out, err;
     SimulateArgs args{.scene_file = kScenes + "/" + scene + ".textproto",
                       .steps = 80,
-                      .tool_path = kScenes + "/" + path + ".csv",
+                      .tool_paths = {kScenes + "/" + path + ".csv"},
                       .needs = {},
                       .json = true};
     ASSERT_EQ(RunSimulate(args, out, err), kExitOk) << err.str();
@@ -109,7 +112,7 @@ TEST(SimulateCommandTest, FreeBodyFrames) {
   std::ostringstream out, err;
   SimulateArgs args{.scene_file = kScenes + "/fine_organ.textproto",
                     .steps = 20,
-                    .tool_path = "",
+                    .tool_paths = {},
                     .needs = {},
                     .json = true};
   ASSERT_EQ(RunSimulate(args, out, err), kExitOk) << err.str();
@@ -125,11 +128,78 @@ TEST(SimulateCommandTest, FreeBodyFrames) {
   EXPECT_EQ(lines[20]["stage_stats"]["free_body_motion"]["runs"], 20);
 }
 
+// The demo scene with a second probe, "stylus", 0.2 m west of the first
+// (over the organ's west side), written to a scratch folder; and a path
+// pressing each straight down 1.5 cm over 60 steps from its home.
+struct TwoTools {
+  TwoTools() {
+    const std::filesystem::path dir = ScratchDir("two_tools");
+    std::ifstream demo(kScenes + "/probe_on_torus.textproto");
+    std::ostringstream text;
+    text << demo.rdbuf() << R"(objects { name: "stylus" kind: OBJECT_KIND_TOOL)"
+         << R"( model { procedural { box { size_m { x: 0.02 y: 0.02 z: 0.02 } } } })"
+         << R"( pose { position_m { x: -0.1 z: 0.1 } } })";
+    scene = (dir / "two_tools.textproto").string();
+    std::ofstream(scene) << text.str();
+    probe = Press(dir / "probe.csv", 0.1);
+    stylus = Press(dir / "stylus.csv", -0.1);
+  }
+  static std::string Press(const std::filesystem::path& file, double x) {
+    std::ofstream out(file);
+    for (int i = 0; i <= 60; ++i) out << x << ",0," << 0.1 - 0.015 * i / 60 << ",0,0,0\n";
+    return file.string();
+  }
+  std::string scene, probe, stylus;
+};
+
+// Each tool follows its own path (TOOL=FILE; the bare form is the first
+// tool's): both devices are where their files put them, and both press
+// the organ.
+TEST(SimulateCommandTest, EachToolAlongItsOwnPath) {
+  const TwoTools files;
+  std::ostringstream out, err;
+  SimulateArgs args{.scene_file = files.scene,
+                    .steps = 61,
+                    .tool_paths = {files.probe, "stylus=" + files.stylus},
+                    .needs = {},
+                    .json = true};
+  ASSERT_EQ(RunSimulate(args, out, err), kExitOk) << err.str();
+  const auto lines = Lines(out.str());
+  ASSERT_EQ(lines.size(), 62u);
+  const auto& last = lines[60]["tools"];
+  ASSERT_EQ(last.size(), 2u);
+  for (const auto& tool : last) {
+    SCOPED_TRACE(tool.dump());
+    const double x = tool["tool"] == "probe" ? 0.1 : -0.1;
+    EXPECT_EQ(tool["device_position_W_m"][0].get<double>(), x);
+    EXPECT_NEAR(tool["device_position_W_m"][2].get<double>(), 0.085, 1e-12);
+    ASSERT_FALSE(tool["contacts"].empty());
+    EXPECT_EQ(tool["contacts"][0]["object"], "organ");
+    EXPECT_GT(tool["force_W_n"][2].get<double>(), 0);
+  }
+}
+
+// A path for an object that is not a tool, for no object, or two paths
+// for one tool: refused, naming it.
+TEST(SimulateCommandTest, ToolPathsNameTheirTools) {
+  const TwoTools files;
+  auto run = [&](std::vector<std::string> paths) {
+    std::ostringstream out, err;
+    SimulateArgs args{.scene_file = files.scene, .steps = 1, .tool_paths = std::move(paths)};
+    EXPECT_EQ(RunSimulate(args, out, err), kExitFailure);
+    return err.str();
+  };
+  EXPECT_NE(run({"organ=" + files.probe}).find("'organ' is not a tool"), std::string::npos);
+  EXPECT_NE(run({"stylsu=" + files.stylus}).find("no tool named 'stylsu'"), std::string::npos);
+  EXPECT_NE(run({files.probe, "probe=" + files.stylus}).find("'probe' has two paths"),
+            std::string::npos);
+}
+
 // Bad files and names fail with a message.
 TEST(SimulateCommandTest, BadInputFails) {
   std::ostringstream out, err;
   SimulateArgs args = DemoArgs();
-  args.tool_path = std::string(HS_TEST_DATA_DIR) + "/cube.obj";
+  args.tool_paths = {std::string(HS_TEST_DATA_DIR) + "/cube.obj"};
   EXPECT_EQ(RunSimulate(args, out, err), kExitFailure);
   args = DemoArgs();
   args.needs = {"gravity"};
