@@ -94,6 +94,7 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   pb::InteractRequest open;
   open.mutable_open()->set_scene(args.scene);
   open.mutable_open()->set_tool(args.tool);
+  open.mutable_open()->set_take_over(args.take_over);
   SetNeeds(*needs, *open.mutable_open());
   stream->Write(open);
 
@@ -161,6 +162,9 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1e-3, 1e5))
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "One JSON object (haptics.v1.Frame) per line");
+  cmd->add_flag("--take-over", args->take_over,
+                "Take the tool from the device holding it, which is ended (needs the admin "
+                "role)");
   AddNeedsOption(*cmd, args->needs);
   CLI::Option* hand =
       cmd->add_option("--operator", args->operator_motion,

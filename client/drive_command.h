@@ -23,6 +23,9 @@ struct DriveArgs {
   std::string scene;
   /// The tool object to drive.
   std::string tool;
+  /// Take the tool from the device holding it (an instructor; needs the
+  /// admin role on the scene).
+  bool take_over = false;
   /// Device path: CSV, one "x,y,z,rx,ry,rz" line per pose sent at --rate,
   /// or JSON lines with times (*.jsonl; see device_path.h).
   std::string path;

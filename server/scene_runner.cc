@@ -162,11 +162,17 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   return step_ns;
 }
 
-absl::Status SceneRunner::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs) {
-  absl::Status status = streams_.AttachDevice(sink, tool, needs, [this](const std::string& name) {
-    std::lock_guard scene(scene_mu_);
-    return FindTool(loaded_, name) >= 0;
-  });
+absl::Status SceneRunner::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+                                       const absl::Status* take_over) {
+  bool displaced = false;
+  absl::Status status = streams_.AttachDevice(
+      sink, tool, needs,
+      [this](const std::string& name) {
+        std::lock_guard scene(scene_mu_);
+        return FindTool(loaded_, name) >= 0;
+      },
+      take_over, &displaced);
+  if (displaced) RecordStream(false, tool, EffectSet());
   if (status.ok()) RecordStream(true, tool, needs);
   return status;
 }

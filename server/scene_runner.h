@@ -63,8 +63,10 @@ class SceneRunner {
   /// Lets `sink` drive tool `tool` and receive every frame; the scene
   /// computes `needs` (with prerequisites) from now on. NOT_FOUND when
   /// there is no such tool, FAILED_PRECONDITION when another device holds
-  /// it, UNAVAILABLE when stopped.
-  absl::Status AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs);
+  /// it (with `take_over`: that device's stream ends with that status
+  /// instead), UNAVAILABLE when stopped.
+  absl::Status AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+                            const absl::Status* take_over = nullptr);
   /// Lets `sink` receive every frame. UNAVAILABLE when stopped.
   absl::Status AttachViewer(FrameSink* sink, EffectSet needs);
   /// Stops sending to `sink` and releases its tool. When it returns, no

@@ -82,6 +82,11 @@ class FrameStream : public Base, public FrameSink {
     Pump();
   }
 
+  // The caller, when it may do `access` on `scene`.
+  absl::StatusOr<Caller> CheckCaller(Access access, const std::string& scene) const {
+    return access_.Check(context_, access, scene);
+  }
+
   // Ends the stream with `status` (after the frames already waiting).
   void Fail(const absl::Status& status, const char* method) {
     registry_.metrics().AddRejected(method, absl::StatusCodeToString(status.code()));
@@ -91,8 +96,7 @@ class FrameStream : public Base, public FrameSink {
   // Checks the caller may drive or watch `scene`, counts the client and
   // finds its scene; on error the stream is failed.
   bool Open(const std::string& scene, const char* method) {
-    absl::StatusOr<Caller> caller =
-        access_.Check(context_, device_ ? Access::kDrive : Access::kWatch, scene);
+    absl::StatusOr<Caller> caller = CheckCaller(device_ ? Access::kDrive : Access::kWatch, scene);
     if (!caller.ok()) {
       Fail(caller.status(), method);
       return false;
@@ -200,9 +204,23 @@ class InteractReactor
       Fail(needs.status(), "Interact");
       return false;
     }
+    // Taking a tool from its device is an instructor's: the admin role.
+    absl::Status taken;
+    if (open.take_over()) {
+      absl::StatusOr<Caller> admin = this->CheckCaller(Access::kAdmin, open.scene());
+      if (!admin.ok()) {
+        Fail(absl::PermissionDeniedError("take_over needs the admin role on the scene: " +
+                                         std::string(admin.status().message())),
+             "Interact");
+        return false;
+      }
+      taken = absl::AbortedError("tool '" + open.tool() + "' was taken over by " + admin->id);
+    }
     // Set before attaching: the scene thread reads it as soon as frames come.
     tool_ = open.tool();
-    if (absl::Status s = runner_->AttachDevice(this, open.tool(), *needs); !s.ok()) {
+    if (absl::Status s =
+            runner_->AttachDevice(this, open.tool(), *needs, open.take_over() ? &taken : nullptr);
+        !s.ok()) {
       Fail(s, "Interact");
       return false;
     }

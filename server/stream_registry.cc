@@ -5,18 +5,28 @@
 namespace hs {
 
 absl::Status StreamRegistry::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
-                                          const std::function<bool(const std::string&)>& has_tool) {
+                                          const std::function<bool(const std::string&)>& has_tool,
+                                          const absl::Status* take_over, bool* displaced) {
   std::lock_guard lock(mu_);
   if (closed_) return absl::UnavailableError("the scene is stopping");
   if (!has_tool(tool))
     return absl::NotFoundError(absl::StrCat("no tool '", tool, "' in the scene"));
-  for (const auto& [other, attached] : sinks_) {
-    if (attached.tool == tool) {
+  for (auto it = sinks_.begin(); it != sinks_.end(); ++it) {
+    if (it->second.tool != tool) continue;
+    if (take_over == nullptr) {
       return absl::FailedPreconditionError(
           absl::StrCat("tool '", tool, "' is held by another device"));
     }
+    // Closed under the lock, as CloseAll does: its stream's end (Detach)
+    // waits for it, so the sink is still there.
+    it->first->Close(*take_over);
+    sinks_.erase(it);
+    pending_.erase(tool);
+    if (displaced != nullptr) *displaced = true;
+    break;
   }
   sinks_[sink] = Attached{tool, needs};
+  ++devices_joined_;
   return absl::OkStatus();
 }
 
@@ -24,6 +34,7 @@ absl::Status StreamRegistry::AttachViewer(FrameSink* sink, EffectSet needs) {
   std::lock_guard lock(mu_);
   if (closed_) return absl::UnavailableError("the scene is stopping");
   sinks_[sink] = Attached{"", needs};
+  ++viewers_joined_;
   return absl::OkStatus();
 }
 
@@ -95,6 +106,8 @@ void StreamRegistry::CloseAll(const absl::Status& status) {
 StreamRegistry::Counts StreamRegistry::counts() const {
   Counts counts;
   std::lock_guard lock(mu_);
+  counts.devices_joined = devices_joined_;
+  counts.viewers_joined = viewers_joined_;
   for (const auto& [sink, attached] : sinks_) {
     if (attached.tool.empty()) {
       ++counts.viewers;

@@ -52,9 +52,13 @@ class StreamRegistry {
 
   /// Lets `sink` drive tool `tool`. `has_tool` is asked under the lock.
   /// NOT_FOUND when it says no, FAILED_PRECONDITION when another device
-  /// holds the tool, UNAVAILABLE once closed.
+  /// holds the tool, UNAVAILABLE once closed. With `take_over`, a device
+  /// holding the tool is ended with that status (FrameSink::Close) and
+  /// forgotten instead, its pose not taken yet dropped, and `*displaced`
+  /// set.
   absl::Status AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
-                            const std::function<bool(const std::string&)>& has_tool);
+                            const std::function<bool(const std::string&)>& has_tool,
+                            const absl::Status* take_over = nullptr, bool* displaced = nullptr);
   /// Lets `sink` receive frames. UNAVAILABLE once closed.
   absl::Status AttachViewer(FrameSink* sink, EffectSet needs);
   /// Forgets `sink` and frees its tool. Returns its tool ("" for a
@@ -80,11 +84,15 @@ class StreamRegistry {
   /// are UNAVAILABLE.
   void CloseAll(const absl::Status& status);
 
-  /// Devices and viewers attached, and the tools the devices hold.
+  /// Devices and viewers attached, and the tools the devices hold; and
+  /// how many of each ever attached (one that came and went between two
+  /// looks still counts).
   struct Counts {
     int devices = 0;
     int viewers = 0;
     std::vector<std::string> claimed_tools;
+    int64_t devices_joined = 0;
+    int64_t viewers_joined = 0;
   };
   Counts counts() const;
 
@@ -102,6 +110,8 @@ class StreamRegistry {
   std::map<FrameSink*, Attached> sinks_;
   std::map<std::string, PendingPose> pending_;  // by tool name
   bool closed_ = false;
+  int64_t devices_joined_ = 0;
+  int64_t viewers_joined_ = 0;
 };
 
 }  // namespace hs

@@ -61,9 +61,11 @@ absl::Status ScorePath(const LoadedExercise& exercise, const std::string& file, 
   return absl::OkStatus();
 }
 
-// Re-runs the recorded session `file` of the exercise's scene.
-absl::Status ScoreRecording(const LoadedExercise& exercise, const std::string& file,
-                            Scorer& scorer) {
+// Re-runs the recorded session `file` of the exercise's scene; `gap` says
+// why the replay ended before the session did ("" when it did not: a
+// recorder that skipped steps leaves a gap no replay crosses).
+absl::Status ScoreRecording(const LoadedExercise& exercise, const std::string& file, Scorer& scorer,
+                            std::string& gap) {
   HS_ASSIGN_OR_RETURN(const RecordedSession session, ReadSession(file));
   const std::string& recorded = session.records.front().start().spec().name();
   if (recorded != exercise.scene.name()) {
@@ -81,7 +83,9 @@ absl::Status ScoreRecording(const LoadedExercise& exercise, const std::string& f
     scored.time_s = time_s;
     scorer.Add(scored);
   };
-  return ReplayRecording(file, options).status();
+  HS_ASSIGN_OR_RETURN(const ReplayReport report, ReplayRecording(file, options));
+  gap = report.stopped_early;
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -94,18 +98,24 @@ int RunScore(const ScoreArgs& args, std::ostream& out, std::ostream& err) {
   absl::StatusOr<LoadedExercise> exercise = LoadExerciseFile(args.exercise);
   if (!exercise.ok()) return ReportError("score", exercise.status(), err);
   Scorer scorer(exercise->exercise);
-  const absl::Status scored = args.path.empty() ? ScoreRecording(*exercise, args.recording, scorer)
-                                                : ScorePath(*exercise, args.path, scorer);
+  std::string gap;
+  const absl::Status scored = args.path.empty()
+                                  ? ScoreRecording(*exercise, args.recording, scorer, gap)
+                                  : ScorePath(*exercise, args.path, scorer);
   if (!scored.ok()) return ReportError("score", scored, err);
+  if (!gap.empty())
+    err << "hapticctl score: " << args.recording << ": " << gap << "; scored up to there\n";
   const ScoreSummary summary = scorer.Summary();
   if (!args.report_dir.empty()) {
-    const absl::Status written = WriteReport(
-        args.report_dir, {.exercise = &exercise->exercise,
-                          .scene = exercise->scene.name(),
-                          .summary = summary,
-                          .trace = &scorer.trace(),
-                          .ended = scorer.done() ? "done" : "the path or recording ended",
-                          .compare = args.compare});
+    const absl::Status written =
+        WriteReport(args.report_dir, {.exercise = &exercise->exercise,
+                                      .scene = exercise->scene.name(),
+                                      .summary = summary,
+                                      .trace = &scorer.trace(),
+                                      .ended = scorer.done()  ? "done"
+                                               : !gap.empty() ? "the recording has a gap: " + gap
+                                                              : "the path or recording ended",
+                                      .compare = args.compare});
     if (!written.ok()) return ReportError("score", written, err);
   }
   if (args.json) {

@@ -55,15 +55,18 @@ void AgonesLifecycle::Poll(Clock::time_point now) {
   if (!label.empty() && label != label_ && Answered("label", sdk_.SetLabel("scene", label), now)) {
     label_ = label;
   }
-  if (activity.devices > 0 && !allocated_) {
+  if (activity.devices_joined > 0 && !allocated_) {
     allocated_ = Answered("allocate", sdk_.Allocate(), now);
   }
-  if (activity.devices + activity.viewers > 0) {
-    had_clients_ = true;
+  // A client attached now, or one that came and went since the last poll,
+  // starts the idle time over.
+  const int64_t joined = activity.devices_joined + activity.viewers_joined;
+  if (activity.devices + activity.viewers > 0 || joined != clients_joined_) {
+    clients_joined_ = joined;
     idle_since_.reset();
     return;
   }
-  if (!had_clients_ || shutdown_requested_) return;
+  if (joined == 0 || shutdown_requested_) return;
   if (!idle_since_) idle_since_ = now;
   if (now - *idle_since_ >= Seconds(options_.idle_shutdown_s)) {
     shutdown_requested_ = Answered("shutdown", sdk_.Shutdown(), now);

@@ -40,6 +40,10 @@ struct ServerActivity {
   std::string scene;
   int devices = 0;
   int viewers = 0;
+  /// How many ever attached: a client that came and went between two
+  /// polls counts.
+  int64_t devices_joined = 0;
+  int64_t viewers_joined = 0;
 };
 
 class AgonesLifecycle {
@@ -75,7 +79,7 @@ class AgonesLifecycle {
   bool ready_ = false;
   std::string label_;
   bool allocated_ = false;
-  bool had_clients_ = false;
+  int64_t clients_joined_ = 0;  // at the last poll
   bool shutdown_requested_ = false;
   bool sdk_failing_ = false;
   std::optional<Clock::time_point> idle_since_;

@@ -9,6 +9,8 @@ ServerActivity ActivityOf(const SceneRegistry& registry, const std::string& scen
     const StreamRegistry::Counts counts = runner->stream_counts();
     activity.devices += counts.devices;
     activity.viewers += counts.viewers;
+    activity.devices_joined += counts.devices_joined;
+    activity.viewers_joined += counts.viewers_joined;
   }
   return activity;
 }

@@ -153,6 +153,10 @@ TEST(TrainCommandTest, RecordingScoresAsThePathItApplied) {
   const std::filesystem::path dir = ScratchDir("score_recording");
   RecordingOptions recording;
   recording.dir = (dir / "recordings").string();
+  // Digests, and a queue of 10 s: a loaded machine's slow disk must not
+  // make the recorder skip steps (a gap no replay crosses).
+  recording.frames = haptics::v1::FRAME_RECORDING_DIGEST;
+  recording.queue_steps = 10'000;
   absl::StatusOr<pb::SceneSpec> spec = ReadSceneFile(kScenes + "/probe_on_torus.textproto");
   ASSERT_TRUE(spec.ok());
   absl::StatusOr<std::vector<TimedPose>> path =

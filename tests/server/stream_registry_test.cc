@@ -42,6 +42,41 @@ TEST(StreamRegistryTest, ToolsAreHeldByOneDevice) {
   EXPECT_TRUE(streams.AttachDevice(&b, "probe", EffectSet::All(), AnyTool).ok());
 }
 
+// Taking over a held tool ends its device with the given status, drops
+// that device's pose not taken yet, and seats the new device on its first
+// pose; the displaced device's later Detach finds nothing to free. A free
+// tool is simply taken.
+TEST(StreamRegistryTest, TakeOverEndsTheHolder) {
+  StreamRegistry streams([](bool) {});
+  RecordingSink trainee, instructor, other;
+  ASSERT_TRUE(streams.AttachDevice(&trainee, "probe", EffectSet::All(), AnyTool).ok());
+  streams.SetPose(&trainee, At(1), {1, 0});
+  const absl::Status taken = absl::AbortedError("taken over");
+  bool displaced = false;
+  ASSERT_TRUE(
+      streams.AttachDevice(&instructor, "probe", EffectSet::All(), AnyTool, &taken, &displaced)
+          .ok());
+  EXPECT_TRUE(displaced);
+  ASSERT_TRUE(trainee.closed_with.has_value());
+  EXPECT_EQ(*trainee.closed_with, taken);
+  EXPECT_FALSE(instructor.closed_with.has_value());
+  FreshPoses fresh;
+  streams.TakeFreshPoses(fresh);
+  EXPECT_EQ(fresh.count, 0u);  // the trainee's pose went with it
+  streams.SetPose(&instructor, At(2), {1, 0});
+  streams.TakeFreshPoses(fresh);
+  ASSERT_EQ(fresh.count, 1u);
+  EXPECT_TRUE(fresh.taken().front().second.seat);
+  EXPECT_EQ(streams.Detach(&trainee), std::nullopt);
+  EXPECT_EQ(streams.counts().claimed_tools, std::vector<std::string>{"probe"});
+  displaced = false;
+  ASSERT_TRUE(
+      streams.AttachDevice(&other, "stylus", EffectSet::All(), AnyTool, &taken, &displaced).ok());
+  EXPECT_FALSE(displaced);
+  EXPECT_EQ(streams.AttachDevice(&other, "missing", EffectSet::All(), AnyTool, &taken).code(),
+            absl::StatusCode::kNotFound);
+}
+
 // A device's first pose seats it, also when a later pose replaces it before
 // a step takes it; its later poses do not; the next device to take the tool
 // is seated again.

@@ -94,7 +94,7 @@ TEST(ScoreCommandTest, GentleBeatsPressedAndForbidden) {
 // by replay), it gives the offline run's summary exactly. A recording of
 // another scene is refused by name.
 std::string RecordPath(const std::string& name, const std::vector<TimedPose>& path,
-                       const std::string& scene_name) {
+                       const std::string& scene_name, int64_t gap_at_step = 0) {
   namespace pb = haptics::v1;
   const std::string file = (ScratchDir("recordings") / name).string();
   absl::StatusOr<RecordFileWriter> writer = RecordFileWriter::Create(file);
@@ -127,6 +127,12 @@ std::string RecordPath(const std::string& name, const std::vector<TimedPose>& pa
       EXPECT_TRUE(writer->Append(record).ok());
     }
     record.Clear();
+    if (k + 1 == gap_at_step) {  // the recorder skipped this step
+      record.mutable_gap()->set_first_step(k + 1);
+      record.mutable_gap()->set_steps(1);
+      EXPECT_TRUE(writer->Append(record).ok());
+      continue;
+    }
     record.mutable_frame()->set_step(k + 1);
     record.mutable_frame()->set_sha256("not compared");
     EXPECT_TRUE(writer->Append(record).ok());
@@ -144,6 +150,21 @@ TEST(ScoreCommandTest, ARecordingOfThePathScoresTheSame) {
   const std::string other = RecordPath("other.hsrec", *path, "another scene");
   EXPECT_NE(RunScore({.exercise = kExercise, .recording = other}, out, err), 0);
   EXPECT_NE(err.str().find("records scene 'another scene'"), std::string::npos) << err.str();
+}
+
+// A recording with a gap (steps its recorder skipped) is scored up to the
+// gap, said on stderr, and not completed.
+TEST(ScoreCommandTest, ARecordingWithAGapIsScoredUpToIt) {
+  absl::StatusOr<std::vector<TimedPose>> path = ReadDevicePath(kPath, 1000);
+  ASSERT_TRUE(path.ok());
+  const std::string file = RecordPath("gap.hsrec", *path, "probe on torus", 1000);
+  std::ostringstream out, err;
+  ASSERT_EQ(RunScore({.exercise = kExercise, .recording = file, .json = true}, out, err), kExitOk)
+      << err.str();
+  EXPECT_NE(err.str().find("scored up to there"), std::string::npos) << err.str();
+  const nlohmann::json summary = nlohmann::json::parse(out.str());
+  EXPECT_FALSE(summary["completed"]);
+  EXPECT_LT(summary["duration_s"].get<double>(), 1.0);
 }
 
 // A path whose header names another scene is refused, naming both.

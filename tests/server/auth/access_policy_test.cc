@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include <fstream>
 #include <map>
 
@@ -250,6 +252,58 @@ TEST_F(AccessPolicyTest, CallersSeeAndDriveTheirScenesOnly) {
   EXPECT_TRUE(stream->Read(&frame));
   context->TryCancel();
   stream->Finish();
+}
+
+// An instructor (admin) takes a trainee's tool: the trainee's stream ends
+// ABORTED naming who took it, and the instructor drives; a driver may not
+// take over (PERMISSION_DENIED, the holder keeps its tool); once the
+// instructor leaves, the trainee takes the tool again.
+TEST_F(AccessPolicyTest, AnInstructorTakesOverATool) {
+  auto open = [&](bool take_over, grpc::ClientContext* context) {
+    auto stream = sessions_->Interact(context);
+    pb::InteractRequest request;
+    request.mutable_open()->set_scene("train-1");
+    request.mutable_open()->set_tool("probe");
+    request.mutable_open()->set_take_over(take_over);
+    EXPECT_TRUE(stream->Write(request));
+    return stream;
+  };
+  pb::Frame frame;
+  auto trainee_context = As("drive-token");
+  auto trainee = open(false, trainee_context.get());
+  ASSERT_TRUE(trainee->Read(&frame));
+
+  auto rival_context = As("drive-token");
+  auto rival = open(true, rival_context.get());
+  while (rival->Read(&frame)) {
+  }
+  EXPECT_EQ(rival->Finish().error_code(), grpc::StatusCode::PERMISSION_DENIED);
+  ASSERT_TRUE(trainee->Read(&frame));  // still driving
+
+  auto instructor_context = As("admin-token");
+  auto instructor = open(true, instructor_context.get());
+  ASSERT_TRUE(instructor->Read(&frame));
+  while (trainee->Read(&frame)) {
+  }
+  const grpc::Status ended = trainee->Finish();
+  EXPECT_EQ(ended.error_code(), grpc::StatusCode::ABORTED);
+  EXPECT_NE(ended.error_message().find("taken over by token:"), std::string::npos)
+      << ended.error_message();
+
+  instructor->WritesDone();
+  while (instructor->Read(&frame)) {
+  }
+  EXPECT_TRUE(instructor->Finish().ok());
+  bool back = false;
+  for (int attempt = 0; attempt < 200 && !back; ++attempt) {
+    auto again_context = As("drive-token");
+    auto again = open(false, again_context.get());
+    back = again->Read(&frame);
+    again_context->TryCancel();
+    again->Finish();
+    if (!back) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_TRUE(back);
 }
 
 // Reload takes a changed file at once; a broken file leaves the tokens
