@@ -256,14 +256,15 @@ TEST_F(AccessPolicyTest, CallersSeeAndDriveTheirScenesOnly) {
 
 // An instructor (admin) takes a trainee's tool: the trainee's stream ends
 // ABORTED naming who took it, and the instructor drives; a driver may not
-// take over (PERMISSION_DENIED, the holder keeps its tool); once the
-// instructor leaves, the trainee takes the tool again.
+// take over (PERMISSION_DENIED), nor may anyone take a tool the scene
+// lacks (NOT_FOUND), and the holder keeps its tool; once the instructor
+// leaves, the trainee takes the tool again.
 TEST_F(AccessPolicyTest, AnInstructorTakesOverATool) {
-  auto open = [&](bool take_over, grpc::ClientContext* context) {
+  auto open = [&](bool take_over, grpc::ClientContext* context, const std::string& tool = "probe") {
     auto stream = sessions_->Interact(context);
     pb::InteractRequest request;
     request.mutable_open()->set_scene("train-1");
-    request.mutable_open()->set_tool("probe");
+    request.mutable_open()->set_tool(tool);
     request.mutable_open()->set_take_over(take_over);
     EXPECT_TRUE(stream->Write(request));
     return stream;
@@ -279,6 +280,14 @@ TEST_F(AccessPolicyTest, AnInstructorTakesOverATool) {
   }
   EXPECT_EQ(rival->Finish().error_code(), grpc::StatusCode::PERMISSION_DENIED);
   ASSERT_TRUE(trainee->Read(&frame));  // still driving
+
+  // A tool the scene lacks: NOT_FOUND, and the trainee drives on.
+  auto missing_context = As("admin-token");
+  auto missing = open(true, missing_context.get(), "scalpel");
+  while (missing->Read(&frame)) {
+  }
+  EXPECT_EQ(missing->Finish().error_code(), grpc::StatusCode::NOT_FOUND);
+  ASSERT_TRUE(trainee->Read(&frame));
 
   auto instructor_context = As("admin-token");
   auto instructor = open(true, instructor_context.get());
