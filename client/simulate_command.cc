@@ -68,14 +68,11 @@ absl::StatusOr<std::pair<ObjectId, std::string>> ToolAndFile(const LoadedScene& 
   const size_t equals = entry.find('=');
   if (equals != std::string::npos) {
     const std::string name = entry.substr(0, equals);
-    const auto named = std::find(scene.names.begin(), scene.names.end(), name);
-    if (named != scene.names.end()) {
-      const ObjectId id = static_cast<ObjectId>(named - scene.names.begin());
-      if (std::find(scene.tools.begin(), scene.tools.end(), id) == scene.tools.end()) {
-        return absl::InvalidArgumentError("--tool-path " + entry + ": '" + name +
-                                          "' is not a tool");
-      }
-      return std::make_pair(id, entry.substr(equals + 1));
+    if (const ObjectId tool = FindTool(scene, name); tool >= 0) {
+      return std::make_pair(tool, entry.substr(equals + 1));
+    }
+    if (std::find(scene.names.begin(), scene.names.end(), name) != scene.names.end()) {
+      return absl::InvalidArgumentError("--tool-path " + entry + ": '" + name + "' is not a tool");
     }
     if (!std::filesystem::exists(entry)) {
       return absl::InvalidArgumentError("--tool-path " + entry + ": no tool named '" + name + "'");

@@ -38,11 +38,8 @@ const std::string kExercise = kScenes + "/exercises/three_points.textproto";
 void Drive(hs::testing::TestServer& server, const std::string& scene, const std::string& tool,
            const std::vector<TimedPose>& path) {
   grpc::ClientContext context;
-  auto stream = server.sessions().Interact(&context);
-  pb::InteractRequest open;
-  open.mutable_open()->set_scene(scene);
-  open.mutable_open()->set_tool(tool);
-  ASSERT_TRUE(stream->Write(open));
+  auto stream = hs::testing::OpenDevice(server.sessions(), context, scene, tool);
+  ASSERT_NE(stream, nullptr);
   const auto t0 = std::chrono::steady_clock::now();
   for (size_t i = 0; i < path.size(); ++i) {
     std::this_thread::sleep_until(t0 + std::chrono::duration_cast<std::chrono::nanoseconds>(
