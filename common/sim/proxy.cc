@@ -74,6 +74,8 @@ absl::StatusOr<ProxyState> MoveProxy(const PosedObject& tool, const Isometry3d& 
     state.face = TouchedFace(object, touch.fixed);
     state.normal_W = n;
     state.p_WC = touch.points.empty() ? p : touch.points.front().p_WC;
+    state.tool_face =
+        touch.points.empty() ? 0 : FeatureFace(*tool.object, touch.points.front().moving);
     // Slide toward the device (proxy_slide.h), with the touched face's
     // friction when enabled.
     std::optional<SlideFriction> friction;

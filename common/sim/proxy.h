@@ -29,6 +29,9 @@ struct ProxyState {
   /// The touched object (index into the obstacles) and face, for materials.
   int obstacle = -1;
   FaceId face = -1;
+  /// The tool's own face at the touching point (its material meets the
+  /// touched face's when the obstacle is another tool).
+  FaceId tool_face = -1;
   /// Unit normal of the last touch, world frame, pointing out of the object.
   Vector3d normal_W = Vector3d::Zero();
   /// A contact point of the last touch, world frame, metres.

@@ -56,10 +56,10 @@ class Scene {
   absl::Status SeatDevice(ObjectId id, const Isometry3d& X_WD);
 
   /// Steps the tools on up to `threads` threads (the stepping one
-  /// included): tools never meet each other, so each is stepped alone, its
-  /// contacts apart from its proxy and force, and the results are
-  /// bit-identical whatever the number. Stage times are
-  /// then summed over the threads. Each new worker thread first runs
+  /// included): each tool's contacts apart from its proxy and force, the
+  /// proxies of tools that may meet one after the other (tool_stage.h),
+  /// and the results are bit-identical whatever the number. Stage times
+  /// are then summed over the threads. Each new worker thread first runs
   /// `on_worker_start` when set. INVALID_ARGUMENT outside [1, 64].
   absl::Status SetThreads(int threads, const std::function<void()>& on_worker_start = {});
 

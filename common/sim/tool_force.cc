@@ -10,7 +10,18 @@ bool Clamp(Vector3d& force, double clamp_n) {
   return true;
 }
 
+// x and y in series; 0 when either is 0.
+double InSeries(double x, double y) { return x > 0 && y > 0 ? x * y / (x + y) : 0.0; }
+
 }  // namespace
+
+Material TouchingMaterial(const Material& own, const Material& touched) {
+  return Material{.name = "",
+                  .stiffness_n_per_m = InSeries(own.stiffness_n_per_m, touched.stiffness_n_per_m),
+                  .damping_ns_per_m = InSeries(own.damping_ns_per_m, touched.damping_ns_per_m),
+                  .static_friction = touched.static_friction,
+                  .dynamic_friction = touched.dynamic_friction};
+}
 
 ToolForce SpringDamperForce(const Material& material, const ToolContact& contact, double clamp_n) {
   ToolForce out;
@@ -22,12 +33,17 @@ ToolForce SpringDamperForce(const Material& material, const ToolContact& contact
   return out;
 }
 
+ToolForce WithReaction(ToolForce force, const ToolForce& reaction, double clamp_n) {
+  force.force_W += reaction.force_W;
+  force.torque_W += reaction.torque_W;
+  force.clamped = Clamp(force.force_W, clamp_n) || force.clamped;
+  return force;
+}
+
 ToolForce WithPushReaction(ToolForce force, const Vector3d& push_impulse_W, double step_s,
                            double clamp_n) {
   if (push_impulse_W.isZero()) return force;
-  force.force_W -= push_impulse_W / step_s;
-  force.clamped = Clamp(force.force_W, clamp_n) || force.clamped;
-  return force;
+  return WithReaction(force, {.force_W = -push_impulse_W / step_s}, clamp_n);
 }
 
 }  // namespace hs

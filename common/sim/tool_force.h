@@ -33,10 +33,22 @@ struct ToolForce {
   bool clamped = false;
 };
 
+/// The material a tool's face `own` meets another tool's face `touched`
+/// with: their stiffnesses and their dampings in series (two springs
+/// pressed together: 1/k = 1/k_own + 1/k_touched); the friction is the
+/// touched face's, as the proxy slides with it (proxy.h), and the name
+/// empty (no allocation per step).
+Material TouchingMaterial(const Material& own, const Material& touched);
+
 /// F = k (p_WP - p_WD) - c (v_WD . n) n with the touched material's k
 /// (stiffness_n_per_m) and c (damping_ns_per_m), scaled down to
 /// `clamp_n` newtons when longer; torque = (p_WC - p_WP) x F.
 ToolForce SpringDamperForce(const Material& material, const ToolContact& contact, double clamp_n);
+
+/// `force` plus `reaction` (a force and a torque, world frame, N and N*m,
+/// e.g. another tool's push turned round), scaled down to `clamp_n` again
+/// (clamped stays set once set).
+ToolForce WithReaction(ToolForce force, const ToolForce& reaction, double clamp_n);
 
 /// `force` with the reaction of the free bodies the tool pushed this step:
 /// they push back with the impulse they took (`push_impulse_W`, world

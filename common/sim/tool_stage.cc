@@ -16,6 +16,11 @@ namespace {
 // than this many shortest box edges in one step may pass through.
 constexpr int kMaxSubsteps = 256;
 
+// The contact ProxiesPenetrate reconstructs, kept from step to step.
+struct StartContact {
+  ContactSet contact;
+};
+
 void AddStats(StageStatsTable& to, StageStatsTable& from) {
   for (int e = 0; e < kNumEffects; ++e) {
     to[e].runs += from[e].runs;
@@ -80,22 +85,39 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
   }
   // Each tool's step is two halves that read the same state and write apart
   // (its contacts; its proxy and force), so they run at once too: a scene
-  // of one tool uses a second core as well. A half with no stage to run
-  // only clears its part of the frame, here, and takes no thread.
+  // of one tool uses a second core as well. The proxy halves of tools that
+  // may meet run one after the other as one job (an island). A half with
+  // no stage to run only clears its part of the frame, here, and takes no
+  // thread.
   const bool contacts = stages.Has(Effect::kCollision) || stages.Has(Effect::kContactSet);
   const bool proxy = stages.Has(Effect::kReversingVector);
-  halves_.clear();
+  jobs_.clear();
   for (int i = 0; i < static_cast<int>(tools_.size()); ++i) {
-    for (const bool is_contacts : {true, false}) {
-      if (is_contacts ? contacts : proxy) {
-        halves_.push_back({i, is_contacts});
-      } else {
-        StepHalf({i, is_contacts}, stages, frames);
-      }
+    scratch_[i].X_WP_now = tools_[i].X_WP;
+    if (contacts) {
+      jobs_.push_back({i, true});
+    } else {
+      RunJob({i, true}, stages, frames);
     }
+    if (!proxy) StepProxy(i, {}, stages, frames[i], scratch_[i]);
   }
-  workers.ForEach(static_cast<int>(halves_.size()),
-                  [&](int k) { StepHalf(halves_[k], stages, frames); });
+  if (proxy) {
+    reach_boxes_.resize(tools_.size());
+    for (size_t i = 0; i < tools_.size(); ++i) {
+      const Tool& tool = tools_[i];
+      const SceneObjects::Object& t = objects_[tool.id];
+      // The proxy only moves toward the device: every pose it takes lies
+      // within the device's distance of the device pose (plus a stand-off
+      // per slide, far under the margin added here).
+      const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
+                           1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
+      reach_boxes_[i] = GrowBox(WorldBox(t.object, tool.X_WD), reach);
+    }
+    islands_.Group(reach_boxes_);
+    for (int k = 0; k < islands_.size(); ++k) jobs_.push_back({k, false});
+  }
+  workers.ForEach(static_cast<int>(jobs_.size()), [&](int k) { RunJob(jobs_[k], stages, frames); });
+  if (stages.Has(Effect::kForce)) AddToolReactions(frames);
   for (size_t i = 0; i < tools_.size(); ++i) {
     Tool& tool = tools_[i];
     // A seated proxy came from the home pose: free bodies meet no motion.
@@ -109,13 +131,41 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
   }
 }
 
-void ToolStage::StepHalf(ToolHalf half, EffectSet stages, std::vector<ToolFrame>& frames) {
-  ToolScratch& scratch = scratch_[half.tool];
-  const ScratchScope scope(half.contacts ? scratch.contacts_space : scratch.proxy_space);
-  if (half.contacts) {
-    StepContacts(tools_[half.tool], stages, frames[half.tool], scratch);
-  } else {
-    StepProxy(tools_[half.tool], stages, frames[half.tool], scratch);
+void ToolStage::RunJob(StepJob job, EffectSet stages, std::vector<ToolFrame>& frames) {
+  if (!job.contacts) {
+    StepIsland(islands_.island(job.index), stages, frames);
+    return;
+  }
+  ToolScratch& scratch = scratch_[job.index];
+  const ScratchScope scope(scratch.contacts_space);
+  StepContacts(tools_[job.index], stages, frames[job.index], scratch);
+}
+
+void ToolStage::StepIsland(std::span<const int> island, EffectSet stages,
+                           std::vector<ToolFrame>& frames) {
+  for (const int i : island) {
+    ToolScratch& scratch = scratch_[i];
+    const ScratchScope scope(scratch.proxy_space);
+    StepProxy(i, island, stages, frames[i], scratch);
+    scratch.X_WP_now = frames[i].X_WP;
+  }
+}
+
+void ToolStage::AddToolReactions(std::vector<ToolFrame>& frames) {
+  for (size_t i = 0; i < tools_.size(); ++i) {
+    const ToolScratch& pusher = scratch_[i];
+    if (pusher.touched_tool < 0) continue;
+    ToolFrame& pushed = frames[index_[pusher.touched_tool]];
+    // The pushed tool takes the force turned round at the touching point,
+    // its torque about its own origin (tool_force.h).
+    const Vector3d force_W = -pusher.force_from_tool.force_W;
+    const ToolForce force = WithReaction(
+        {pushed.force_W, pushed.torque_W, pushed.force_clamped},
+        {.force_W = force_W, .torque_W = (pusher.p_WC - pushed.X_WP.translation()).cross(force_W)},
+        options_.force_clamp_n);
+    pushed.force_W = force.force_W;
+    pushed.torque_W = force.torque_W;
+    pushed.force_clamped = force.clamped;
   }
 }
 
@@ -140,16 +190,11 @@ void ToolStage::FindCandidates(const Tool& tool, Candidates which, ToolScratch& 
   std::sort(candidates.begin(), candidates.end());
 }
 
-void ToolStage::FindProxyObstacles(const Tool& tool, ToolScratch& scratch) const {
+void ToolStage::FindProxyObstacles(int index, std::span<const int> island,
+                                   ToolScratch& scratch) const {
   scratch.proxy_obstacles.clear();
   scratch.proxy_obstacle_ids.clear();
-  const SceneObjects::Object& t = objects_[tool.id];
-  // The proxy only moves toward the device: every pose it takes lies within
-  // the device's distance of the device pose (plus a stand-off per slide,
-  // far under the margin added here).
-  const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
-                       1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
-  const AlignedBox3d box = GrowBox(WorldBox(t.object, tool.X_WD), reach);
+  const AlignedBox3d& box = reach_boxes_[index];
   const std::vector<ObjectId>& ids = objects_.obstacle_ids();
   for (size_t k = 0; k < ids.size(); ++k) {
     if (options_.broad_phase &&
@@ -158,6 +203,58 @@ void ToolStage::FindProxyObstacles(const Tool& tool, ToolScratch& scratch) const
     }
     scratch.proxy_obstacles.push_back(objects_.obstacles()[k]);
     scratch.proxy_obstacle_ids.push_back(ids[k]);
+  }
+  for (const int other : island) {
+    const ObjectId id = tools_[other].id;
+    const Isometry3d& X_WP = scratch_[other].X_WP_now;
+    if (other == index || !box.intersects(objects_.GrownBox(id, X_WP)) ||
+        ProxiesPenetrate(index, other)) {
+      continue;
+    }
+    scratch.proxy_obstacles.push_back(objects_.Posed(id, X_WP));
+    scratch.proxy_obstacle_ids.push_back(id);
+  }
+}
+
+bool ToolStage::ProxiesPenetrate(int index, int other) const {
+  const Tool& tool = tools_[index];
+  Isometry3d X_start = tool.X_WD;  // the device's orientation, where the proxy is
+  X_start.translation() = tool.X_WP.translation();
+  const PosedObject moving = objects_.Posed(tool.id, X_start);
+  const PosedObject fixed = objects_.Posed(tools_[other].id, scratch_[other].X_WP_now);
+  const absl::StatusOr<bool> colliding = AreColliding(moving, fixed, options_.relative_tolerance);
+  // Proxies that touched last step stand off each other: only a device
+  // seated into another tool, or tools placed touching, start in touch.
+  if (colliding.ok() && !*colliding) return false;
+  ContactSet& contact = Scratch<StartContact>().contact;
+  const absl::Status status =
+      ComputeContact(moving, fixed,
+                     {.direction_W = X_start * moving.object->bounding_box().center() -
+                                     fixed.X_WO * fixed.object->bounding_box().center(),
+                      .relative_tolerance = options_.relative_tolerance},
+                     contact);
+  return !status.ok() || contact.penetrating;
+}
+
+void ToolStage::FindToolContacts(const Tool& tool, ToolFrame& frame, ToolScratch& scratch) const {
+  const AlignedBox3d box = objects_.GrownBox(tool.id, tool.X_WD);
+  const PosedObject device = objects_.Posed(tool.id, tool.X_WD);
+  bool added = false;
+  for (const Tool& other : tools_) {
+    if (other.id == tool.id || !box.intersects(objects_.GrownBox(other.id, other.X_WD))) continue;
+    const absl::StatusOr<bool> colliding =
+        AreColliding(device, objects_.Posed(other.id, other.X_WD), options_.relative_tolerance);
+    if (!colliding.ok() || !*colliding) continue;
+    PairContact& pair = AddPairContact(frame.contacts, scratch.spare_contacts);
+    pair.object = other.id;
+    pair.substep = frame.substeps;
+    pair.contact.colliding = true;
+    added = true;
+  }
+  // One entry per object, by id, as ToolFrame::contacts promises.
+  if (added) {
+    std::sort(frame.contacts.begin(), frame.contacts.end(),
+              [](const PairContact& x, const PairContact& y) { return x.object < y.object; });
   }
 }
 
@@ -205,6 +302,7 @@ void ToolStage::FindContacts(const Tool& tool, bool continuous, ToolFrame& frame
     pair.substep = substep;
     pair.contact.colliding = true;
   }
+  FindToolContacts(tool, frame, scratch);
 }
 
 void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& frame,
@@ -247,6 +345,10 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
   along_step.continuous = true;
   for (PairContact& pair : frame.contacts) {
     const SceneObjects::Object& o = objects_[pair.object];
+    if (o.kind == ObjectKind::kTool) {
+      ComputeToolContact(tool, tools_[index_[pair.object]], at_device, pair.contact);
+      continue;
+    }
     const PosedObject other = objects_.Posed(pair.object, o.X_WO);
     // A pair found at an earlier sub-step is reported at that sub-step's
     // pose, along the motion: the tool passed through and no longer
@@ -269,8 +371,30 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
   }
 }
 
-void ToolStage::StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
-                          ToolScratch& scratch) const {
+void ToolStage::ComputeToolContact(const Tool& tool, const Tool& other, const ContactQuery& query,
+                                   ContactSet& contact) const {
+  // Both devices went in from their proxies, which the last step left
+  // apart: reversing the one's way in relative to the other's ends where
+  // the proxies stood.
+  const Vector3d from_proxies = (tool.X_WD.translation() - tool.X_WP.translation()) -
+                                (other.X_WD.translation() - other.X_WP.translation());
+  const Vector3d motion = (tool.X_WD.translation() - tool.X_WD_previous.translation()) -
+                          (other.X_WD.translation() - other.X_WD_previous.translation());
+  ContactQuery relative = query;
+  relative.direction_W = from_proxies.squaredNorm() > 0 ? from_proxies : motion;
+  relative.depth_hint_m = from_proxies.norm();
+  const absl::Status status = ComputeContact(
+      objects_.Posed(tool.id, tool.X_WD), objects_.Posed(other.id, other.X_WD), relative, contact);
+  if (!status.ok()) {  // as the collision stage left it
+    ClearContactSet(contact);
+    contact.colliding = true;
+  }
+}
+
+void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stages,
+                          ToolFrame& frame, ToolScratch& scratch) const {
+  const Tool& tool = tools_[index];
+  scratch.touched_tool = -1;
   const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
   StageStatsTable& stats = scratch.proxy_stats;
   frame.X_WP = tool.X_WD;
@@ -288,7 +412,7 @@ void ToolStage::StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
     StageTimer timer(stats[static_cast<int>(Effect::kReversingVector)]);
     const ProxyOptions options{.relative_tolerance = options_.relative_tolerance,
                                .friction = stages.Has(Effect::kFriction)};
-    FindProxyObstacles(tool, scratch);
+    FindProxyObstacles(index, island, scratch);
     absl::StatusOr<ProxyState> moved = MoveProxy(objects_.Posed(tool.id, tool.X_WD), tool.X_WP,
                                                  tool.X_WD, scratch.proxy_obstacles, options);
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
@@ -306,17 +430,26 @@ void ToolStage::StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame,
   }
   if (stages.Has(Effect::kForce) && proxy.touching) {
     StageTimer timer(stats[static_cast<int>(Effect::kForce)]);
-    const ToolForce force =
-        SpringDamperForce(objects_[proxy.obstacle].object.face_material(proxy.face),
-                          ToolContact{.p_WD = tool.X_WD.translation(),
-                                      .p_WP = proxy.X_WP.translation(),
-                                      .v_WD = motion / options_.step_s,
-                                      .normal_W = proxy.normal_W,
-                                      .p_WC = proxy.p_WC},
-                          options_.force_clamp_n);
+    const SceneObjects::Object& touched = objects_[proxy.obstacle];
+    const bool a_tool = touched.kind == ObjectKind::kTool;
+    const Material& face = touched.object.face_material(proxy.face);
+    const ToolForce force = SpringDamperForce(
+        a_tool ? TouchingMaterial(objects_[tool.id].object.face_material(proxy.tool_face), face)
+               : face,
+        ToolContact{.p_WD = tool.X_WD.translation(),
+                    .p_WP = proxy.X_WP.translation(),
+                    .v_WD = motion / options_.step_s,
+                    .normal_W = proxy.normal_W,
+                    .p_WC = proxy.p_WC},
+        options_.force_clamp_n);
     frame.force_W = force.force_W;
     frame.torque_W = force.torque_W;
     frame.force_clamped = force.clamped;
+    if (a_tool) {
+      scratch.touched_tool = proxy.obstacle;
+      scratch.force_from_tool = force;
+      scratch.p_WC = proxy.p_WC;
+    }
   }
 }
 

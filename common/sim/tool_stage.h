@@ -2,10 +2,17 @@
 // The tools of a scene and their step. A tool is posed by its device; each
 // step finds what it touches (collision, sub-steps, contact sets: the
 // contacts half) and moves its proxy and renders its force (the proxy
-// half). The halves of every tool read the state the last step left and
-// write apart, so they run on the scene's worker threads at once, with
-// results bit-identical whatever the number of threads.
+// half). Tools meet each other: a tool's contacts include the other tools
+// at their device poses, and its proxy keeps out of the other tools'
+// proxies. The tools whose proxies may meet this step form an island
+// (tool_islands.h) whose proxies move one after the other, in tool order;
+// the contacts halves and the islands read the state the last step left
+// and write apart, so they run on the scene's worker threads at once, with
+// results bit-identical whatever the number of threads. A tool whose
+// proxy touches another tool pushes it back: the second device feels the
+// first one's force turned round (action and reaction).
 
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -13,6 +20,8 @@
 #include "common/sim/scene_objects.h"
 #include "common/sim/scene_options.h"
 #include "common/sim/step_frame.h"
+#include "common/sim/tool_force.h"
+#include "common/sim/tool_islands.h"
 #include "common/sim/worker_pool.h"
 
 namespace hs {
@@ -68,9 +77,18 @@ class ToolStage {
     // The contacts half. FindCandidates: indices into targets(), ascending.
     std::vector<int> candidates;
     // The proxy half. FindProxyObstacles: a subset of obstacles(), in
-    // order, and their ids.
+    // order, then the tools of the island, and their ids.
     std::vector<PosedObject> proxy_obstacles;
     std::vector<ObjectId> proxy_obstacle_ids;
+    // The proxy half: the proxy pose as far as this step has moved it,
+    // which the tools after it in its island keep out of.
+    Isometry3d X_WP_now = Isometry3d::Identity();
+    // The proxy half, for the reaction: the tool its proxy touches (-1:
+    // none, or the force stage did not run), the force it feels from it
+    // and the touching point, world frame.
+    ObjectId touched_tool = -1;
+    ToolForce force_from_tool;
+    Vector3d p_WC = Vector3d::Zero();
     // The contacts half: the contact sets of the last step's pairs, their
     // storage kept for this step's (a step allocates nothing once the
     // vectors are large enough).
@@ -84,10 +102,11 @@ class ToolStage {
     ScratchSpace contacts_space;
     ScratchSpace proxy_space;
   };
-  // One half of tool `tool`'s step (an index into tools_).
-  struct ToolHalf {
-    int tool;
-    bool contacts;  // else the proxy half
+  // A piece of a step for one worker: the contacts half of tool `index`
+  // (into tools_), or the proxy halves of island `index`.
+  struct StepJob {
+    int index;
+    bool contacts;
   };
   enum class Candidates {
     kAtDevicePose,  // the broad phase's pairs at the device pose
@@ -95,18 +114,36 @@ class ToolStage {
     kEvery,         // every target (options_.broad_phase off)
   };
 
-  void StepHalf(ToolHalf half, EffectSet stages, std::vector<ToolFrame>& frames);
+  void RunJob(StepJob job, EffectSet stages, std::vector<ToolFrame>& frames);
+  // The proxy halves of an island's tools (indices into tools_), in order.
+  void StepIsland(std::span<const int> island, EffectSet stages, std::vector<ToolFrame>& frames);
+  // Adds to the force of each tool another tool's proxy touched that
+  // tool's force turned round.
+  void AddToolReactions(std::vector<ToolFrame>& frames);
   // The contacts half: frame.contacts and frame.substeps (collision,
   // contact sets).
   void StepContacts(const Tool& tool, EffectSet stages, ToolFrame& frame,
                     ToolScratch& scratch) const;
   // The proxy half: frame.X_WP and the force (reversing vector, force,
   // friction).
-  void StepProxy(const Tool& tool, EffectSet stages, ToolFrame& frame, ToolScratch& scratch) const;
+  // `island` holds the tool (indices into tools_).
+  void StepProxy(int index, std::span<const int> island, EffectSet stages, ToolFrame& frame,
+                 ToolScratch& scratch) const;
   // Fills scratch.candidates with the targets the tool may touch this step.
   void FindCandidates(const Tool& tool, Candidates which, ToolScratch& scratch) const;
-  // Fills scratch.proxy_obstacles with the fixed objects the proxy may touch.
-  void FindProxyObstacles(const Tool& tool, ToolScratch& scratch) const;
+  // Fills scratch.proxy_obstacles with the fixed objects and the proxies of
+  // the other tools of `island` that tool `index`'s proxy may touch.
+  void FindProxyObstacles(int index, std::span<const int> island, ToolScratch& scratch) const;
+  // Whether tool `index`'s proxy, turned to its device's orientation,
+  // already penetrates tool `other`'s proxy (a device seated where
+  // another tool stands): they do not block each other until apart.
+  bool ProxiesPenetrate(int index, int other) const;
+  // The contact of `tool` with `other`, both at their device poses, along
+  // the way in of the one relative to the other.
+  void ComputeToolContact(const Tool& tool, const Tool& other, const ContactQuery& query,
+                          ContactSet& contact) const;
+  // Adds a pair for each other tool the tool touches at the device poses.
+  void FindToolContacts(const Tool& tool, ToolFrame& frame, ToolScratch& scratch) const;
   // The collision stage of one tool, sub-stepped when its step is long.
   void FindContacts(const Tool& tool, bool continuous, ToolFrame& frame,
                     ToolScratch& scratch) const;
@@ -118,8 +155,12 @@ class ToolStage {
   std::vector<int> index_;
   // Per tool, in tools_' order.
   std::vector<ToolScratch> scratch_;
-  // The halves of this step that have a stage to run.
-  std::vector<ToolHalf> halves_;
+  // The jobs of this step that have a stage to run.
+  std::vector<StepJob> jobs_;
+  // Per tool: the box of every pose its proxy may take this step; and the
+  // islands they make.
+  std::vector<AlignedBox3d> reach_boxes_;
+  ToolIslands islands_;
   // The broad phase's pairs at the device poses, once per step that runs
   // the collision stage without continuous collision.
   std::vector<std::pair<ObjectId, ObjectId>> broad_pairs_;

@@ -6,12 +6,30 @@
 
 namespace hs {
 
+/// A face of `object` that holds `feature` (the face itself, else the
+/// first face of the edge or vertex; 0 for none).
+inline FaceId FeatureFace(const HapticObject& object, const Feature& feature) {
+  switch (feature.kind) {
+    case FeatureKind::kFace:
+      return feature.id;
+    case FeatureKind::kEdge:
+      return object.EdgeFaces(feature.id).front();
+    case FeatureKind::kVertex:
+      return object.VertexFaces(feature.id).front();
+    case FeatureKind::kNone:
+      break;
+  }
+  return 0;
+}
+
 /// A face of `object` that holds the contact `side` (its first face, else a
 /// face of its first edge, else of its first vertex; 0 when it is empty).
 inline FaceId TouchedFace(const HapticObject& object, const SideContact& side) {
   if (!side.faces.empty()) return side.faces.front();
-  if (!side.edges.empty()) return object.EdgeFaces(side.edges.front()).front();
-  if (!side.vertices.empty()) return object.VertexFaces(side.vertices.front()).front();
+  if (!side.edges.empty()) return FeatureFace(object, {FeatureKind::kEdge, side.edges.front()});
+  if (!side.vertices.empty()) {
+    return FeatureFace(object, {FeatureKind::kVertex, side.vertices.front()});
+  }
   return 0;
 }
 

@@ -100,5 +100,34 @@ TEST(ToolForceTest, PushReactionAddsTheImpulseOverTheStep) {
   EXPECT_FALSE(none.clamped);
 }
 
+// Two tools' faces meet as springs in series: 1000 and 3000 N/m make
+// 1000 * 3000 / 4000 = 750 N/m; dampings 2 and 2 make 1; the friction is
+// the touched face's. A face with no damping makes none.
+TEST(ToolForceTest, TouchingToolsMeetInSeries) {
+  Material touched = Steel();
+  touched.stiffness_n_per_m = 3000;
+  touched.static_friction = 0.5;
+  touched.dynamic_friction = 0.4;
+  const Material m = TouchingMaterial(Steel(), touched);
+  EXPECT_NEAR(m.stiffness_n_per_m, 750, 1e-12);
+  EXPECT_NEAR(m.damping_ns_per_m, 1, 1e-15);
+  EXPECT_EQ(m.static_friction, 0.5);
+  EXPECT_EQ(m.dynamic_friction, 0.4);
+  touched.damping_ns_per_m = 0;
+  EXPECT_EQ(TouchingMaterial(Steel(), touched).damping_ns_per_m, 0);
+}
+
+// A reaction adds force and torque, and is clamped with the sum.
+TEST(ToolForceTest, ReactionAddsForceAndTorque) {
+  const ToolForce own{.force_W = {0, 0, 2}, .torque_W = {0, -0.02, 0}};
+  const ToolForce sum = WithReaction(own, {.force_W = {3, 0, 0}, .torque_W = {0, 0, 0.01}}, 10);
+  EXPECT_EQ(sum.force_W, Vector3d(3, 0, 2));
+  EXPECT_EQ(sum.torque_W, Vector3d(0, -0.02, 0.01));
+  EXPECT_FALSE(sum.clamped);
+  const ToolForce clamped = WithReaction(own, {.force_W = {3, 0, 0}}, 1);
+  EXPECT_NEAR(clamped.force_W.norm(), 1, 1e-12);
+  EXPECT_TRUE(clamped.clamped);
+}
+
 }  // namespace
 }  // namespace hs

@@ -4,13 +4,13 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <utility>
 #include <vector>
 
 #include "common/model/procedural.h"
 #include "common/sim/scene.h"
 #include "tests/common/sim/at_pose.h"
+#include "tests/common/sim/same_tool_frame.h"
 
 namespace hs {
 namespace {
@@ -57,21 +57,8 @@ TEST(ToolStageTest, ThreadsGiveIdenticalFrames) {
       }
       const StepFrame a = serial->Step();
       const StepFrame& b = parallel->Step();
-      ASSERT_EQ(a.tools.size(), b.tools.size());
-      for (size_t t = 0; t < a.tools.size(); ++t) {
-        const ToolFrame& x = a.tools[t];
-        const ToolFrame& y = b.tools[t];
-        EXPECT_EQ(std::memcmp(x.force_W.data(), y.force_W.data(), sizeof(double) * 3), 0);
-        EXPECT_TRUE(x.X_WP.matrix() == y.X_WP.matrix());
-        ASSERT_EQ(x.contacts.size(), y.contacts.size());
-        for (size_t k = 0; k < x.contacts.size(); ++k) {
-          EXPECT_EQ(x.contacts[k].object, y.contacts[k].object);
-          EXPECT_EQ(x.contacts[k].contact.depth_m, y.contacts[k].contact.depth_m);
-          EXPECT_EQ(x.contacts[k].contact.fixed.faces, y.contacts[k].contact.fixed.faces);
-          EXPECT_EQ(x.contacts[k].contact.moving.vertices, y.contacts[k].contact.moving.vertices);
-        }
-        if (x.force_W.norm() > 0) ++touching_steps;
-      }
+      ExpectSameToolFrames(a, b);
+      for (const ToolFrame& tool : a.tools) touching_steps += tool.force_W.norm() > 0;
     }
     // The test means something only if the tools did touch the organ.
     EXPECT_GT(touching_steps, kTools * 10);
