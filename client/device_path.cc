@@ -96,7 +96,7 @@ absl::StatusOr<Motion> ParseMotion(const std::string& name) {
 Vector3d MotionOffset(Motion motion, double t_s, const MotionParams& params) {
   const double t = t_s + params.phase_s;
   if (motion == Motion::kPress) {
-    return Vector3d(0, 0, -params.depth_m * 0.5 * (1 - std::cos(2 * M_PI * t)));
+    return params.press_direction * params.depth_m * 0.5 * (1 - std::cos(2 * M_PI * t));
   }
   const double down = params.depth_m * std::min(1.0, std::max(0.0, t / 0.25));
   return Vector3d(params.amplitude_m * std::sin(M_PI * t), 0, -down);

@@ -34,8 +34,8 @@ absl::StatusOr<std::string> DevicePathScene(const std::string& path);
 
 /// The built-in motions.
 enum class Motion {
-  /// Straight down by `depth_m` and back up, once a second (a raised
-  /// cosine), starting at `start`.
+  /// Straight down (MotionParams::press_direction) by `depth_m` and back,
+  /// once a second (a raised cosine), starting at `start`.
   kPress,
   /// Down by `depth_m` over the first 0.25 s, then side to side along
   /// world x by +-`amplitude_m` every 2 s (a sine).
@@ -48,6 +48,8 @@ absl::StatusOr<Motion> ParseMotion(const std::string& name);
 /// The shape of a built-in motion.
 struct MotionParams {
   double depth_m = 0.02;
+  /// The way a press goes (unit, world frame): down unless told.
+  Vector3d press_direction = -Vector3d::UnitZ();
   double amplitude_m = 0.05;
   /// Seconds added to the motion's clock (a phase, for many devices).
   double phase_s = 0;

@@ -18,7 +18,8 @@ struct WatchArgs {
   /// "poses", "contacts", "forces"; empty: all.
   std::vector<std::string> parts;
   /// One line per second: frames, steps, drops, missed steps, contacts,
-  /// largest force, step time; instead of one line per frame.
+  /// largest force, tool clashes since the scene began (count and time),
+  /// step time; instead of one line per frame.
   bool summary = false;
   /// JSON lines (haptics.v1.Frame, or the summary's fields).
   bool json = false;

@@ -8,8 +8,13 @@ void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const std:
   frame.set_step(s.step);
   frame.set_time_s(s.time_s);
   StepFrameToProto(s.frame, *s.names, parts, &frame);
-  for (size_t i = 0; i < s.frame.tools.size() && !tool.empty(); ++i) {
-    if ((*s.names)[s.frame.tools[i].tool] != tool) continue;
+  for (size_t i = 0; i < s.frame.tools.size(); ++i) {
+    const std::string& name = (*s.names)[s.frame.tools[i].tool];
+    if (s.holders) {
+      const auto holder = s.holders->find(name);
+      if (holder != s.holders->end()) frame.mutable_tools(i)->set_holder(holder->second);
+    }
+    if (name != tool) continue;
     frame.set_last_pose_sequence(s.applied[i].sequence);
     frame.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
   }

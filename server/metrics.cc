@@ -1,5 +1,7 @@
 #include "server/metrics.h"
 
+#include <map>
+
 #include <prometheus/counter.h>
 #include <prometheus/exposer.h>
 #include <prometheus/gauge.h>
@@ -84,6 +86,14 @@ Metrics::Metrics() : registry_(std::make_shared<prometheus::Registry>()) {
                     .Help("1 while the Agones SDK answered the last request, else 0")
                     .Register(*registry_)
                     .Add({});
+  tool_clashes_ = &BuildCounter()
+                       .Name("hs_tool_clashes_total")
+                       .Help("Times two tools of a scene began to touch, by scene and tool pair")
+                       .Register(*registry_);
+  tool_clash_seconds_ = &BuildCounter()
+                             .Name("hs_tool_clash_seconds_total")
+                             .Help("Simulated time two tools of a scene touched, by scene and pair")
+                             .Register(*registry_);
 }
 
 Metrics::~Metrics() = default;
@@ -133,6 +143,14 @@ void Metrics::AddRejected(const std::string& method, const std::string& code) {
 void Metrics::AddAgonesRequest(const std::string& call, bool ok) {
   agones_requests_->Add({{"call", call}, {"result", ok ? "ok" : "error"}}).Increment();
   agones_up_->Set(ok ? 1 : 0);
+}
+
+void Metrics::AddToolClash(const std::string& scene, const std::string& tool_a,
+                           const std::string& tool_b, bool began, double seconds) {
+  const std::map<std::string, std::string> labels = {
+      {"scene", scene}, {"tool_a", tool_a}, {"tool_b", tool_b}};
+  if (began) tool_clashes_->Add(labels).Increment();
+  tool_clash_seconds_->Add(labels).Increment(seconds);
 }
 
 std::string Metrics::Text() const {

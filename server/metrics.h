@@ -53,6 +53,11 @@ class Metrics {
   /// last request was answered.
   void AddAgonesRequest(const std::string& call, bool ok);
 
+  /// Tools `tool_a` and `tool_b` of scene `scene` touched for `seconds` of
+  /// simulated time, having begun to (`began`) at that step or before.
+  void AddToolClash(const std::string& scene, const std::string& tool_a, const std::string& tool_b,
+                    bool began, double seconds);
+
   /// The text exposition of every metric (as /metrics serves it).
   std::string Text() const;
 
@@ -73,6 +78,8 @@ class Metrics {
   prometheus::Family<prometheus::Counter>* rejected_;
   prometheus::Family<prometheus::Counter>* agones_requests_;
   prometheus::Gauge* agones_up_;
+  prometheus::Family<prometheus::Counter>* tool_clashes_;
+  prometheus::Family<prometheus::Counter>* tool_clash_seconds_;
 };
 
 }  // namespace hs

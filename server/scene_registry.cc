@@ -89,8 +89,11 @@ absl::StatusOr<RunnerInfo> SceneRegistry::Create(pb::SceneSpec spec, const std::
     recorder = *std::move(started);
   }
   if (keep && catalogue_) HS_RETURN_IF_ERROR(catalogue_->Put(spec));
-  auto runner = std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_,
-                                              limits_.realtime_priority, std::move(recorder));
+  auto runner =
+      std::make_shared<SceneRunner>(spec, std::move(loaded), metrics_,
+                                    RunnerOptions{.realtime_priority = limits_.realtime_priority,
+                                                  .device_timeout_s = limits_.device_timeout_s},
+                                    std::move(recorder));
   std::lock_guard lock(mu_);
   scenes_[spec.name()] = runner;
   return runner->Info();

@@ -47,6 +47,9 @@ struct ServerLimits {
   /// cores, so it is the operator's choice (haptic-server
   /// --realtime-priority), checked when the server starts.
   int realtime_priority = 0;
+  /// A device silent this long (seconds, 0: never) loses its tool
+  /// (RunnerOptions::device_timeout_s).
+  double device_timeout_s = 2.0;
   /// What each caller may hold at once.
   CallerLimits per_caller;
 };

@@ -39,19 +39,22 @@ Clock::time_point AtNanoseconds(int64_t ns) {
 }  // namespace
 
 SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,
-                         int realtime_priority, std::unique_ptr<SessionRecorder> recorder)
+                         const RunnerOptions& options, std::unique_ptr<SessionRecorder> recorder)
     : metrics_(metrics),
       step_s_(scene.scene->options().step_s),
+      device_timeout_s_(options.device_timeout_s),
+      device_timeout_status_(absl::DeadlineExceededError(absl::StrCat(
+          "no pose came for ", options.device_timeout_s, " s: the tool is released where it was"))),
       name_(spec.name()),
       spec_(std::move(spec)),
       loaded_(std::move(scene)),
       names_(std::make_shared<const std::vector<std::string>>(loaded_.names)),
       recorder_(std::move(recorder)),
       streams_([this](bool fresh) { SetDevicesFresh(fresh); }),
-      fan_out_(streams_, metrics, realtime_priority) {
+      fan_out_(streams_, metrics, options.realtime_priority) {
   loaded_.scene->SetNeeded(EffectSet());
   // Should no thread be had, fan_out_ stops as the members go.
-  thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
+  thread_ = std::thread([this, priority = options.realtime_priority] { Run(priority); });
 }
 
 SceneRunner::~SceneRunner() { Stop(absl::UnavailableError("the scene was deleted")); }
@@ -115,7 +118,17 @@ void SceneRunner::Run(int realtime_priority) {
   streams_.CloseAll(status);
 }
 
+void SceneRunner::EndSilentDevices() {
+  if (device_timeout_s_ <= 0) return;
+  released_.clear();
+  streams_.EndSilentDevices(Clock::now() - std::chrono::duration_cast<Clock::duration>(
+                                               std::chrono::duration<double>(device_timeout_s_)),
+                            device_timeout_status_, released_);
+  for (const std::string& tool : released_) RecordStream(false, tool, EffectSet());
+}
+
 int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
+  EndSilentDevices();
   const EffectSet needs = streams_.TakeFreshPoses(fresh_);
   SnapshotPool::Slot& slot = snapshots_.Take();
   StepSnapshot* snapshot = slot.snapshot.get();
@@ -141,6 +154,7 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     snapshot->time_s = static_cast<double>(step_) * step_s_;
     CopyFrame(frame, snapshot->frame, slot.storage);
     snapshot->names = names_;
+    snapshot->holders = fresh_.holders;
     snapshot->applied.clear();
     for (const ToolFrame& t : frame.tools) {
       const auto it = applied_.find(loaded_.names[t.tool]);
@@ -153,6 +167,12 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     }
     last_stats_ = scene.stats();
     metrics_.ObserveStep(1e-9 * static_cast<double>(snapshot->step_ns), delta);
+    for (const ToolClash& clash : frame.clashes) {
+      if (clash.touching) {
+        metrics_.AddToolClash(name_, loaded_.names[clash.tool_a], loaded_.names[clash.tool_b],
+                              clash.began, step_s_);
+      }
+    }
     snapshot->start_lag_ns = start_lag_ns;
     snapshot->missed_steps = missed_steps_;
     snapshot->missed_steps_off_cpu = missed_steps_off_cpu_;
@@ -162,18 +182,18 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   return step_ns;
 }
 
-absl::Status SceneRunner::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+absl::Status SceneRunner::AttachDevice(FrameSink* sink, const DeviceClaim& claim,
                                        const absl::Status* take_over) {
   bool displaced = false;
   absl::Status status = streams_.AttachDevice(
-      sink, tool, needs,
+      sink, claim,
       [this](const std::string& name) {
         std::lock_guard scene(scene_mu_);
         return FindTool(loaded_, name) >= 0;
       },
       take_over, &displaced);
-  if (displaced) RecordStream(false, tool, EffectSet());
-  if (status.ok()) RecordStream(true, tool, needs);
+  if (displaced) RecordStream(false, claim.tool, EffectSet());
+  if (status.ok()) RecordStream(true, claim.tool, claim.needs);
   return status;
 }
 

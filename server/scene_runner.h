@@ -41,16 +41,26 @@ struct RunnerInfo {
   std::vector<std::string> claimed_tools;
 };
 
+/// How a runner steps and minds its devices.
+struct RunnerOptions {
+  /// SCHED_FIFO priority of the stepping threads, 0: the default scheduler
+  /// (as far as the system allows: see CheckRealtimePriority).
+  int realtime_priority = 0;
+  /// A device that sends no pose for this long (seconds; 0: never) is
+  /// ended DEADLINE_EXCEEDED and its tool released; the tool stays where
+  /// its last pose put it.
+  double device_timeout_s = 2.0;
+};
+
 class SceneRunner {
  public:
-  /// Starts stepping `scene`, built from `spec`, on a thread under
-  /// SCHED_FIFO at `realtime_priority` when it is not 0 (as far as the
-  /// system allows: see CheckRealtimePriority). `metrics` outlives the
-  /// runner.
+  /// Starts stepping `scene`, built from `spec`, on a thread. `metrics`
+  /// outlives the runner.
   /// `recorder`, when given, records the session from the runner's
   /// first step (server/recording/session_recorder.h).
   SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,
-              int realtime_priority = 0, std::unique_ptr<SessionRecorder> recorder = nullptr);
+              const RunnerOptions& options = {},
+              std::unique_ptr<SessionRecorder> recorder = nullptr);
   /// Stop(UNAVAILABLE) if not stopped yet.
   ~SceneRunner();
   SceneRunner(const SceneRunner&) = delete;
@@ -60,12 +70,12 @@ class SceneRunner {
   /// stops the thread. Later calls do nothing.
   void Stop(const absl::Status& status);
 
-  /// Lets `sink` drive tool `tool` and receive every frame; the scene
-  /// computes `needs` (with prerequisites) from now on. NOT_FOUND when
-  /// there is no such tool, FAILED_PRECONDITION when another device holds
-  /// it (with `take_over`: that device's stream ends with that status
-  /// instead), UNAVAILABLE when stopped.
-  absl::Status AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+  /// Lets `sink` drive the claimed tool and receive every frame; the
+  /// scene computes the claim's needs (with prerequisites) from now on.
+  /// NOT_FOUND when there is no such tool, FAILED_PRECONDITION when
+  /// another device holds it (with `take_over`: that device's stream ends
+  /// with that status instead), UNAVAILABLE when stopped.
+  absl::Status AttachDevice(FrameSink* sink, const DeviceClaim& claim,
                             const absl::Status* take_over = nullptr);
   /// Lets `sink` receive every frame. UNAVAILABLE when stopped.
   absl::Status AttachViewer(FrameSink* sink, EffectSet needs);
@@ -95,6 +105,8 @@ class SceneRunner {
 
  private:
   void Run(int realtime_priority);
+  // Ends the devices silent for longer than the timeout (RunnerOptions).
+  void EndSilentDevices();
   // Returns the step's wall time, nanoseconds (workers included).
   int64_t StepOnce(int64_t start_lag_ns);
   // Records a stream's attach or detach ("" tool: a viewer), if recording.
@@ -104,6 +116,8 @@ class SceneRunner {
 
   Metrics& metrics_;
   const double step_s_;
+  const double device_timeout_s_;
+  const absl::Status device_timeout_status_;
   const std::string name_;
 
   // The simulation; only the runner's thread steps it, Replace swaps it.
@@ -123,10 +137,11 @@ class SceneRunner {
   bool stop_ = false;
   bool devices_fresh_ = false;
   absl::Status stop_status_;
-  int64_t missed_steps_ = 0;          // runner thread only
-  int64_t missed_steps_off_cpu_ = 0;  // runner thread only
-  FreshPoses fresh_;                  // runner thread only
-  SnapshotPool snapshots_;            // runner thread only
+  int64_t missed_steps_ = 0;           // runner thread only
+  int64_t missed_steps_off_cpu_ = 0;   // runner thread only
+  FreshPoses fresh_;                   // runner thread only
+  SnapshotPool snapshots_;             // runner thread only
+  std::vector<std::string> released_;  // runner thread only: tools of silent devices
 
   // Told of every step, edit and stream change, in order (under scene_mu_).
   std::unique_ptr<SessionRecorder> recorder_;

@@ -103,6 +103,11 @@ int main(int argc, char** argv) {
                  "default scheduler. A scene whose step outlasts its period then holds its cores")
       ->check(CLI::Range(0, 99))
       ->capture_default_str();
+  app.add_option("--device-timeout-s", options.limits.device_timeout_s,
+                 "A device that sends no pose for this long is ended (DEADLINE_EXCEEDED) and "
+                 "its tool released where it was; 0: never")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
   hs::AgonesOptions agones_options;
   app.add_option("--agones-health-interval-s", agones_options.health_interval_s,
                  "On Agones (AGONES_SDK_HTTP_PORT set): seconds between health pings")

@@ -106,6 +106,7 @@ class FrameStream : public Base, public FrameSink {
       return false;
     }
     caller_ = caller->id;
+    holder_ = caller->name;
     if (absl::Status s = registry_.AddClient(); !s.ok()) {
       Fail(s, method);
       return false;
@@ -136,7 +137,8 @@ class FrameStream : public Base, public FrameSink {
   std::mutex runner_mu_;
   std::shared_ptr<SceneRunner> runner_;
   FrameParts parts_;
-  std::string tool_;  // devices only
+  std::string tool_;    // devices only
+  std::string holder_;  // the caller's name (Caller::name), set by Open
 
  private:
   void Pump() {
@@ -214,12 +216,12 @@ class InteractReactor
              "Interact");
         return false;
       }
-      taken = absl::AbortedError("tool '" + open.tool() + "' was taken over by " + admin->id);
+      taken = absl::AbortedError("tool '" + open.tool() + "' was taken over by " + admin->name);
     }
     // Set before attaching: the scene thread reads it as soon as frames come.
     tool_ = open.tool();
-    if (absl::Status s =
-            runner_->AttachDevice(this, open.tool(), *needs, open.take_over() ? &taken : nullptr);
+    if (absl::Status s = runner_->AttachDevice(this, {open.tool(), *needs, holder_},
+                                               open.take_over() ? &taken : nullptr);
         !s.ok()) {
       Fail(s, "Interact");
       return false;

@@ -3,6 +3,7 @@
 // read-only copy of the step's frame with the server-side extras.
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +31,10 @@ struct AppliedInput {
   bool seat = false;
 };
 
+/// Tool name -> its holder's name (Caller::name), for the tools devices
+/// hold.
+using ToolHolders = std::map<std::string, std::string>;
+
 struct StepSnapshot {
   /// The runner's step id: 1 for the first step, +1 per step, across scene
   /// rebuilds (StepFrame::step restarts when the scene is rebuilt).
@@ -42,6 +47,8 @@ struct StepSnapshot {
   std::shared_ptr<const std::vector<std::string>> names;
   /// Per entry of frame.tools: the last device pose applied to it.
   std::vector<AppliedPose> applied;
+  /// Who held each tool at the step (shared until a device comes or goes).
+  std::shared_ptr<const ToolHolders> holders;
   /// The device poses applied just before this step, and the effects it
   /// was asked for (what a recording needs to re-run it).
   std::vector<AppliedInput> inputs;

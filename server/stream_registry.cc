@@ -4,36 +4,72 @@
 
 namespace hs {
 
-absl::Status StreamRegistry::AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+absl::Status StreamRegistry::AttachDevice(FrameSink* sink, const DeviceClaim& claim,
                                           const std::function<bool(const std::string&)>& has_tool,
                                           const absl::Status* take_over, bool* displaced) {
   std::lock_guard lock(mu_);
   if (closed_) return absl::UnavailableError("the scene is stopping");
-  if (!has_tool(tool))
-    return absl::NotFoundError(absl::StrCat("no tool '", tool, "' in the scene"));
+  if (!has_tool(claim.tool))
+    return absl::NotFoundError(absl::StrCat("no tool '", claim.tool, "' in the scene"));
   for (auto it = sinks_.begin(); it != sinks_.end(); ++it) {
-    if (it->second.tool != tool) continue;
+    if (it->second.tool != claim.tool) continue;
     if (take_over == nullptr) {
       return absl::FailedPreconditionError(
-          absl::StrCat("tool '", tool, "' is held by another device"));
+          absl::StrCat("tool '", claim.tool, "' is held by another device"));
     }
-    // Closed under the lock, as CloseAll does: its stream's end (Detach)
-    // waits for it, so the sink is still there.
-    it->first->Close(*take_over);
-    sinks_.erase(it);
-    pending_.erase(tool);
+    EndDeviceLocked(it, *take_over);
     if (displaced != nullptr) *displaced = true;
     break;
   }
-  sinks_[sink] = Attached{tool, needs};
+  sinks_[sink] = Attached{.tool = claim.tool,
+                          .needs = claim.needs,
+                          .holder = claim.holder,
+                          .heard = std::chrono::steady_clock::now()};
   ++devices_joined_;
+  UpdateHoldersLocked();
   return absl::OkStatus();
+}
+
+void StreamRegistry::EndDeviceLocked(std::map<FrameSink*, Attached>::iterator it,
+                                     const absl::Status& status) {
+  // Closed under the lock, as CloseAll does: its stream's end (Detach)
+  // waits for it, so the sink is still there.
+  it->first->Close(status);
+  pending_.erase(it->second.tool);
+  sinks_.erase(it);
+}
+
+void StreamRegistry::EndSilentDevices(std::chrono::steady_clock::time_point silent_since,
+                                      const absl::Status& status,
+                                      std::vector<std::string>& released) {
+  std::lock_guard lock(mu_);
+  const size_t before = released.size();
+  for (auto it = sinks_.begin(); it != sinks_.end();) {
+    const auto next = std::next(it);
+    if (!it->second.tool.empty() && it->second.heard < silent_since) {
+      released.push_back(it->second.tool);
+      EndDeviceLocked(it, status);
+    }
+    it = next;
+  }
+  if (released.size() == before) return;
+  UpdateHoldersLocked();
+  // The devices left may all have sent.
+  if (DevicesFreshLocked()) devices_fresh_(true);
+}
+
+void StreamRegistry::UpdateHoldersLocked() {
+  auto holders = std::make_shared<ToolHolders>();
+  for (const auto& [sink, attached] : sinks_) {
+    if (!attached.tool.empty()) (*holders)[attached.tool] = attached.holder;
+  }
+  holders_ = std::move(holders);
 }
 
 absl::Status StreamRegistry::AttachViewer(FrameSink* sink, EffectSet needs) {
   std::lock_guard lock(mu_);
   if (closed_) return absl::UnavailableError("the scene is stopping");
-  sinks_[sink] = Attached{"", needs};
+  sinks_[sink] = Attached{.needs = needs};
   ++viewers_joined_;
   return absl::OkStatus();
 }
@@ -44,6 +80,7 @@ std::optional<std::string> StreamRegistry::Detach(FrameSink* sink) {
   if (it == sinks_.end()) return std::nullopt;
   std::string tool = std::move(it->second.tool);
   sinks_.erase(it);
+  if (!tool.empty()) UpdateHoldersLocked();
   // The device that went may have been the only one not to have sent.
   if (DevicesFreshLocked()) devices_fresh_(true);
   return tool;
@@ -58,6 +95,7 @@ void StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD, const Appl
   const bool seat = !it->second.sent_pose || (pending.fresh && pending.seat);
   pending = PendingPose{X_WD, stamp, true, seat};
   it->second.sent_pose = true;
+  it->second.heard = std::chrono::steady_clock::now();
   if (DevicesFreshLocked()) devices_fresh_(true);
 }
 
@@ -72,6 +110,7 @@ EffectSet StreamRegistry::TakeFreshPoses(FreshPoses& fresh) {
     ++fresh.count;
     pose.fresh = false;
   }
+  fresh.holders = holders_;
   EffectSet needs;
   for (const auto& [sink, attached] : sinks_) needs = needs | attached.needs;
   devices_fresh_(false);

@@ -5,8 +5,10 @@
 // stepping thread takes the fresh poses; the frames thread lists the
 // streams.
 
+#include <chrono>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -36,9 +38,22 @@ struct PendingPose {
 struct FreshPoses {
   std::vector<std::pair<std::string, PendingPose>> entries;
   size_t count = 0;
+  /// Who held each tool then; a new map after every change, so a step
+  /// keeps the one it took without copying.
+  std::shared_ptr<const ToolHolders> holders;
   std::span<const std::pair<std::string, PendingPose>> taken() const {
     return {entries.data(), count};
   }
+};
+
+/// A device's ask when it attaches.
+struct DeviceClaim {
+  /// The tool it drives.
+  std::string tool;
+  /// What the scene must compute for it (with prerequisites).
+  EffectSet needs;
+  /// Who holds the tool as frames name it (Caller::name), "" for none.
+  std::string holder;
 };
 
 class StreamRegistry {
@@ -50,13 +65,11 @@ class StreamRegistry {
   explicit StreamRegistry(std::function<void(bool)> devices_fresh)
       : devices_fresh_(std::move(devices_fresh)) {}
 
-  /// Lets `sink` drive tool `tool`. `has_tool` is asked under the lock.
-  /// NOT_FOUND when it says no, FAILED_PRECONDITION when another device
-  /// holds the tool, UNAVAILABLE once closed. With `take_over`, a device
-  /// holding the tool is ended with that status (FrameSink::Close) and
-  /// forgotten instead, its pose not taken yet dropped, and `*displaced`
-  /// set.
-  absl::Status AttachDevice(FrameSink* sink, const std::string& tool, EffectSet needs,
+  /// Lets `sink` drive the claimed tool. `has_tool` is asked under the lock. NOT_FOUND when it says
+  /// no, FAILED_PRECONDITION when another device holds the tool, UNAVAILABLE once closed. With
+  /// `take_over`, a device holding the tool is ended with that status (FrameSink::Close) and
+  /// forgotten instead, its pose not taken yet dropped, and `*displaced` set.
+  absl::Status AttachDevice(FrameSink* sink, const DeviceClaim& claim,
                             const std::function<bool(const std::string&)>& has_tool,
                             const absl::Status* take_over = nullptr, bool* displaced = nullptr);
   /// Lets `sink` receive frames. UNAVAILABLE once closed.
@@ -69,8 +82,13 @@ class StreamRegistry {
   /// for a viewer or a stream not attached. A device's first pose seats it
   /// (PendingPose::seat), until a step takes it.
   void SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp);
-  /// Moves the poses not taken before into `fresh` and returns what the
-  /// streams need, at one instant.
+  /// Ends (FrameSink::Close with `status`) and forgets every device not
+  /// heard from (attached or sent a pose) since `silent_since`, as a
+  /// take-over does; appends their tools to `released`.
+  void EndSilentDevices(std::chrono::steady_clock::time_point silent_since,
+                        const absl::Status& status, std::vector<std::string>& released);
+  /// Moves the poses not taken before into `fresh`, with who holds each
+  /// tool, and returns what the streams need, at one instant.
   EffectSet TakeFreshPoses(FreshPoses& fresh);
 
   /// The attached streams, into `out` (cleared first).
@@ -100,15 +118,22 @@ class StreamRegistry {
   struct Attached {
     std::string tool;  // empty for viewers
     EffectSet needs;
+    std::string holder;
     bool sent_pose = false;
+    std::chrono::steady_clock::time_point heard;  // attached or sent its last pose
   };
   // Whether every attached device has a pose not taken yet (and there is one).
   bool DevicesFreshLocked() const;
+  // Forgets device `it`, ending it with `status`, its pose not taken yet dropped.
+  void EndDeviceLocked(std::map<FrameSink*, Attached>::iterator it, const absl::Status& status);
+  // Makes holders_ anew from sinks_.
+  void UpdateHoldersLocked();
 
   const std::function<void(bool)> devices_fresh_;
   mutable PriorityInheritingMutex mu_;
   std::map<FrameSink*, Attached> sinks_;
   std::map<std::string, PendingPose> pending_;  // by tool name
+  std::shared_ptr<const ToolHolders> holders_ = std::make_shared<const ToolHolders>();
   bool closed_ = false;
   int64_t devices_joined_ = 0;
   int64_t viewers_joined_ = 0;

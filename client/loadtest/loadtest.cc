@@ -111,6 +111,14 @@ class FrameCounts {
     dropped_.See(static_cast<int64_t>(frame.dropped_frames()), first);
     missed_.See(frame.missed_steps(), first);
     missed_off_cpu_.See(frame.missed_steps_off_cpu(), first);
+    int64_t clashes = 0;
+    double clash_s = 0;
+    for (const pb::ToolClash& clash : frame.clashes()) {
+      clashes += clash.count();
+      clash_s += clash.duration_s();
+    }
+    clashes_.See(clashes, first);
+    clash_s_.See(clash_s, first);
   }
   void Fill(StreamReport& report, double window_s) const {
     report.frames = frames_;
@@ -119,22 +127,26 @@ class FrameCounts {
     report.dropped_frames = dropped_.Grown();
     report.missed_steps = missed_.Grown();
     report.missed_steps_off_cpu = missed_off_cpu_.Grown();
+    report.tool_clashes = clashes_.Grown();
+    report.tool_clash_s = clash_s_.Grown();
     report.frames_per_s = static_cast<double>(frames_) / window_s;
   }
   int64_t frames() const { return frames_; }
 
  private:
   // A value of the frames at the window's first frame and at its latest.
+  template <typename T>
   struct Span {
-    int64_t first = 0, last = 0;
-    void See(int64_t value, bool first_frame) {
+    T first = 0, last = 0;
+    void See(T value, bool first_frame) {
       if (first_frame) first = value;
       last = value;
     }
-    int64_t Grown() const { return last - first; }
+    T Grown() const { return last - first; }
   };
   int64_t frames_ = 0;
-  Span step_, dropped_, missed_, missed_off_cpu_;
+  Span<int64_t> step_, dropped_, missed_, missed_off_cpu_, clashes_;
+  Span<double> clash_s_;
 };
 
 // One device: an Interact stream driving one tool with a press motion.
@@ -487,7 +499,7 @@ pb::SceneSpec BuiltInLoadScene() {
 }
 
 absl::StatusOr<pb::SceneSpec> LoadtestScene(const pb::SceneSpec& base, int clients,
-                                            const std::string& name) {
+                                            const std::string& name, bool tools_meet) {
   pb::SceneSpec spec = base;
   spec.set_name(name);
   spec.clear_objects();
@@ -502,14 +514,36 @@ absl::StatusOr<pb::SceneSpec> LoadtestScene(const pb::SceneSpec& base, int clien
   if (tool == nullptr) return absl::InvalidArgumentError("the scene has no tool to copy");
   absl::StatusOr<Isometry3d> X_WT = PoseFromProto(tool->pose(), tool->name() + ".pose");
   if (!X_WT.ok()) return X_WT.status();
+  const int groups = tools_meet ? (clients + 1) / 2 : clients;
   for (int i = 0; i < clients; ++i) {
     pb::SceneObject* copy = spec.add_objects();
     *copy = *tool;
     copy->set_name("tool-" + std::to_string(i));
-    const Isometry3d turn(Eigen::AngleAxisd(2 * M_PI * i / clients, Vector3d::UnitZ()));
-    PoseToProto(turn * *X_WT, copy->mutable_pose());
+    const int group = tools_meet ? i / 2 : i;
+    const Isometry3d turn(Eigen::AngleAxisd(2 * M_PI * group / groups, Vector3d::UnitZ()));
+    Isometry3d X_WC = *X_WT;
+    if (tools_meet) X_WC.translation().y() += (i % 2 == 0 ? -0.5 : 0.5) * kMeetGapM;
+    PoseToProto(turn * X_WC, copy->mutable_pose());
   }
   return spec;
+}
+
+std::vector<std::vector<TimedPose>> MeetingPaths(const std::vector<Isometry3d>& starts,
+                                                 double rate_hz, double duration_s) {
+  const size_t pairs = (starts.size() + 1) / 2;
+  std::vector<std::vector<TimedPose>> paths;
+  for (size_t i = 0; i < starts.size(); ++i) {
+    MotionParams params;
+    params.phase_s = static_cast<double>(i / 2) / static_cast<double>(pairs);
+    const size_t partner = i ^ 1;
+    if (partner < starts.size()) {
+      const Vector3d apart = starts[partner].translation() - starts[i].translation();
+      params.press_direction = apart.normalized();
+      params.depth_m = 0.5 * apart.norm() + kMeetPastM;
+    }
+    paths.push_back(MotionPath(Motion::kPress, starts[i], rate_hz, duration_s, params));
+  }
+  return paths;
 }
 
 absl::Status CheckLoadtestOptions(const LoadtestOptions& options) {
@@ -551,8 +585,10 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   report.duration_s = options.duration_s;
   report.load_average_1m = LoadAverage1m();
   report.scene = "loadtest-" + std::to_string(getpid());
-  absl::StatusOr<pb::SceneSpec> spec = LoadtestScene(
-      options.scene ? *options.scene : BuiltInLoadScene(), options.clients, report.scene);
+  report.tools_meet = options.tools_meet;
+  absl::StatusOr<pb::SceneSpec> spec =
+      LoadtestScene(options.scene ? *options.scene : BuiltInLoadScene(), options.clients,
+                    report.scene, options.tools_meet);
   if (!spec.ok()) return spec.status();
   if (options.step_s > 0) spec->set_step_s(options.step_s);
   report.step_s = spec->step_s() > 0 ? spec->step_s() : SceneOptions{}.step_s;
@@ -592,17 +628,29 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   // Devices and viewers.
   auto sessions = pb::SessionService::NewStub(channel);
   std::atomic<int64_t> frame_bytes{0};
-  std::vector<std::unique_ptr<DeviceStream>> devices;
+  std::vector<Isometry3d> starts;
   for (int i = 0; i < options.clients; ++i) {
     absl::StatusOr<Isometry3d> X_WT = PoseFromProto(
         spec->objects(spec->objects_size() - options.clients + i).pose(), "tool pose");
     if (!X_WT.ok()) return X_WT.status();
-    MotionParams params;
-    params.phase_s = static_cast<double>(i) / options.clients;
-    devices.push_back(std::make_unique<DeviceStream>(
-        *sessions, report.scene, "tool-" + std::to_string(i), options.needs,
-        MotionPath(Motion::kPress, *X_WT, options.rate_hz, options.duration_s, params),
-        frame_bytes));
+    starts.push_back(*X_WT);
+  }
+  std::vector<std::vector<TimedPose>> paths;
+  if (options.tools_meet) {
+    paths = MeetingPaths(starts, options.rate_hz, options.duration_s);
+  } else {
+    for (int i = 0; i < options.clients; ++i) {
+      MotionParams params;
+      params.phase_s = static_cast<double>(i) / options.clients;
+      paths.push_back(
+          MotionPath(Motion::kPress, starts[i], options.rate_hz, options.duration_s, params));
+    }
+  }
+  std::vector<std::unique_ptr<DeviceStream>> devices;
+  for (int i = 0; i < options.clients; ++i) {
+    devices.push_back(std::make_unique<DeviceStream>(*sessions, report.scene,
+                                                     "tool-" + std::to_string(i), options.needs,
+                                                     std::move(paths[i]), frame_bytes));
   }
   for (auto& device : devices) {
     if (!device->Attached()) return FromGrpc(device->Finish(), "Interact");
@@ -696,6 +744,8 @@ absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options) {
   report.steps = each.front().frames > 0 ? each.front().last_step - each.front().first_step + 1 : 0;
   report.missed_steps = each.front().missed_steps;
   report.missed_steps_off_cpu = each.front().missed_steps_off_cpu;
+  report.tool_clashes = each.front().tool_clashes;
+  report.tool_clash_s = each.front().tool_clash_s;
   report.missed_fraction =
       static_cast<double>(report.missed_steps) /
       static_cast<double>(std::max<int64_t>(1, report.steps + report.missed_steps));

@@ -15,6 +15,7 @@
 #include "common/sim/effects.h"
 
 #include "absl/status/statusor.h"
+#include "client/device_path.h"
 #include "client/percentiles.h"
 #include "client/server_call.h"
 #include "haptics/v1/scene.pb.h"
@@ -53,6 +54,9 @@ struct LoadtestOptions {
   int server_pid = 0;
   /// Run the echo baseline.
   bool echo = true;
+  /// Devices in pairs whose paths cross (LoadtestScene, MeetingPaths):
+  /// tool-tool contact in every press.
+  bool tools_meet = false;
   /// What each device needs; a haptic device needs its force (with friction).
   EffectSet needs = EffectSet::Default();
   /// Where a progress line goes once a second (none when null).
@@ -78,6 +82,10 @@ struct StreamReport {
   int64_t missed_steps = 0;
   int64_t missed_steps_off_cpu = 0;
   double frames_per_s = 0;
+  /// The scene's tool pairs' clashes begun in the window, and the time
+  /// they touched, simulated seconds (Frame.clashes, every pair summed).
+  int64_t tool_clashes = 0;
+  double tool_clash_s = 0;
 };
 
 struct LoadReport {
@@ -91,6 +99,7 @@ struct LoadReport {
   double step_s = 0;
   /// What each device asked the scene for.
   EffectSet needs;
+  bool tools_meet = false;
   double load_average_1m = -1;
   /// Device streams: overall (round trips pooled, counts summed) and each.
   StreamReport devices;
@@ -113,6 +122,9 @@ struct LoadReport {
   int64_t missed_steps = 0;
   /// Of missed_steps, those with the stepping thread off the CPU.
   int64_t missed_steps_off_cpu = 0;
+  /// Tool clashes begun in the window and their time (device 0's view).
+  int64_t tool_clashes = 0;
+  double tool_clash_s = 0;
   /// missed / (run + missed).
   double missed_fraction = 0;
   /// devices.rtt_ms.p99 / echo.rtt_ms.p99 (0 without echo).
@@ -143,10 +155,26 @@ absl::Status CheckLoadtestOptions(const LoadtestOptions& options);
 absl::StatusOr<LoadReport> RunLoadtest(const LoadtestOptions& options);
 
 /// The scene the test creates: `base`'s fixed objects and `clients` copies
-/// of its first tool named "tool-0".., each turned about world z.
-/// INVALID_ARGUMENT when `base` has no tool.
+/// of its first tool named "tool-0".., each turned about world z. With
+/// `tools_meet`, tools 2k and 2k+1 are pair k: the pairs turned apart,
+/// the two of a pair kMeetGapM apart along the turned world y, centre to
+/// centre. INVALID_ARGUMENT when `base` has no tool.
 absl::StatusOr<haptics::v1::SceneSpec> LoadtestScene(const haptics::v1::SceneSpec& base,
-                                                     int clients, const std::string& name);
+                                                     int clients, const std::string& name,
+                                                     bool tools_meet = false);
+
+/// How far apart the two tools of a pair start, centre to centre, metres:
+/// tools up to about 5 cm across start apart.
+inline constexpr double kMeetGapM = 0.06;
+
+/// Each device's path with `tools_meet`: tool i (at `starts[i]`) presses
+/// towards its partner's start, once a second, to kMeetPastM past the
+/// middle, in step with it, so the pair's paths cross; without a partner
+/// (the last of an odd count), the plain press (Motion::kPress). The
+/// pairs' phases are spread over the second, as the plain presses' are.
+inline constexpr double kMeetPastM = 0.005;
+std::vector<std::vector<TimedPose>> MeetingPaths(const std::vector<Isometry3d>& starts,
+                                                 double rate_hz, double duration_s);
 
 /// The built-in demo scene (one tool "probe").
 haptics::v1::SceneSpec BuiltInLoadScene();

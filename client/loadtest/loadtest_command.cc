@@ -26,7 +26,9 @@ nlohmann::ordered_json StreamJson(const StreamReport& r) {
           {"last_step", r.last_step},
           {"dropped_frames", r.dropped_frames},
           {"missed_steps", r.missed_steps},
-          {"missed_steps_off_cpu", r.missed_steps_off_cpu}};
+          {"missed_steps_off_cpu", r.missed_steps_off_cpu},
+          {"tool_clashes", r.tool_clashes},
+          {"tool_clash_s", r.tool_clash_s}};
 }
 
 void PrintRow(const std::string& name, const StreamReport& r, std::ostream& out) {
@@ -55,6 +57,8 @@ void PrintReport(const LoadReport& r, std::ostream& out) {
       << 100 * r.missed_fraction << "%; " << r.missed_steps_off_cpu
       << " with the stepping thread off the CPU); step time ms p50 " << r.step_ms.p50 << ", p99 "
       << r.step_ms.p99 << ", max " << r.step_ms.max << "\n";
+  out << "tools " << (r.tools_meet ? "meet in pairs" : "apart") << ": " << r.tool_clashes
+      << " clashes, touching " << r.tool_clash_s << " s\n";
   if (r.echo_run) {
     out << "echo (turns with the devices): " << r.echo_request_bytes << " B requests, "
         << r.echo_reply_bytes << " B replies; p99 ratio devices/echo " << r.p99_ratio
@@ -96,6 +100,9 @@ std::string LoadReportJson(const LoadReport& r) {
                                  {"missed_steps", r.missed_steps},
                                  {"missed_steps_off_cpu", r.missed_steps_off_cpu},
                                  {"missed_fraction", r.missed_fraction},
+                                 {"tools_meet", r.tools_meet},
+                                 {"tool_clashes", r.tool_clashes},
+                                 {"tool_clash_s", r.tool_clash_s},
                                  {"p99_ratio", r.p99_ratio},
                                  {"p99_budget_ms", r.p99_budget_ms},
                                  {"server_cpu_percent", r.server_cpu_percent},
@@ -165,6 +172,8 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
                   "The server's pid for its CPU figure (default: found from its loopback port)");
   cmd->add_flag(
       "--no-echo", [&o](int64_t) { o.echo = false; }, "Skip the echo baseline");
+  cmd->add_flag("--tools-meet", o.tools_meet,
+                "Devices in pairs whose paths cross: tool-tool contact in every press");
   AddNeedsOption(*cmd, args->needs);
   cmd->callback(
       [args, &exit_code] { exit_code = RunLoadtestCommand(*args, std::cout, std::cerr); });

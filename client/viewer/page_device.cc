@@ -52,6 +52,12 @@ void PageDevice::SendPose(const Isometry3d& X_WD) {
                                .count());
   PoseToProto(X_WD, pose->mutable_pose());
   stream_->Write(request);
+  last_pose_ = X_WD;
+  last_sent_ = std::chrono::steady_clock::now();
+}
+
+void PageDevice::KeepAlive(std::chrono::steady_clock::duration idle) {
+  if (last_pose_ && std::chrono::steady_clock::now() - last_sent_ >= idle) SendPose(*last_pose_);
 }
 
 }  // namespace hs::cli

@@ -6,8 +6,10 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -32,6 +34,11 @@ class PageDevice {
 
   /// Sends the device pose (validated by the caller). One thread only.
   void SendPose(const Isometry3d& X_WD);
+  /// Sends the last pose again when none went out for `idle`, so that a
+  /// page whose user holds still keeps the tool (the server releases the
+  /// tool of a device that falls silent: docs/server.md). Nothing before
+  /// the first pose. The thread of SendPose.
+  void KeepAlive(std::chrono::steady_clock::duration idle);
   const std::string& tool() const { return tool_; }
 
  private:
@@ -41,6 +48,8 @@ class PageDevice {
   std::unique_ptr<grpc::ClientReaderWriter<haptics::v1::InteractRequest, haptics::v1::Frame>>
       stream_;
   uint64_t sequence_ = 0;
+  std::optional<Isometry3d> last_pose_;
+  std::chrono::steady_clock::time_point last_sent_;
   std::thread reader_;
 };
 

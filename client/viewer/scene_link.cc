@@ -122,14 +122,9 @@ void SceneLink::Poll() {
     return;
   }
   std::vector<std::string> tools;
-  std::map<std::string, std::string> holders;
   for (const pb::SceneObject& o : info.spec().objects()) {
-    if (o.kind() == pb::OBJECT_KIND_TOOL) {
-      tools.push_back(o.name());
-      holders[o.name()] = "";
-    }
+    if (o.kind() == pb::OBJECT_KIND_TOOL) tools.push_back(o.name());
   }
-  for (const std::string& held : info.claimed_tools()) holders[held] = "device";
   std::shared_ptr<const std::string> geometry;
   bool refetch = false;
   {
@@ -156,7 +151,6 @@ void SceneLink::Poll() {
   state_.revision = geometry_error.empty() ? info.revision() : state_.revision;
   state_.step_s = info.step_s();
   state_.tools = std::move(tools);
-  state_.holders = std::move(holders);
   state_.geometry_json = std::move(geometry);
 }
 

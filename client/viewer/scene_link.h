@@ -9,7 +9,6 @@
 #include <grpcpp/grpcpp.h>
 
 #include <condition_variable>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -44,9 +43,8 @@ class SceneLink {
     std::string scene;
     int64_t revision = -1;
     double step_s = 0;
-    /// The scene's tools, and who holds each ("device" or "").
+    /// The scene's tools.
     std::vector<std::string> tools;
-    std::map<std::string, std::string> holders;
     /// The page's geometry JSON of `revision` (null before it is fetched).
     std::shared_ptr<const std::string> geometry_json;
   };

@@ -51,9 +51,9 @@ struct ViewServer::Impl {
   void Tick();
   json Hello(const SceneLink::State& s) const;
   json Status(const SceneLink::State& s) const;
-  // Who holds each tool: this bridge's pages by their number, else the
-  // server's word.
-  std::map<std::string, std::string> Holders(const SceneLink::State& s) const;
+  // The tools this bridge's pages hold -> "viewer page N" (the frames name
+  // the other tools' holders).
+  std::map<std::string, std::string> PageHolders() const;
 
   SceneLink& link;
   const ViewServerOptions options;
@@ -113,6 +113,10 @@ class PageSocket : public std::enable_shared_from_this<PageSocket> {
   }
 
   const std::string& held_tool() const { return held_tool_; }
+  // A held tool's pose goes out again after half a second without one.
+  void KeepDeviceAlive() {
+    if (device_ && !held_tool_.empty()) device_->KeepAlive(std::chrono::milliseconds(500));
+  }
   uint64_t replaced() const { return replaced_; }
   int id() const { return id_; }
 
@@ -265,7 +269,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       FrameExtras extras{.step_rate_hz = latest.step_rate_hz,
                          .dropped_frames = latest.frame->dropped_frames(),
                          .revision = s.revision,
-                         .holders = server_.Holders(s)};
+                         .page_holders = server_.PageHolders()};
       return Send(http::status::ok, "application/json", FrameJson(*latest.frame, extras).dump());
     }
     for (const WebAsset& asset : WebAssets()) {
@@ -316,8 +320,8 @@ json ViewServer::Impl::Status(const SceneLink::State& s) const {
   return {{"type", "status"}, {"connected", s.connected}, {"message", s.message}};
 }
 
-std::map<std::string, std::string> ViewServer::Impl::Holders(const SceneLink::State& s) const {
-  std::map<std::string, std::string> holders = s.holders;
+std::map<std::string, std::string> ViewServer::Impl::PageHolders() const {
+  std::map<std::string, std::string> holders;
   for (const auto& page : pages) {
     if (!page->held_tool().empty())
       holders[page->held_tool()] = "viewer page " + std::to_string(page->id());
@@ -344,6 +348,7 @@ void ViewServer::Impl::Tick() {
         if (changed) page->Send(status);
       }
     }
+    for (const auto& page : pages) page->KeepDeviceAlive();
     const SceneLink::Latest latest = link.latest();
     if (latest.frame && latest.count != last_frame_count && !pages.empty()) {
       last_frame_count = latest.count;
@@ -351,7 +356,7 @@ void ViewServer::Impl::Tick() {
                                               UnixNowNs() - latest.frame->timings().sent_unix_ns()),
                          .step_rate_hz = latest.step_rate_hz,
                          .revision = s.revision,
-                         .holders = Holders(s)};
+                         .page_holders = PageHolders()};
       json frame = FrameJson(*latest.frame, extras);
       frame["rejected_messages"] = rejected.load();
       for (const auto& page : pages) {

@@ -63,9 +63,9 @@ json FrameJson(const pb::Frame& frame, const FrameExtras& extras) {
   for (const pb::ToolState& t : frame.tools()) {
     json contacts = json::array();
     for (const pb::Contact& c : t.contacts()) contacts.push_back(ContactJson(c));
-    const auto holder = extras.holders.find(t.tool());
+    const auto page = extras.page_holders.find(t.tool());
     tools.push_back({{"name", t.tool()},
-                     {"holder", holder == extras.holders.end() ? "" : holder->second},
+                     {"holder", page == extras.page_holders.end() ? t.holder() : page->second},
                      {"device", PoseJson(t.device_pose())},
                      {"proxy", PoseJson(t.proxy_pose())},
                      {"force_n", Vec(t.force_w_n())},

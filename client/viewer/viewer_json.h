@@ -22,8 +22,9 @@ struct FrameExtras {
   uint64_t dropped_frames = 0;
   /// The scene revision of the geometry the bridge serves.
   int64_t revision = 0;
-  /// Tool name -> who holds it ("" for nobody).
-  std::map<std::string, std::string> holders;
+  /// Tools this bridge's pages hold -> "viewer page N"; the frame names
+  /// the holders of the others (ToolState.holder).
+  std::map<std::string, std::string> page_holders;
 };
 
 /// {"type":"frame", "step", "time_s", "revision", "age_ms", "step_rate_hz",

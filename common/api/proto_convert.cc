@@ -144,6 +144,16 @@ void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& na
       LocalModelToProto(t.local_model, names, tool->mutable_local_model());
     }
   }
+  out->clear_clashes();
+  if (!parts.contacts) return;
+  for (const ToolClash& c : frame.clashes) {
+    pb::ToolClash* clash = out->add_clashes();
+    clash->set_tool_a(names[c.tool_a]);
+    clash->set_tool_b(names[c.tool_b]);
+    clash->set_count(c.count);
+    clash->set_duration_s(c.seconds);
+    clash->set_touching(c.touching);
+  }
 }
 
 }  // namespace hs

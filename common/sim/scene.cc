@@ -7,6 +7,7 @@
 #include "common/core/rigid_pose.h"
 #include "common/core/status_macros.h"
 #include "common/sim/stage_timer.h"
+#include "common/sim/tool_clashes.h"
 #include "common/sim/tool_force.h"
 
 namespace hs {
@@ -99,9 +100,11 @@ const StepFrame& Scene::Step() {
   frame_.time_s = static_cast<double>(frame_.step) * options_.step_s;
   EffectSet stages = StagesToRun(options_.enabled, needed_);
   if (bodies_.empty()) stages = stages.Without(Effect::kFreeBodyMotion);
-  // Nothing moves: the contacts are those of the last step, so no stage runs.
+  // Nothing moves: the contacts are those of the last step, so no stage
+  // runs; tools that touch go on touching.
   if (!stages.Has(Effect::kFreeBodyMotion) && !tools_.AnyMoved()) {
     frame_.stages_run = EffectSet();
+    CountClashes(frame_.tools, options_.step_s, frame_.clashes);
     return frame_;
   }
   frame_.stages_run = stages;
@@ -121,6 +124,7 @@ const StepFrame& Scene::Step() {
       }
     }
   }
+  CountClashes(frame_.tools, options_.step_s, frame_.clashes);
   return frame_;
 }
 

@@ -70,6 +70,21 @@ struct BodyFrame {
   int substeps = 1;
 };
 
+/// Two tools' clashes (their contacts with each other), since the scene
+/// began: a laparoscopic trainer counts each as an error.
+struct ToolClash {
+  /// The two tools, tool_a < tool_b.
+  ObjectId tool_a = -1;
+  ObjectId tool_b = -1;
+  /// How many times they began to touch, and for how long they touched
+  /// (steps times the step's length), seconds.
+  int64_t count = 0;
+  double seconds = 0;
+  /// Whether they touch at this step, and began to at it.
+  bool touching = false;
+  bool began = false;
+};
+
 struct StepFrame {
   /// 1 for the first step, then +1 per step.
   int64_t step = 0;
@@ -81,6 +96,9 @@ struct StepFrame {
   std::vector<ToolFrame> tools;
   /// One entry per free body, by id.
   std::vector<BodyFrame> bodies;
+  /// Every tool pair that ever touched, by (tool_a, tool_b); counted from
+  /// the tools' contacts, so when the collision stage runs.
+  std::vector<ToolClash> clashes;
 };
 
 /// How often and how long one stage ran, since the scene was created.

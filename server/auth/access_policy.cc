@@ -70,7 +70,10 @@ absl::StatusOr<size_t> AccessPolicy::Reload() {
 }
 
 absl::StatusOr<Caller> AccessPolicy::Authenticate(const grpc::ServerContextBase& context) const {
-  if (open()) return Caller{.id = "peer:" + PeerHost(context.peer())};
+  if (open()) {
+    std::string peer = "peer:" + PeerHost(context.peer());
+    return Caller{.id = peer, .name = peer};
+  }
   const auto& metadata = context.client_metadata();
   const auto header = metadata.find("authorization");
   if (header == metadata.end()) {
@@ -87,7 +90,10 @@ absl::StatusOr<Caller> AccessPolicy::Authenticate(const grpc::ServerContextBase&
   }
   const Grant* grant = tokens->Find(value);
   if (grant == nullptr) return absl::UnauthenticatedError("unknown token");
-  return Caller{.id = grant->caller, .role = grant->role, .scene_pattern = grant->scene_pattern};
+  return Caller{.id = grant->caller,
+                .name = grant->name,
+                .role = grant->role,
+                .scene_pattern = grant->scene_pattern};
 }
 
 absl::StatusOr<Caller> AccessPolicy::Check(const grpc::ServerContextBase& context, Access access,

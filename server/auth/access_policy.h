@@ -37,6 +37,9 @@ struct Caller {
   /// "token:<12 hex digits of its SHA-256>", or "peer:<address>" on an open
   /// server; the key of per-caller quotas.
   std::string id;
+  /// Who the caller is as viewers see it: the token's NAME
+  /// (token_table.h), else `id`.
+  std::string name;
   Role role = Role::kAdmin;
   std::string scene_pattern = "*";
 };

@@ -20,6 +20,15 @@ std::string HexSha256(absl::string_view bytes) {
   return absl::BytesToHexString(hash.Finish());
 }
 
+// 1 to 64 letters, digits and . _ @ -: safe in frames, logs and labels.
+bool IsHolderName(absl::string_view s) {
+  if (s.empty() || s.size() > 64) return false;
+  for (char c : s) {
+    if (!absl::ascii_isalnum(c) && c != '.' && c != '_' && c != '@' && c != '-') return false;
+  }
+  return true;
+}
+
 bool IsLowerHex(absl::string_view s) {
   for (char c : s) {
     if (!absl::ascii_isdigit(c) && !(c >= 'a' && c <= 'f')) return false;
@@ -53,7 +62,9 @@ absl::StatusOr<TokenTable> TokenTable::Parse(absl::string_view text, absl::strin
     if (line.empty() || line.front() == '#') continue;
     const std::vector<absl::string_view> fields =
         absl::StrSplit(line, absl::ByAnyChar(" \t"), absl::SkipEmpty());
-    if (fields.size() != 3) return error("expected 'sha256:<hex> ROLE SCENE_PATTERN'");
+    if (fields.size() != 3 && fields.size() != 4) {
+      return error("expected 'sha256:<hex> ROLE SCENE_PATTERN [NAME]'");
+    }
     std::string digest = absl::AsciiStrToLower(fields[0]);
     if (!absl::StartsWith(digest, "sha256:") || digest.size() != 7 + 64 ||
         !IsLowerHex(absl::string_view(digest).substr(7))) {
@@ -72,6 +83,13 @@ absl::StatusOr<TokenTable> TokenTable::Parse(absl::string_view text, absl::strin
     }
     grant.scene_pattern = std::string(fields[2]);
     grant.caller = absl::StrCat("token:", digest.substr(0, 12));
+    grant.name = grant.caller;
+    if (fields.size() == 4) {
+      if (!IsHolderName(fields[3])) {
+        return error("NAME must be 1 to 64 letters, digits and . _ @ -");
+      }
+      grant.name = std::string(fields[3]);
+    }
     if (!table.by_digest_.emplace(digest, std::move(grant)).second) {
       return error("this token is listed twice");
     }

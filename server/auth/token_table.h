@@ -3,10 +3,12 @@
 // The file holds one token a line, as its SHA-256, never the token itself:
 //
 //   # comment
-//   sha256:<64 hex digits of SHA-256(token)> ROLE SCENE_PATTERN
+//   sha256:<64 hex digits of SHA-256(token)> ROLE SCENE_PATTERN [NAME]
 //
 // ROLE is admin, drive or watch (access_policy.h says what each may call);
-// SCENE_PATTERN is a shell glob (fnmatch) over scene names: `*` for all.
+// SCENE_PATTERN is a shell glob (fnmatch) over scene names: `*` for all;
+// NAME, optional, is who holds the token as viewers see it (frames name
+// each tool's holder): 1 to 64 letters, digits and . _ @ -.
 // `printf %s "$TOKEN" | sha256sum` makes the digest.
 
 #include <map>
@@ -29,6 +31,8 @@ struct Grant {
   /// "token:" and the first 12 hex digits of the token's SHA-256: names
   /// the caller in quotas and logs without revealing the token.
   std::string caller;
+  /// The file's NAME, else `caller`.
+  std::string name;
 };
 
 class TokenTable {

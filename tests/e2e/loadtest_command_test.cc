@@ -19,6 +19,16 @@ void ExpectOrdered(const Percentiles& p, const std::string& what) {
   EXPECT_LE(p.p999, p.max) << what;
 }
 
+// Two devices at 200 Hz into copies of the small test scene's tool.
+LoadtestOptions TwoDevices(const hs::testing::TestServer& server) {
+  LoadtestOptions options;
+  options.server.address = server.address();
+  options.clients = 2;
+  options.rate_hz = 200;
+  options.scene = hs::testing::SmallScene("base");
+  return options;
+}
+
 // A small bounded run (2 devices x 200 Hz x 1 s, one viewer, the small
 // test scene stepping at 2 kHz) checks its own arithmetic: every pose sent is answered once,
 // per-device counts add up to the totals, each stream's frames plus drops
@@ -26,13 +36,9 @@ void ExpectOrdered(const Percentiles& p, const std::string& what) {
 // with as many round trips.
 TEST(LoadtestCommandTest, SmallRunAddsUp) {
   hs::testing::TestServer server;
-  LoadtestOptions options;
-  options.server.address = server.address();
-  options.clients = 2;
-  options.rate_hz = 200;
+  LoadtestOptions options = TwoDevices(server);
   options.duration_s = 1;
   options.viewers = 1;
-  options.scene = hs::testing::SmallScene("base");
   options.needs = {Effect::kForce, Effect::kFriction};  // what a haptic device reads
   options.step_s = 0.0005;
   absl::StatusOr<LoadReport> report = RunLoadtest(options);
@@ -86,6 +92,25 @@ TEST(LoadtestCommandTest, SmallRunAddsUp) {
   EXPECT_EQ(json["needs"], "force friction");
   EXPECT_EQ(json["step_s"].get<double>(), 0.0005);
   EXPECT_EQ(json["missed_steps_off_cpu"].get<int64_t>(), r.missed_steps_off_cpu);
+}
+
+// --tools-meet: the two devices' tools meet at every press, and the report
+// counts the clashes (device 0's frames hold the pair's) and their time.
+TEST(LoadtestCommandTest, ToolsMeetInPairs) {
+  hs::testing::TestServer server;
+  LoadtestOptions options = TwoDevices(server);
+  options.duration_s = 2;
+  options.echo = false;
+  options.tools_meet = true;
+  absl::StatusOr<LoadReport> report = RunLoadtest(options);
+  ASSERT_TRUE(report.ok()) << report.status();
+  EXPECT_TRUE(report->tools_meet);
+  EXPECT_GE(report->tool_clashes, 1);
+  EXPECT_LE(report->tool_clashes, 3);  // one a press, give or take the window's ends
+  EXPECT_GT(report->tool_clash_s, 0.01);
+  EXPECT_EQ(report->per_device[0].tool_clashes, report->tool_clashes);
+  const nlohmann::json json = nlohmann::json::parse(LoadReportJson(*report));
+  EXPECT_EQ(json["tool_clashes"].get<int64_t>(), report->tool_clashes);
 }
 
 // Options past the bounds and a remote server are usage errors; a scene

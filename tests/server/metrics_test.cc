@@ -25,6 +25,8 @@ TEST(MetricsTest, CountsAppearInExposition) {
   metrics.AddMissedSteps(2, /*off_cpu=*/true);
   metrics.AddRejected("GetScene", "NOT_FOUND");
   metrics.AddRejected("GetScene", "NOT_FOUND");
+  metrics.AddToolClash("demo", "left", "right", /*began=*/true, 0.001);
+  metrics.AddToolClash("demo", "left", "right", /*began=*/false, 0.001);
   const std::string text = metrics.Text();
   EXPECT_TRUE(Has(text, "hs_step_seconds_count 2"));
   EXPECT_TRUE(Has(text, "hs_step_seconds_bucket{le=\"0.0005\"} 1"));
@@ -37,6 +39,11 @@ TEST(MetricsTest, CountsAppearInExposition) {
   EXPECT_TRUE(Has(text, "hs_missed_steps_total 5"));
   EXPECT_TRUE(Has(text, "hs_missed_steps_off_cpu_total 2"));
   EXPECT_TRUE(Has(text, "hs_rejected_requests_total{code=\"NOT_FOUND\",method=\"GetScene\"} 2"));
+  EXPECT_TRUE(
+      Has(text, "hs_tool_clashes_total{scene=\"demo\",tool_a=\"left\",tool_b=\"right\"} 1"));
+  EXPECT_TRUE(Has(text,
+                  "hs_tool_clash_seconds_total{scene=\"demo\",tool_a=\"left\",tool_b=\"right\"} "
+                  "0.002"));
 }
 
 // An address it cannot listen on is an error, not an exception.

@@ -37,6 +37,12 @@ class RecordingSink : public FrameSink {
     cv_.wait(lock, [&] { return offers_ >= n; });
     return last_;
   }
+  // The status the sink was closed with, once it is.
+  absl::Status WaitForClose() {
+    std::unique_lock lock(mu_);
+    cv_.wait(lock, [&] { return closes_ > 0; });
+    return closed_;
+  }
   int offers() {
     std::lock_guard lock(mu_);
     return offers_;
@@ -73,10 +79,11 @@ TEST(SceneRunnerTest, PosesAppliedAndToolsHeldOnce) {
   Metrics metrics;
   RecordingSink device, other;  // outlive the runner, which offers its last frame
   auto runner = Runner(metrics);
-  ASSERT_TRUE(runner->AttachDevice(&device, "probe", EffectSet::All()).ok());
-  EXPECT_EQ(runner->AttachDevice(&other, "probe", EffectSet()).code(),
+  ASSERT_TRUE(runner->AttachDevice(&device, {"probe", EffectSet::All()}).ok());
+  EXPECT_EQ(runner->AttachDevice(&other, {"probe", EffectSet()}).code(),
             absl::StatusCode::kFailedPrecondition);
-  EXPECT_EQ(runner->AttachDevice(&other, "table", EffectSet()).code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(runner->AttachDevice(&other, {"table", EffectSet()}).code(),
+            absl::StatusCode::kNotFound);
   Isometry3d X = Isometry3d::Identity();
   X.translation() = Vector3d(0, 0, 0.0195);
   runner->SetDevicePose(&device, X, AppliedPose{7, 123});
@@ -93,6 +100,65 @@ TEST(SceneRunnerTest, PosesAppliedAndToolsHeldOnce) {
   EXPECT_EQ(runner->Info().devices, 0);
 }
 
+// The stylus's device goes into the probe: the frames hold the pair's
+// clash, and /metrics counts it for the scene by tool names.
+TEST(SceneRunnerTest, ToolClashesReachFramesAndMetrics) {
+  Metrics metrics;
+  RecordingSink stylus;  // outlives the runner, which offers its last frame
+  auto runner = Runner(metrics);
+  ASSERT_TRUE(runner->AttachDevice(&stylus, {"stylus", EffectSet::All()}).ok());
+  Isometry3d X = Isometry3d::Identity();
+  X.translation() = Vector3d(0.015, 0, 0.05);  // 5 mm into the probe at its home
+  runner->SetDevicePose(&stylus, X, AppliedPose{1, 0});
+  std::shared_ptr<const StepSnapshot> s;
+  for (int n = 1; n < 1000; ++n) {
+    s = stylus.WaitForOffers(n);
+    if (!s->applied.empty() && s->applied[1].sequence == 1) break;
+  }
+  ASSERT_EQ(s->frame.clashes.size(), 1u);
+  EXPECT_EQ(s->frame.clashes[0].count, 1);
+  EXPECT_TRUE(s->frame.clashes[0].touching);
+  runner.reset();
+  EXPECT_NE(metrics.Text().find(
+                "hs_tool_clashes_total{scene=\"r\",tool_a=\"probe\",tool_b=\"stylus\"} 1"),
+            std::string::npos)
+      << metrics.Text();
+}
+
+// Frames name the holder of each held tool. A device that sends no pose
+// for the timeout is ended DEADLINE_EXCEEDED and its tool released: the
+// tool stays where its last pose put it, proxy and all, and another device
+// may take it.
+TEST(SceneRunnerTest, ASilentDeviceReleasesItsToolWhereItWas) {
+  Metrics metrics;
+  RecordingSink device, viewer, next;  // outlive the runner, which offers its last frame
+  const haptics::v1::SceneSpec spec = testing::SmallScene("r");
+  absl::StatusOr<LoadedScene> loaded = BuildScene(spec, "");
+  ASSERT_TRUE(loaded.ok());
+  SceneRunner runner(spec, *std::move(loaded), metrics, {.device_timeout_s = 0.2});
+  ASSERT_TRUE(runner.AttachViewer(&viewer, EffectSet::All()).ok());
+  ASSERT_TRUE(runner.AttachDevice(&device, {"probe", EffectSet::All(), "alice"}).ok());
+  Isometry3d X = Isometry3d::Identity();
+  X.translation() = Vector3d(0.03, 0.01, 0.0195);  // pressing on the table
+  runner.SetDevicePose(&device, X, AppliedPose{1, 0});
+  std::shared_ptr<const StepSnapshot> held;
+  for (int n = 1; n < 1000; ++n) {
+    held = viewer.WaitForOffers(n);
+    if (held->applied[0].sequence == 1) break;
+  }
+  ASSERT_NE(held->holders, nullptr);
+  EXPECT_EQ(*held->holders, (ToolHolders{{"probe", "alice"}}));
+  const absl::Status ended = device.WaitForClose();
+  EXPECT_EQ(ended.code(), absl::StatusCode::kDeadlineExceeded) << ended;
+  EXPECT_EQ(runner.Info().devices, 0);
+  const std::shared_ptr<const StepSnapshot> released = viewer.WaitForOffers(viewer.offers() + 2);
+  EXPECT_TRUE(released->holders->empty());
+  EXPECT_TRUE(released->frame.tools[0].X_WD.isApprox(X, 0.0));
+  EXPECT_TRUE(released->frame.tools[0].X_WP.isApprox(held->frame.tools[0].X_WP, 0.0));
+  EXPECT_FALSE(released->frame.tools[0].contacts.empty());  // still on the table
+  EXPECT_TRUE(runner.AttachDevice(&next, {"probe", EffectSet::All(), "bob"}).ok());
+}
+
 // Replacing the scene keeps step ids going and refuses (changing nothing)
 // a scene without a held tool; Stop sends a last frame and closes every
 // sink once with the given status.
@@ -100,7 +166,7 @@ TEST(SceneRunnerTest, ReplaceAndStop) {
   Metrics metrics;
   RecordingSink device;  // outlives the runner, which offers its last frame
   auto runner = Runner(metrics);
-  ASSERT_TRUE(runner->AttachDevice(&device, "stylus", EffectSet::All()).ok());
+  ASSERT_TRUE(runner->AttachDevice(&device, {"stylus", EffectSet::All()}).ok());
   const int64_t before = device.WaitForOffers(3)->step;
 
   haptics::v1::SceneSpec without_stylus = testing::SmallScene("r");
@@ -140,9 +206,10 @@ TEST(SceneRunnerTest, DevicesClockTheSteps) {
   ASSERT_TRUE(loaded.ok());
   const Clock::time_point start = Clock::now();
   RecordingSink probe, stylus;  // outlive the runner, which offers its last frame
-  SceneRunner runner(spec, std::move(loaded).value(), metrics);
-  ASSERT_TRUE(runner.AttachDevice(&probe, "probe", EffectSet()).ok());
-  ASSERT_TRUE(runner.AttachDevice(&stylus, "stylus", EffectSet()).ok());
+  // The stylus is silent for 4 s, longer than the default device timeout.
+  SceneRunner runner(spec, std::move(loaded).value(), metrics, {.device_timeout_s = 0});
+  ASSERT_TRUE(runner.AttachDevice(&probe, {"probe", EffectSet()}).ok());
+  ASSERT_TRUE(runner.AttachDevice(&stylus, {"stylus", EffectSet()}).ok());
   const Isometry3d X = Isometry3d::Identity();
   runner.SetDevicePose(&probe, X, AppliedPose{1, 0});
   EXPECT_EQ(probe.WaitForOffers(1)->applied[0].sequence, 1u);

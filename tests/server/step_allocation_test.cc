@@ -69,7 +69,7 @@ TEST(StepAllocationTest, ThousandDemoStepsWithTwoStreamsAllocateNothing) {
   SerializingSink device("probe"), viewer("");
   // Every effect a stream gets by default (the local model is left out:
   // its planes' copies into the step's snapshot are not yet checked).
-  ASSERT_TRUE(runner.AttachDevice(&device, "probe", EffectSet::Default()).ok());
+  ASSERT_TRUE(runner.AttachDevice(&device, {"probe", EffectSet::Default()}).ok());
   ASSERT_TRUE(runner.AttachViewer(&viewer, EffectSet::Default()).ok());
 
   // One step per pose, the path walked there and back; the device's pose

@@ -100,6 +100,10 @@ export class DriveControls {
       const pose = poseFromJson(this.devicePose(tool));
       this.state.heldTool = tool;
       this.drivePose = pose ?? { position: new THREE.Vector3(), quaternion: new THREE.Quaternion() };
+      // Where it is now goes out at once: the bridge keeps sending the
+      // last pose while the user holds still, and the server releases a
+      // tool whose device is silent.
+      if (pose) this.sendPose();
     } else if (tool === this.state.heldTool) {
       this.stopDriving(); // released (by us or the bridge) or refused
     }

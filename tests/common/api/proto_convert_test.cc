@@ -54,5 +54,23 @@ TEST(ProtoConvertTest, Effects) {
   EXPECT_FALSE(EffectsFromProto(effects, EffectSet::All(), "e").ok());
 }
 
+// Clashes go out by tool name, with the contacts part only.
+TEST(ProtoConvertTest, ClashesByNameWithContacts) {
+  StepFrame frame;
+  frame.clashes.push_back(
+      {.tool_a = 1, .tool_b = 2, .count = 3, .seconds = 0.25, .touching = true, .began = false});
+  const std::vector<std::string> names = {"box", "left", "right"};
+  pb::Frame out;
+  StepFrameToProto(frame, names, FrameParts{}, &out);
+  ASSERT_EQ(out.clashes_size(), 1);
+  EXPECT_EQ(out.clashes(0).tool_a(), "left");
+  EXPECT_EQ(out.clashes(0).tool_b(), "right");
+  EXPECT_EQ(out.clashes(0).count(), 3);
+  EXPECT_EQ(out.clashes(0).duration_s(), 0.25);
+  EXPECT_TRUE(out.clashes(0).touching());
+  StepFrameToProto(frame, names, FrameParts{.contacts = false}, &out);
+  EXPECT_EQ(out.clashes_size(), 0);
+}
+
 }  // namespace
 }  // namespace hs

@@ -113,6 +113,34 @@ TEST(ToolContactTest, PushingEachOtherFeelsEqualAndOpposite) {
   EXPECT_GE(touching, 9);
 }
 
+// A goes into B, holds still there, backs out and goes in again: the
+// frames count two clashes of the pair, timed over every step A's contacts
+// hold B, the steps it held still included.
+TEST(ToolContactTest, ClashesAreCountedAndTimed) {
+  std::unique_ptr<Scene> scene = *Scene::Create({.step_s = kStepS});
+  const ObjectId a = AddProbe(*scene, -0.05), b = AddProbe(*scene, 0.05);
+  std::vector<double> path;                                         // A's device x, step by step
+  for (int i = 1; i <= 83; ++i) path.push_back(-0.05 + 0.001 * i);  // 3 mm in
+  for (int i = 0; i < 20; ++i) path.push_back(path.back());         // held
+  for (int i = 1; i <= 10; ++i) path.push_back(0.033 - 0.001 * i);  // out
+  for (int i = 1; i <= 10; ++i) path.push_back(0.023 + 0.001 * i);  // in again
+  int touching_steps = 0;
+  const StepFrame* frame = nullptr;
+  for (const double x : path) {
+    ASSERT_TRUE(scene->SetDevicePose(a, At(x, 0, 0.5)).ok());
+    frame = &scene->Step();
+    touching_steps += ContactWith(frame->tools[0], b) != nullptr;
+  }
+  ASSERT_EQ(frame->clashes.size(), 1u);
+  const ToolClash& clash = frame->clashes[0];
+  EXPECT_EQ(clash.tool_a, a);
+  EXPECT_EQ(clash.tool_b, b);
+  EXPECT_EQ(clash.count, 2);
+  EXPECT_GT(touching_steps, 20);
+  EXPECT_NEAR(clash.seconds, touching_steps * kStepS, 1e-12);
+  EXPECT_TRUE(clash.touching);
+}
+
 constexpr int kPairs = 2;
 
 // Two pairs of probes, far apart, each pair driven into each other, and a

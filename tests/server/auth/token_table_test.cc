@@ -14,9 +14,9 @@ constexpr char kAbcDigest[] = "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb
 // and a caller name made of the digest's first 12 digits; comments, blank
 // lines, tabs and upper-case hex are fine.
 TEST(TokenTableTest, FindsTokensByTheirDigest) {
-  const std::string text = std::string("# trainers\n\n  sha256:") + kAbcDigest +
-                           "\tdrive   train-*  \nSHA256:" +
-                           "E3B0C44298FC1C149AFBF4C8996FB92427AE41E4649B934CA495991B7852B855 admin *\n";
+  const std::string text =
+      std::string("# trainers\n\n  sha256:") + kAbcDigest + "\tdrive   train-*  \nSHA256:" +
+      "E3B0C44298FC1C149AFBF4C8996FB92427AE41E4649B934CA495991B7852B855 admin * dr.lee@ward-3\n";
   absl::StatusOr<TokenTable> table = TokenTable::Parse(text, "tokens");
   ASSERT_TRUE(table.ok()) << table.status();
   EXPECT_EQ(table->size(), 2u);
@@ -25,9 +25,11 @@ TEST(TokenTableTest, FindsTokensByTheirDigest) {
   EXPECT_EQ(abc->role, Role::kDrive);
   EXPECT_EQ(abc->scene_pattern, "train-*");
   EXPECT_EQ(abc->caller, "token:ba7816bf8f01");
-  const Grant* empty = table->Find("");  // SHA-256 of no bytes
+  EXPECT_EQ(abc->name, "token:ba7816bf8f01");  // no NAME: the caller
+  const Grant* empty = table->Find("");        // SHA-256 of no bytes
   ASSERT_NE(empty, nullptr);
   EXPECT_EQ(empty->role, Role::kAdmin);
+  EXPECT_EQ(empty->name, "dr.lee@ward-3");
   EXPECT_EQ(table->Find("abcd"), nullptr);
   EXPECT_EQ(table->Find(kAbcDigest), nullptr);  // the digest is not the token
 }
@@ -39,8 +41,10 @@ TEST(TokenTableTest, RefusesMalformedLines) {
     std::string line;
     std::string message;
   } cases[] = {
-      {good + " admin", "expected 'sha256:<hex> ROLE SCENE_PATTERN'"},
-      {good + " admin * extra", "expected"},
+      {good + " admin", "expected 'sha256:<hex> ROLE SCENE_PATTERN [NAME]'"},
+      {good + " admin * name extra", "expected"},
+      {good + " admin * bad/name", "NAME must be"},
+      {good + " admin * " + std::string(65, 'a'), "NAME must be"},
       {std::string(kAbcDigest) + " admin *", "sha256: and 64 hex digits"},
       {good.substr(0, good.size() - 1) + " admin *", "64 hex digits"},
       {good.substr(0, good.size() - 1) + "g admin *", "64 hex digits"},

@@ -57,9 +57,9 @@ std::string RecordDemo(RecordingOptions options, bool edit) {
   EXPECT_TRUE(recorder.ok()) << recorder.status();
   const std::string file = (*recorder)->path();
   {
-    SceneRunner runner(*spec, *std::move(loaded), metrics, 0, *std::move(recorder));
+    SceneRunner runner(*spec, *std::move(loaded), metrics, {}, *std::move(recorder));
     StepSink device;
-    EXPECT_TRUE(runner.AttachDevice(&device, "probe", EffectSet::All()).ok());
+    EXPECT_TRUE(runner.AttachDevice(&device, {"probe", EffectSet::All()}).ok());
     uint64_t sequence = 0;
     for (size_t i = 0; i < path->size(); ++i) {
       if (edit && i == path->size() / 2) {
