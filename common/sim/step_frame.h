@@ -50,6 +50,9 @@ struct ToolFrame {
   int substeps = 1;
   /// One entry per object the tool touches or penetrates, by object id.
   std::vector<PairContact> contacts;
+  /// The tool whose proxy this tool's proxy rests on, when the proxy stage
+  /// ran (-1 for none): a clash also when no stage lists contacts.
+  ObjectId touched_tool = -1;
   /// The local contact model at the proxy pose, when the local-model stage
   /// ran (else its planes are empty and its radius 0).
   LocalModel local_model;
@@ -97,7 +100,7 @@ struct StepFrame {
   /// One entry per free body, by id.
   std::vector<BodyFrame> bodies;
   /// Every tool pair that ever touched, by (tool_a, tool_b); counted from
-  /// the tools' contacts, so when the collision stage runs.
+  /// the tools' contacts and proxies.
   std::vector<ToolClash> clashes;
 };
 

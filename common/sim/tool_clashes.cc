@@ -30,12 +30,14 @@ void CountClashes(const std::vector<ToolFrame>& tools, double step_s,
     clash.began = clash.touching;  // for now: touched before
     clash.touching = false;
   }
+  auto touch = [&](ObjectId a, ObjectId b) {
+    Entry(clashes, std::min(a, b), std::max(a, b)).touching = true;
+  };
   for (const ToolFrame& tool : tools) {
     for (const PairContact& pair : tool.contacts) {
-      if (!IsTool(tools, pair.object)) continue;
-      Entry(clashes, std::min(tool.tool, pair.object), std::max(tool.tool, pair.object)).touching =
-          true;
+      if (IsTool(tools, pair.object)) touch(tool.tool, pair.object);
     }
+    if (tool.touched_tool >= 0) touch(tool.tool, tool.touched_tool);
   }
   for (ToolClash& clash : clashes) {
     const bool touched_before = clash.began;

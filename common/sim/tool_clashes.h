@@ -9,7 +9,8 @@ namespace hs {
 
 /// Updates `clashes` (every pair that ever touched, by (tool_a, tool_b))
 /// with one step of `step_s` seconds: a pair touches when either tool's
-/// contacts hold the other. Allocates only when a pair first touches.
+/// contacts hold the other or its proxy rests on the other's. Allocates
+/// only when a pair first touches.
 void CountClashes(const std::vector<ToolFrame>& tools, double step_s,
                   std::vector<ToolClash>& clashes);
 

@@ -398,6 +398,7 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
   const Vector3d motion = tool.X_WD.translation() - tool.X_WD_previous.translation();
   StageStatsTable& stats = scratch.proxy_stats;
   frame.X_WP = tool.X_WD;
+  frame.touched_tool = -1;
   frame.force_W.setZero();
   frame.torque_W.setZero();
   frame.force_clamped = false;
@@ -418,6 +419,9 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
     proxy = moved.ok() ? *moved : ProxyState{tool.X_WP};
     if (proxy.touching) proxy.obstacle = scratch.proxy_obstacle_ids[proxy.obstacle];
     frame.X_WP = proxy.X_WP;
+    if (proxy.touching && objects_[proxy.obstacle].kind == ObjectKind::kTool) {
+      frame.touched_tool = proxy.obstacle;
+    }
   }
   if (stages.Has(Effect::kLocalModel)) {
     StageTimer timer(stats[static_cast<int>(Effect::kLocalModel)]);

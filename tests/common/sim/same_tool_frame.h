@@ -14,6 +14,7 @@ inline void ExpectSameToolFrame(const ToolFrame& x, const ToolFrame& y) {
   EXPECT_EQ(std::memcmp(x.force_W.data(), y.force_W.data(), sizeof(double) * 3), 0);
   EXPECT_EQ(std::memcmp(x.torque_W.data(), y.torque_W.data(), sizeof(double) * 3), 0);
   EXPECT_TRUE(x.X_WP.matrix() == y.X_WP.matrix());
+  EXPECT_EQ(x.touched_tool, y.touched_tool);
   ASSERT_EQ(x.contacts.size(), y.contacts.size());
   for (size_t k = 0; k < x.contacts.size(); ++k) {
     const ContactSet& a = x.contacts[k].contact;

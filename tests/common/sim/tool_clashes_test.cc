@@ -69,6 +69,14 @@ TEST(ToolClashesTest, CountsOnsetsAndTimeOfEveryPair) {
   ExpectClash(clashes[0], 0, 1, 2, 3, false, false);
   ExpectClash(clashes[1], 0, 2, 1, 1, true, true);
   ExpectClash(clashes[2], 1, 2, 1, 2, true, false);
+
+  // No contacts listed (no collision stage), but 1's proxy rests on 0's:
+  // (0, 1) clashes a third time.
+  std::vector<ToolFrame> proxies = Touching({});
+  proxies[1].touched_tool = 0;
+  CountClashes(proxies, kStepS, clashes);
+  ExpectClash(clashes[0], 0, 1, 3, 4, true, true);
+  ExpectClash(clashes[1], 0, 2, 1, 1, false, false);
 }
 
 }  // namespace

@@ -113,11 +113,24 @@ TEST(ToolContactTest, PushingEachOtherFeelsEqualAndOpposite) {
   EXPECT_GE(touching, 9);
 }
 
+// Whether the frame's tools a and b touch: a contact listed, or a proxy
+// resting on the other's.
+bool Touch(const StepFrame& frame, ObjectId a, ObjectId b) {
+  const ToolFrame& ta = frame.tools[0];
+  const ToolFrame& tb = frame.tools[1];
+  return ContactWith(ta, b) != nullptr || ContactWith(tb, a) != nullptr || ta.touched_tool == b ||
+         tb.touched_tool == a;
+}
+
 // A goes into B, holds still there, backs out and goes in again: the
-// frames count two clashes of the pair, timed over every step A's contacts
-// hold B, the steps it held still included.
-TEST(ToolContactTest, ClashesAreCountedAndTimed) {
+// frames count two clashes of the pair, timed over every step they touch,
+// the steps A held still included; also when the scene computes forces
+// only (a haptic device's needs: no contacts listed, the proxies touch).
+class ClashTest : public ::testing::TestWithParam<EffectSet> {};
+
+TEST_P(ClashTest, ClashesAreCountedAndTimed) {
   std::unique_ptr<Scene> scene = *Scene::Create({.step_s = kStepS});
+  scene->SetNeeded(GetParam());
   const ObjectId a = AddProbe(*scene, -0.05), b = AddProbe(*scene, 0.05);
   std::vector<double> path;                                         // A's device x, step by step
   for (int i = 1; i <= 83; ++i) path.push_back(-0.05 + 0.001 * i);  // 3 mm in
@@ -129,7 +142,7 @@ TEST(ToolContactTest, ClashesAreCountedAndTimed) {
   for (const double x : path) {
     ASSERT_TRUE(scene->SetDevicePose(a, At(x, 0, 0.5)).ok());
     frame = &scene->Step();
-    touching_steps += ContactWith(frame->tools[0], b) != nullptr;
+    touching_steps += Touch(*frame, a, b);
   }
   ASSERT_EQ(frame->clashes.size(), 1u);
   const ToolClash& clash = frame->clashes[0];
@@ -140,6 +153,10 @@ TEST(ToolContactTest, ClashesAreCountedAndTimed) {
   EXPECT_NEAR(clash.seconds, touching_steps * kStepS, 1e-12);
   EXPECT_TRUE(clash.touching);
 }
+
+INSTANTIATE_TEST_SUITE_P(Needs, ClashTest,
+                         ::testing::Values(EffectSet::All(),
+                                           EffectSet{Effect::kForce, Effect::kFriction}));
 
 constexpr int kPairs = 2;
 
