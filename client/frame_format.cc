@@ -20,12 +20,17 @@ void PrintFrame(const pb::Frame& frame, bool json, std::ostream& out) {
   }
   out << "step " << frame.step() << " pose " << frame.last_pose_sequence();
   for (const pb::ToolState& tool : frame.tools()) {
-    out << "  " << tool.tool() << ": " << tool.contacts_size() << " contact(s)";
+    out << "  " << tool.tool();
+    if (!tool.holder().empty()) out << " (held by " << tool.holder() << ")";
+    out << ": " << tool.contacts_size() << " contact(s)";
     for (const pb::Contact& c : tool.contacts()) {
       out << " [" << c.object() << (c.penetrating() ? " penetrating" : " touching") << ", depth "
           << c.depth_m() << " m, normal " << c.normal_w() << "]";
     }
     out << ", force " << tool.force_w_n() << " N";
+  }
+  for (const pb::ToolClash& clash : frame.clashes()) {
+    if (clash.touching()) out << "  clash " << clash.tool_a() << "-" << clash.tool_b();
   }
   if (frame.dropped_frames() > 0) out << "  (" << frame.dropped_frames() << " frames dropped)";
   out << "\n";

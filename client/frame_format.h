@@ -8,8 +8,9 @@
 
 namespace hs::cli {
 
-/// One line: the step, the pose it applied, every tool's contacts and
-/// force, dropped frames; with `json`, the Frame as one line of JSON.
+/// One line: the step, the pose it applied, every tool's holder, contacts
+/// and force, the tool pairs touching now, dropped frames; with `json`,
+/// the Frame as one line of JSON.
 void PrintFrame(const haptics::v1::Frame& frame, bool json, std::ostream& out);
 
 }  // namespace hs::cli
