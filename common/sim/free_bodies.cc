@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/sim/motion_bounds.h"
+#include "common/sim/tool_force.h"
 #include "common/sim/touched_face.h"
 
 namespace hs {
@@ -50,7 +51,7 @@ void FreeBodies::Move(Body& body, const ToolStage& tools, BodyFrame& frame) {
     IntegrateFreeBody(body.mass, options_.gravity_W, h, body.state);
     int touching = 0;
     for (ObjectId other = 0; other < objects_.size(); ++other) {
-      if (other != body.id) touching += ResolveContact(body, X_WO_from, other, tools);
+      if (other != body.id) touching += ResolveContact(body, X_WO_from, h, other, tools);
     }
     if (touching > 0) body.state.w_W *= std::exp(-options_.contact_angular_damping_per_s * h);
     frame.contacts += touching;
@@ -107,7 +108,7 @@ double FreeBodies::SeparationAlongNormal(ObjectId self, const Isometry3d& X_WO, 
   return std::max(0.0, again.reversing_vector_W.dot(n));
 }
 
-bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId other,
+bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, double h, ObjectId other,
                                 const ToolStage& tools) {
   const HapticObject& that = objects_[other].object;
   const Counterpart c = CounterpartOf(other, tools);
@@ -118,9 +119,14 @@ bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectI
     return false;
   }
   // The body's motion relative to the other object: the direction the
-  // reversing vector undoes.
+  // reversing vector undoes. A tool presses: the body is taken as having
+  // come at it straight, centre to centre, so that the depth is the
+  // press's and not a long way round along a motion mostly beside it.
+  const bool tool = objects_[other].kind == ObjectKind::kTool;
   const ContactQuery query{
-      .direction_W = body.state.X_WO.translation() - X_WO_from.translation() - c.motion_W,
+      .direction_W =
+          tool ? Vector3d(c.X_WO.translation() - CentreOfMass(body.mass, body.state))
+               : Vector3d(body.state.X_WO.translation() - X_WO_from.translation() - c.motion_W),
       .method = options_.method,
       .relative_tolerance = options_.relative_tolerance};
   const absl::Status status = ComputeContact(objects_.Posed(body.id, body.state.X_WO),
@@ -143,9 +149,18 @@ bool FreeBodies::ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectI
     response.p_WC = sum / static_cast<double>(contact.points.size());
   }
   response.v_other_W = c.v_W;
-  response.friction = that.face_material(TouchedFace(that, contact.fixed)).dynamic_friction;
+  const Material& touched = that.face_material(TouchedFace(that, contact.fixed));
+  response.friction = touched.dynamic_friction;
+  // A tool in the body squeezes it with the spring of the two faces in
+  // series over its depth, as a proxy held out of the body would feel.
+  if (tool && response.separation_m > 0) {
+    const HapticObject& self = objects_[body.id].object;
+    const Material pair =
+        TouchingMaterial(touched, self.face_material(TouchedFace(self, contact.moving)));
+    response.grip_impulse = pair.stiffness_n_per_m * response.separation_m * h;
+  }
   const Vector3d impulse = RespondToContact(body.mass, response, body.state, c.body);
-  if (objects_[other].kind == ObjectKind::kTool) push_impulse_W_[other] += impulse;
+  if (tool) push_impulse_W_[other] += impulse + response.grip_impulse * response.normal_W;
   return true;
 }
 

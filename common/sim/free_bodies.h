@@ -52,9 +52,9 @@ class FreeBodies {
 
   void Move(Body& body, const ToolStage& tools, BodyFrame& frame);
   Counterpart CounterpartOf(ObjectId id, const ToolStage& tools);
-  // Resolves one contact of `body` (moved from X_WO_from this sub-step)
-  // with object `other`; returns whether they were in contact.
-  bool ResolveContact(Body& body, const Isometry3d& X_WO_from, ObjectId other,
+  // Resolves one contact of `body` (moved from X_WO_from this sub-step of
+  // h seconds) with object `other`; returns whether they were in contact.
+  bool ResolveContact(Body& body, const Isometry3d& X_WO_from, double h, ObjectId other,
                       const ToolStage& tools);
   // How far to move object `self` (at X_WO) along the unit normal n to stop
   // penetrating object `that`, from `contact` found along `motion_W`.

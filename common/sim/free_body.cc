@@ -64,14 +64,16 @@ Vector3d RespondToContact(const MassProperties& body, const BodyContact& contact
   const Vector3d v_other = that ? that->PointVelocity() : contact.v_other_W;
   const Vector3d v_rel = self.PointVelocity() - v_other;
   const double approach = v_rel.dot(n);
-  if (approach >= 0) return Vector3d::Zero();
+  if (approach >= 0 && contact.grip_impulse <= 0) return Vector3d::Zero();
   auto response = [&](const Vector3d& u) {
     return self.Response(u) + (that ? that->Response(u) : 0.0);
   };
-  const double normal_impulse = -approach / response(n);
+  const double normal_impulse = approach < 0 ? -approach / response(n) : 0.0;
   const Vector3d normal = normal_impulse * n;
-  self.Apply(normal, true);
-  if (that) that->Apply(-normal, true);
+  if (normal_impulse > 0) {
+    self.Apply(normal, true);
+    if (that) that->Apply(-normal, true);
+  }
   // Friction: the impulse that stops the sliding, limited to the cone. It
   // goes through the centres of mass: with one impulse point per contact
   // the normal force cannot shift to balance friction's tipping moment, so
@@ -81,7 +83,9 @@ Vector3d RespondToContact(const MassProperties& body, const BodyContact& contact
   const double speed_t = v_t.norm();
   if (speed_t > 0 && contact.friction > 0) {
     const double linear = 1 / body.mass_kg + (that ? 1 / that->mass->mass_kg : 0.0);
-    friction = -std::min(speed_t / linear, contact.friction * normal_impulse) * (v_t / speed_t);
+    friction =
+        -std::min(speed_t / linear, contact.friction * (normal_impulse + contact.grip_impulse)) *
+        (v_t / speed_t);
     self.Apply(friction, false);
     if (that) that->Apply(-friction, false);
   }

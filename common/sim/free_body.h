@@ -43,6 +43,13 @@ struct BodyContact {
   Vector3d v_other_W = Vector3d::Zero();
   /// Coulomb coefficient for the tangential impulse, >= 0.
   double friction = 0;
+  /// How hard the other object squeezes the body beyond stopping its
+  /// approach over this (sub-)step, N*s: a tool whose device is in the
+  /// body, its stiffness times the depth times the sub-step. It widens
+  /// friction's cone, so that two tools pinching a body hold it up; it
+  /// does not move the body (the separation does), and the tool feels it
+  /// back.
+  double grip_impulse = 0;
 };
 
 /// The other object of a contact when it is a free body too.
@@ -55,7 +62,8 @@ struct OtherBody {
 /// the separation by inverse mass), then, when it approaches the other
 /// object at the contact point, applies the impulse that stops the
 /// approach (restitution 0) at the contact point; friction's impulse, at
-/// most `friction` times the normal one, acts through the centre of mass. A fixed object or a tool
+/// most `friction` times the normal one and the grip, acts through the
+/// centre of mass (with a grip, also when not approaching). A fixed object or a tool
 /// (no `other`) does not give way: contact.v_other_W is its velocity. A free `other` takes the
 /// opposite impulse, its velocity read from its state. Returns the impulse applied to the body,
 /// world frame, N*s.

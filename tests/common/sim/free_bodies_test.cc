@@ -59,6 +59,60 @@ TEST(FreeBodiesTest, FreeBodyRestsOnFixedBox) {
   EXPECT_TRUE(after.linear().isApprox(Matrix3d::Identity(), 1e-6));
 }
 
+// Two tools of friction `tool_friction` pinch the resting cube from both
+// sides, 2 mm into it each, and lift together at 5 cm/s for 1 cm (200
+// steps). Returns the cube's last frame; `forces` gets the two devices'
+// last forces.
+BodyFrame PinchAndLift(double tool_friction, Vector3d forces[2]) {
+  Rig rig = MakeRig();
+  AddCube(*rig.scene, 0);
+  // Jaws 2 cm thick, 3 cm wide and tall: no face of theirs is coplanar
+  // with one of the cube's.
+  MeshInput jaw_mesh = MakeBox(Vector3d(0.02, 0.03, 0.03));
+  for (Material& m : jaw_mesh.materials) m.static_friction = m.dynamic_friction = tool_friction;
+  // The rig's probe stays home; two jaws pinch.
+  const ObjectId left = *rig.scene->AddObject(*HapticObject::Create("left", jaw_mesh),
+                                              ObjectKind::kTool, At(0.27, 0.05, 0.016));
+  const ObjectId right = *rig.scene->AddObject(*HapticObject::Create("right", jaw_mesh),
+                                               ObjectKind::kTool, At(0.33, 0.05, 0.016));
+  for (int i = 0; i < 50; ++i) rig.scene->Step();  // the cube settles
+  const StepFrame* frame = nullptr;
+  auto drive = [&](double in, double up) {
+    EXPECT_TRUE(rig.scene->SetDevicePose(left, At(0.27 + in, 0.05, 0.016 + up)).ok());
+    EXPECT_TRUE(rig.scene->SetDevicePose(right, At(0.33 - in, 0.05, 0.016 + up)).ok());
+    frame = &rig.scene->Step();
+  };
+  for (int i = 1; i <= 12; ++i) drive(0.001 * i, 0);         // faces 2 mm in
+  for (int i = 1; i <= 200; ++i) drive(0.012, 0.00005 * i);  // 1 cm up
+  forces[0] = frame->tools[1].force_W;
+  forces[1] = frame->tools[2].force_W;
+  return frame->bodies[0];
+}
+
+// With friction (0.5), the pinched cube rises with the tools and stays
+// between them; each device feels its squeeze, equal and opposite, by hand
+// 2.0 N (the faces' 500 N/m in series over the 4 mm the jaws close past
+// the cube), and together they carry its weight (8 g; the first jaw in
+// id order carries what its friction can). With friction 0.01 the jaws
+// can hold 2 x 0.01 x 2.0 N = 0.04 N, less than the weight: the cube
+// slides back to the floor, and each device feels the 0.02 N it held.
+TEST(FreeBodiesTest, TwoToolsPinchAndLiftABox) {
+  Vector3d forces[2];
+  const double weight = 0.008 * 9.81;
+  const BodyFrame lifted = PinchAndLift(0.5, forces);
+  EXPECT_GT(lifted.X_WO.translation().z(), 0.01 + 0.0075);  // most of the 1 cm
+  EXPECT_NEAR(lifted.v_W.z(), 0.05, 0.005);                 // going up with the jaws
+  EXPECT_NEAR(lifted.X_WO.translation().x(), 0.3, 0.0025);  // between them
+  EXPECT_NEAR(forces[0].x(), -2.0, 0.05);
+  EXPECT_NEAR(forces[1].x(), 2.0, 0.05);
+  EXPECT_NEAR(forces[0].z() + forces[1].z(), -weight, 0.1 * weight);
+
+  const BodyFrame slipped = PinchAndLift(0.01, forces);
+  EXPECT_NEAR(slipped.X_WO.translation().z(), 0.01, 1e-4);
+  EXPECT_NEAR(forces[0].z(), -0.02, 0.002);
+  EXPECT_NEAR(forces[1].z(), -0.02, 0.002);
+}
+
 // The probe pushes a resting free cube sideways: the cube moves along with
 // it, ahead of it, and stays on the floor; the device feels it resist.
 TEST(FreeBodiesTest, ToolPushesFreeBody) {
