@@ -145,12 +145,12 @@ void Metrics::AddAgonesRequest(const std::string& call, bool ok) {
   agones_up_->Set(ok ? 1 : 0);
 }
 
-void Metrics::AddToolClash(const std::string& scene, const std::string& tool_a,
-                           const std::string& tool_b, bool began, double seconds) {
+Metrics::ToolClashCounters Metrics::ToolClashCountersFor(const std::string& scene,
+                                                         const std::string& tool_a,
+                                                         const std::string& tool_b) {
   const std::map<std::string, std::string> labels = {
       {"scene", scene}, {"tool_a", tool_a}, {"tool_b", tool_b}};
-  if (began) tool_clashes_->Add(labels).Increment();
-  tool_clash_seconds_->Add(labels).Increment(seconds);
+  return {&tool_clashes_->Add(labels), &tool_clash_seconds_->Add(labels)};
 }
 
 std::string Metrics::Text() const {

@@ -53,10 +53,16 @@ class Metrics {
   /// last request was answered.
   void AddAgonesRequest(const std::string& call, bool ok);
 
-  /// Tools `tool_a` and `tool_b` of scene `scene` touched for `seconds` of
-  /// simulated time, having begun to (`began`) at that step or before.
-  void AddToolClash(const std::string& scene, const std::string& tool_a, const std::string& tool_b,
-                    bool began, double seconds);
+  /// The counters of tools `tool_a` and `tool_b` of scene `scene`: the
+  /// times they began to touch, and the simulated seconds they touched.
+  /// Registered on first use (it allocates); the stepping thread keeps
+  /// them, so that a step only increments.
+  struct ToolClashCounters {
+    prometheus::Counter* clashes = nullptr;
+    prometheus::Counter* seconds = nullptr;
+  };
+  ToolClashCounters ToolClashCountersFor(const std::string& scene, const std::string& tool_a,
+                                         const std::string& tool_b);
 
   /// The text exposition of every metric (as /metrics serves it).
   std::string Text() const;

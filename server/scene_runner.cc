@@ -6,6 +6,8 @@
 #include <chrono>
 #include <ctime>
 
+#include <prometheus/counter.h>
+
 #include "absl/strings/str_cat.h"
 #include "common/api/scene_geometry.h"
 #include "common/core/check.h"
@@ -168,10 +170,14 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     last_stats_ = scene.stats();
     metrics_.ObserveStep(1e-9 * static_cast<double>(snapshot->step_ns), delta);
     for (const ToolClash& clash : frame.clashes) {
-      if (clash.touching) {
-        metrics_.AddToolClash(name_, loaded_.names[clash.tool_a], loaded_.names[clash.tool_b],
-                              clash.began, step_s_);
+      if (!clash.touching) continue;
+      auto [at, added] = clash_counters_.try_emplace({clash.tool_a, clash.tool_b});
+      if (added) {
+        at->second = metrics_.ToolClashCountersFor(name_, loaded_.names[clash.tool_a],
+                                                   loaded_.names[clash.tool_b]);
       }
+      if (clash.began) at->second.clashes->Increment();
+      at->second.seconds->Increment(step_s_);
     }
     snapshot->start_lag_ns = start_lag_ns;
     snapshot->missed_steps = missed_steps_;
@@ -245,6 +251,7 @@ absl::Status SceneRunner::Replace(haptics::v1::SceneSpec spec, LoadedScene scene
         std::swap(spec_, spec);
         std::swap(loaded_, scene);
         names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
+        clash_counters_.clear();  // the ids are the new scene's
         last_stats_ = StageStatsTable{};
         ++revision_;
         if (recorder_) recorder_->RecordEdit(step_, spec_, revision_);

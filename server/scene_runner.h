@@ -14,6 +14,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -130,6 +131,9 @@ class SceneRunner {
   int64_t step_ = 0;
   StageStatsTable last_stats_{};
   std::map<std::string, PendingPose> applied_;  // by tool name
+  // The /metrics counters of each tool pair that clashed, by (tool_a,
+  // tool_b) of the scene running now.
+  std::map<std::pair<ObjectId, ObjectId>, Metrics::ToolClashCounters> clash_counters_;
 
   // Taken after the registry's lock when both are held.
   PriorityInheritingMutex stop_mu_;

@@ -1,6 +1,7 @@
 #include "server/metrics.h"
 
 #include <gtest/gtest.h>
+#include <prometheus/counter.h>
 
 namespace hs {
 namespace {
@@ -25,8 +26,11 @@ TEST(MetricsTest, CountsAppearInExposition) {
   metrics.AddMissedSteps(2, /*off_cpu=*/true);
   metrics.AddRejected("GetScene", "NOT_FOUND");
   metrics.AddRejected("GetScene", "NOT_FOUND");
-  metrics.AddToolClash("demo", "left", "right", /*began=*/true, 0.001);
-  metrics.AddToolClash("demo", "left", "right", /*began=*/false, 0.001);
+  const Metrics::ToolClashCounters clash = metrics.ToolClashCountersFor("demo", "left", "right");
+  clash.clashes->Increment();
+  clash.seconds->Increment(0.001);
+  // Asked again, the same counters.
+  metrics.ToolClashCountersFor("demo", "left", "right").seconds->Increment(0.001);
   const std::string text = metrics.Text();
   EXPECT_TRUE(Has(text, "hs_step_seconds_count 2"));
   EXPECT_TRUE(Has(text, "hs_step_seconds_bucket{le=\"0.0005\"} 1"));
