@@ -36,4 +36,13 @@ void PrintFrame(const pb::Frame& frame, bool json, std::ostream& out) {
   out << "\n";
 }
 
+ClashTotals SumClashes(const pb::Frame& frame) {
+  ClashTotals totals;
+  for (const pb::ToolClash& clash : frame.clashes()) {
+    totals.count += clash.count();
+    totals.seconds += clash.duration_s();
+  }
+  return totals;
+}
+
 }  // namespace hs::cli

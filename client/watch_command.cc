@@ -39,12 +39,7 @@ class SecondSummary {
     last_missed_ = frame.missed_steps();
     step_ms_.push_back(1e-6 * static_cast<double>(frame.timings().step_ns()));
     // Clashes are counted since the scene began: the last frame's stand.
-    clashes_ = 0;
-    clash_s_ = 0;
-    for (const pb::ToolClash& clash : frame.clashes()) {
-      clashes_ += clash.count();
-      clash_s_ += clash.duration_s();
-    }
+    clashes_ = SumClashes(frame);
     for (const pb::ToolState& tool : frame.tools()) {
       contacts_ = std::max(contacts_, tool.contacts_size());
       const pb::Vector3& f = tool.force_w_n();
@@ -65,8 +60,8 @@ class SecondSummary {
                                      {"missed_steps", last_missed_ - start_missed_},
                                      {"max_contacts", contacts_},
                                      {"max_force_n", max_force_n_},
-                                     {"tool_clashes", clashes_},
-                                     {"tool_clash_s", clash_s_},
+                                     {"tool_clashes", clashes_.count},
+                                     {"tool_clash_s", clashes_.seconds},
                                      {"step_ms_p50", step.p50},
                                      {"step_ms_max", step.max}};
       out << line.dump() << "\n";
@@ -74,8 +69,9 @@ class SecondSummary {
       out << elapsed_s << " s: " << frames_ << " frames, steps " << first_step_ << ".."
           << last_step_ << ", dropped " << last_dropped_ - start_dropped_ << ", missed "
           << last_missed_ - start_missed_ << ", contacts <= " << contacts_
-          << ", |force| <= " << max_force_n_ << " N, tool clashes " << clashes_ << " (" << clash_s_
-          << " s), step p50 " << step.p50 << " ms, max " << step.max << " ms" << std::endl;
+          << ", |force| <= " << max_force_n_ << " N, tool clashes " << clashes_.count << " ("
+          << clashes_.seconds << " s), step p50 " << step.p50 << " ms, max " << step.max << " ms"
+          << std::endl;
     }
     frames_ = 0;
     contacts_ = 0;
@@ -96,8 +92,7 @@ class SecondSummary {
   int64_t last_missed_ = 0;
   int contacts_ = 0;
   double max_force_n_ = 0;
-  int64_t clashes_ = 0;  // since the scene began, over every tool pair
-  double clash_s_ = 0;
+  ClashTotals clashes_;  // since the scene began, over every tool pair
   std::vector<double> step_ms_;
 };
 

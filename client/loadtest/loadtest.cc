@@ -17,6 +17,7 @@
 #include "absl/strings/str_cat.h"
 #include "client/channel.h"
 #include "client/device_path.h"
+#include "client/frame_format.h"
 #include "client/loadtest/echo_baseline.h"
 #include "client/loadtest/process_cpu.h"
 #include "client/loadtest/send_schedule.h"
@@ -111,14 +112,9 @@ class FrameCounts {
     dropped_.See(static_cast<int64_t>(frame.dropped_frames()), first);
     missed_.See(frame.missed_steps(), first);
     missed_off_cpu_.See(frame.missed_steps_off_cpu(), first);
-    int64_t clashes = 0;
-    double clash_s = 0;
-    for (const pb::ToolClash& clash : frame.clashes()) {
-      clashes += clash.count();
-      clash_s += clash.duration_s();
-    }
-    clashes_.See(clashes, first);
-    clash_s_.See(clash_s, first);
+    const ClashTotals clashes = SumClashes(frame);
+    clashes_.See(clashes.count, first);
+    clash_s_.See(clashes.seconds, first);
   }
   void Fill(StreamReport& report, double window_s) const {
     report.frames = frames_;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <utility>
 
 namespace hs::cli {
 namespace {
@@ -29,6 +30,19 @@ TEST(FrameFormatTest, NamesHoldersAndClashes) {
   EXPECT_NE(line.find("right: 0 contact(s)"), std::string::npos) << line;
   EXPECT_NE(line.find("clash left-right"), std::string::npos) << line;
   EXPECT_EQ(line.find("scalpel"), std::string::npos) << line;
+}
+
+// The clash totals sum every pair, touching now or not.
+TEST(FrameFormatTest, SumsClashesOverPairs) {
+  haptics::v1::Frame frame;
+  for (const auto& [count, seconds] : {std::pair{2, 0.25}, std::pair{3, 0.5}}) {
+    haptics::v1::ToolClash* clash = frame.add_clashes();
+    clash->set_count(count);
+    clash->set_duration_s(seconds);
+  }
+  const ClashTotals totals = SumClashes(frame);
+  EXPECT_EQ(totals.count, 5);
+  EXPECT_EQ(totals.seconds, 0.75);
 }
 
 }  // namespace
