@@ -1,5 +1,7 @@
 #include "common/collision/collision_model.h"
 
+#include <algorithm>
+#include <atomic>
 #include <limits>
 #include <utility>
 
@@ -10,26 +12,9 @@
 namespace hs {
 namespace {
 
-// Growing each volume by the margin keeps it a bound of everything within
-// the margin of its triangles.
-void Grow(fcl::OBBd& bv, double m) { bv.extent.array() += m; }
-void Grow(fcl::RSSd& bv, double m) { bv.r += m; }
-void Grow(fcl::OBBRSSd& bv, double m) {
-  Grow(bv.obb, m);
-  Grow(bv.rss, m);
-}
-void Grow(fcl::kIOSd& bv, double m) {
-  for (unsigned i = 0; i < bv.num_spheres; ++i) bv.spheres[i].r += m;
-  Grow(bv.obb, m);
-}
-void Grow(fcl::AABBd& bv, double m) {
-  bv.min_.array() -= m;
-  bv.max_.array() += m;
-}
-
 template <typename BV>
 void GrowAll(fcl::BVHModel<BV>& model, double margin) {
-  for (int i = 0; i < model.getNumBVs(); ++i) Grow(model.getBV(i).bv, margin);
+  for (int i = 0; i < model.getNumBVs(); ++i) GrowVolume(model.getBV(i).bv, margin);
   model.computeLocalAABB();
   model.aabb_local.min_.array() -= margin;
   model.aabb_local.max_.array() += margin;
@@ -96,6 +81,15 @@ std::vector<int> LeafFaces(const AnyBvh& bvh) {
       bvh);
 }
 
+// The centre of the object's box and its vertices' largest distance from it.
+void PlaceCentre(const HapticObject& object, CollisionModel::Impl& impl) {
+  impl.centre = object.bounding_box().center();
+  impl.radius = 0;
+  for (const Vector3d& p : object.positions()) {
+    impl.radius = std::max(impl.radius, (p - impl.centre).norm());
+  }
+}
+
 // Places the faces in leaf order (leaf_order_faces) with their boxes.
 void PlaceLeafOrderFaces(CollisionModel::Impl& impl) {
   const size_t n = impl.leaf_faces.size();
@@ -135,10 +129,13 @@ Triangle3d CollisionModel::Impl::triangle(int f) const {
 CollisionModel::CollisionModel(const HapticObject& object, BvType type, double margin_m)
     : impl_(std::make_unique<Impl>()) {
   HS_CHECK(margin_m >= 0);
+  static std::atomic<uint64_t> models_made{0};
   impl_->type = type;
+  impl_->id = ++models_made;
   impl_->margin_m = margin_m;
   impl_->geometry_version = object.geometry_version();
   impl_->bvh = BuildAny(object, type, margin_m);
+  PlaceCentre(object, *impl_);
   impl_->degenerate = DegenerateFaces(object);
   impl_->leaf_faces = LeafFaces(impl_->bvh);
   PlaceLeafOrderFaces(*impl_);
@@ -167,6 +164,7 @@ bool CollisionModel::Sync(const HapticObject& object) {
       },
       impl_->bvh);
   impl_->degenerate = DegenerateFaces(object);
+  PlaceCentre(object, *impl_);
   PlaceLeafOrderFaces(*impl_);
   impl_->geometry_version = object.geometry_version();
   return true;

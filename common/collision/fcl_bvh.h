@@ -33,8 +33,15 @@ using AnyBvh = std::variant<BvhPtr<fcl::OBBRSSd>, BvhPtr<fcl::OBBd>, BvhPtr<fcl:
 
 struct CollisionModel::Impl {
   BvType type = BvType::kObbRss;
+  /// Unique among the models this process has made: what a PairCache
+  /// knows a model by (an address may be reused by a later model).
+  uint64_t id = 0;
   double margin_m = 0;
   uint64_t geometry_version = 0;
+  /// The centre of the object's box (object frame) and the largest distance
+  /// of a vertex from it: how far a turn can move the object's points.
+  Vector3d centre = Vector3d::Zero();
+  double radius = 0;
   AnyBvh bvh;
   /// Per face: zero area, so skipped by the leaf test (a flat triangle has
   /// no normal and SAT cannot separate it reliably; in a closed mesh its
@@ -55,5 +62,22 @@ struct CollisionModel::Impl {
   /// Triangle `f` in the object frame.
   Triangle3d triangle(int f) const;
 };
+
+/// Grows a volume by `m` metres: it then bounds everything within `m` of
+/// what it bounded.
+inline void GrowVolume(fcl::OBBd& bv, double m) { bv.extent.array() += m; }
+inline void GrowVolume(fcl::RSSd& bv, double m) { bv.r += m; }
+inline void GrowVolume(fcl::OBBRSSd& bv, double m) {
+  GrowVolume(bv.obb, m);
+  GrowVolume(bv.rss, m);
+}
+inline void GrowVolume(fcl::kIOSd& bv, double m) {
+  for (unsigned i = 0; i < bv.num_spheres; ++i) bv.spheres[i].r += m;
+  GrowVolume(bv.obb, m);
+}
+inline void GrowVolume(fcl::AABBd& bv, double m) {
+  bv.min_.array() -= m;
+  bv.max_.array() += m;
+}
 
 }  // namespace hs

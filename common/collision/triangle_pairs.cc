@@ -72,19 +72,24 @@ fcl::AABBd Swept(const fcl::AABBd& bv, const Vector3d& v) {
 template <typename BV>
 class VolumeTest {
  public:
+  // A's volumes are swept along `sweep_A` when given, and grown by
+  // `grow_m`.
   VolumeTest(const fcl::BVHModel<BV>& mb, const Matrix3d& R, const Vector3d& T,
-             const Vector3d* sweep_A)
-      : R_(R), T_(T), sweep_A_(sweep_A) {
+             const Vector3d* sweep_A, double grow_m)
+      : R_(R), T_(T), sweep_A_(sweep_A), grow_(grow_m) {
     if (kFast) cache().Start(mb.getNumBVs(), R, T);
   }
 
   bool Overlap(const BV& a, int j, const BV& b) const {
     if constexpr (kFast) {
-      // A swept box is a box: the lean test serves both queries.
-      const fcl::OBBd box_a = sweep_A_ ? Swept(CullingBox(a), *sweep_A_) : CullingBox(a);
+      // A swept or grown box is a box: the lean test serves every query.
+      fcl::OBBd box_a = sweep_A_ ? Swept(CullingBox(a), *sweep_A_) : CullingBox(a);
+      if (grow_ > 0) GrowVolume(box_a, grow_);
       return !BoxesDisjoint(box_a, box_a.extent.norm(), cache().Get(j, CullingBox(b)));
     } else {
-      return hs::Overlap(R_, T_, sweep_A_ ? Swept(a, *sweep_A_) : a, b);
+      BV volume_a = sweep_A_ ? Swept(a, *sweep_A_) : a;
+      if (grow_ > 0) GrowVolume(volume_a, grow_);
+      return hs::Overlap(R_, T_, volume_a, b);
     }
   }
 
@@ -98,6 +103,7 @@ class VolumeTest {
   const Matrix3d R_;
   const Vector3d T_;
   const Vector3d* sweep_A_;
+  const double grow_;
 };
 
 // Nodes holding at most this many faces each are not split further: both
@@ -119,6 +125,13 @@ struct Query {
   bool first_only;  // stop at the first pair found
   SweptFaceTest face_test;
   std::span<const TrianglePair> skip;
+  // A static query answered from, or building, a region of this cache.
+  PairCache* cache = nullptr;
+  // Building a region: A's volumes grown by this much (the region's slack,
+  // also in margin_m), and every pair whose boxes meet and that neither
+  // face's plane keeps beyond margin_m goes here, face tests left out.
+  double grow_volumes_m = 0;
+  std::vector<PairCache::Candidate>* candidates = nullptr;
 };
 
 // The faces of B placed in A's frame, kept from query to query.
@@ -143,6 +156,7 @@ class BucketTest {
         margin_(query.margin_m),
         planes_only_(query.face_test == SweptFaceTest::kPlanesOnly),
         skip_(query.skip),
+        candidates_(query.candidates),
         faces_b_(Scratch<PlacedFacesOfB>().faces),
         skip_begin_(Scratch<SkipStarts>().begin),
         buffers_(Scratch<RunBuffers>()) {
@@ -163,11 +177,10 @@ class BucketTest {
   template <typename Node>
   void Run(const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
     std::vector<Entry>& list_b = buffers_.list_b;
-    Vector3d lo_b, hi_b;
-    StartList(list_b, lo_b, hi_b);
+    list_b.clear();
     for (int i = nb.first_primitive; i < nb.first_primitive + nb.num_primitives; ++i) {
       const int f = ib_.leaf_faces[i];
-      if (!ib_.degenerate[f]) AddEntry(f, &faces_b_.Get(f), list_b, lo_b, hi_b);
+      if (!ib_.degenerate[f]) list_b.push_back({f, &faces_b_.Get(f)});
     }
     const int first = na.first_primitive, count = na.num_primitives;
     double grow_lo[3] = {0, 0, 0}, grow_hi[3] = {0, 0, 0};
@@ -177,31 +190,38 @@ class BucketTest {
         grow_hi[d] = std::max(0.0, -(*sweep_A_)[d]);
       }
     }
-    double lo[3], hi[3];  // the overlap of the two buckets' boxes, grown by the margin
+    // Every cut below compares as the face boxes' own test (BucketBoxes::
+    // Meeting) does, against a box holding the faces', so rounding never
+    // makes a cut stricter than that test: the pairs found are exactly
+    // those of that test and the face test, as a cached query finds them.
+    double lo_a[3], hi_a[3];  // A's bucket box, swept
     for (int d = 0; d < 3; ++d) {
       const double* a_lo = ia_.leaf_order_lo[d].data() + first;
       const double* a_hi = ia_.leaf_order_hi[d].data() + first;
-      double lo_a = std::numeric_limits<double>::infinity(), hi_a = -lo_a;
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (int k = 0; k < count; ++k) {
-        lo_a = std::min(lo_a, a_lo[k]);
-        hi_a = std::max(hi_a, a_hi[k]);
+        lo = std::min(lo, a_lo[k]);
+        hi = std::max(hi, a_hi[k]);
       }
-      lo[d] = std::max(lo_a + grow_lo[d], lo_b[d]) - margin_;
-      hi[d] = std::min(hi_a + grow_hi[d], hi_b[d]) + margin_;
-      if (lo[d] > hi[d]) return;
+      lo_a[d] = lo + grow_lo[d];
+      hi_a[d] = hi + grow_hi[d];
     }
+    double lo_b[3], hi_b[3];  // B's bucket box, of the faces kept
+    Crop(list_b, lo_a, hi_a, margin_, lo_b, hi_b);
+    if (list_b.empty()) return;
     uint32_t faces_a = count == 32 ? ~uint32_t{0} : (uint32_t{1} << count) - 1;
     for (int d = 0; d < 3; ++d) {
       const double* a_lo = ia_.leaf_order_lo[d].data() + first;
       const double* a_hi = ia_.leaf_order_hi[d].data() + first;
+      const double hi_b_plus = hi_b[d] + margin_;
       uint32_t meets = 0;
       for (int k = 0; k < count; ++k) {
-        const bool meet = (a_lo[k] + grow_lo[d] <= hi[d]) & (lo[d] <= a_hi[k] + grow_hi[d]);
+        const bool meet =
+            (a_lo[k] + grow_lo[d] <= hi_b_plus) & (lo_b[d] <= a_hi[k] + grow_hi[d] + margin_);
         meets |= uint32_t{meet} << k;
       }
       faces_a &= meets;
     }
-    Crop(list_b, lo, hi);
     BucketBoxes& boxes_b = buffers_.boxes_b;
     boxes_b.Set(list_b, margin_);
     for (; faces_a != 0; faces_a &= faces_a - 1) {
@@ -220,10 +240,53 @@ class BucketTest {
         if (!skipped.empty() && std::ranges::binary_search(skipped, TrianglePair{a, b.id})) {
           continue;
         }
+        if (candidates_) {
+          if (!PlanesKeepApart(face_a, *b.face)) candidates_->push_back({i, b.id, {}, -1});
+          continue;
+        }
         const bool hit = sweep_A_ ? SweptFacesMeet(face_a, *b.face)
                                   : TrianglesIntersect(face_a.triangle, face_a.normal,
                                                        b.face->triangle, b.face->normal, margin_);
         if (hit) pairs.push_back({a, b.id});
+      }
+    }
+  }
+
+  /// A static query from a region's candidates: each goes through Run's
+  /// tests (its box test, `skip`, the face test) in the candidates' order,
+  /// Run's own, save those known apart. B is `moved` (the region's motion
+  /// bound) from the region's pose, and `rounding` (the region's slack
+  /// beside its skin) covers the rounding of what was measured there.
+  void RunCandidates(std::span<PairCache::Candidate> candidates, double moved, double rounding,
+                     std::vector<TrianglePair>& pairs) const {
+    HS_CHECK(!sweep_A_);
+    for (PairCache::Candidate& candidate : candidates) {
+      // Apart by more than the motion since it was last tested: its box
+      // or plane test would reject it again.
+      if (moved < candidate.apart_until) continue;
+      const int i = candidate.leaf_a;
+      const PlacedFace& b = faces_b_.Get(candidate.face_b);
+      double box_gap = -std::numeric_limits<double>::infinity();
+      for (int d = 0; d < 3; ++d) {
+        box_gap = std::max(box_gap, std::max(ia_.leaf_order_lo[d][i] - (b.hi[d] + margin_),
+                                             b.lo[d] - (ia_.leaf_order_hi[d][i] + margin_)));
+      }
+      if (box_gap > 0) {  // BucketBoxes::Meeting rejects the pair
+        candidate.apart_until = box_gap - moved - rounding;
+        continue;
+      }
+      const int a = ia_.leaf_faces[i];
+      const std::span<const TrianglePair> skipped = Skipped(a);
+      if (!skipped.empty() &&
+          std::ranges::binary_search(skipped, TrianglePair{a, candidate.face_b})) {
+        continue;
+      }
+      const PlacedFace& face_a = ia_.leaf_order_faces[i];
+      if (TrianglesIntersect(face_a.triangle, face_a.normal, b.triangle, b.normal, margin_,
+                             candidate.hint)) {
+        pairs.push_back({a, candidate.face_b});
+      } else {
+        candidate.apart_until = candidate.hint.plane_gap_m - moved - rounding;
       }
     }
   }
@@ -298,32 +361,40 @@ class BucketTest {
     return skip_.subspan(begin[a], begin[a + 1] - begin[a]);
   }
 
-  static void StartList(std::vector<Entry>& list, Vector3d& lo, Vector3d& hi) {
-    list.clear();
-    lo.setConstant(std::numeric_limits<double>::infinity());
-    hi = -lo;
-  }
-
-  // Adds a face to a bucket's list and its box to the bucket's box.
-  static void AddEntry(int id, const PlacedFace* face, std::vector<Entry>& list, Vector3d& lo,
-                       Vector3d& hi) {
-    list.push_back({id, face});
-    lo = lo.cwiseMin(face->lo);
-    hi = hi.cwiseMax(face->hi);
-  }
-
-  // Keeps the entries whose boxes meet the box [lo, hi], without a branch
-  // per entry: which ones go is as good as random.
-  static void Crop(std::vector<Entry>& list, const double (&lo)[3], const double (&hi)[3]) {
+  // Keeps the entries whose boxes meet A's bucket box [lo_a, hi_a] within
+  // `margin`, without a branch per entry (which ones go is as good as
+  // random), and gives the box of those kept.
+  static void Crop(std::vector<Entry>& list, const double (&lo_a)[3], const double (&hi_a)[3],
+                   double margin, double (&lo)[3], double (&hi)[3]) {
+    const double hi_a_plus[3] = {hi_a[0] + margin, hi_a[1] + margin, hi_a[2] + margin};
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::numeric_limits<double>::infinity();
+      hi[d] = -lo[d];
+    }
     size_t kept = 0;
     for (const Entry& e : list) {
       const PlacedFace& f = *e.face;
       list[kept] = e;
-      kept += (f.lo[0] <= hi[0]) & (lo[0] <= f.hi[0]) &  //
-              (f.lo[1] <= hi[1]) & (lo[1] <= f.hi[1]) &  //
-              (f.lo[2] <= hi[2]) & (lo[2] <= f.hi[2]);
+      const bool keep = (lo_a[0] <= f.hi[0] + margin) & (f.lo[0] <= hi_a_plus[0]) &  //
+                        (lo_a[1] <= f.hi[1] + margin) & (f.lo[1] <= hi_a_plus[1]) &  //
+                        (lo_a[2] <= f.hi[2] + margin) & (f.lo[2] <= hi_a_plus[2]);
+      kept += keep;
     }
     list.resize(kept);
+    for (const Entry& e : list) {
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], e.face->lo[d]);
+        hi[d] = std::max(hi[d], e.face->hi[d]);
+      }
+    }
+  }
+
+  // Building a region: whether either face's plane keeps the other face
+  // beyond the margin (the region's, slack and all). Moved by less than
+  // the slack, the face then stays beyond the query's margin, and the face
+  // test's first plane tests reject the pair: it need not be kept.
+  bool PlanesKeepApart(const PlacedFace& a, const PlacedFace& b) const {
+    return BeyondFacePlane(a, b.triangle, margin_, 0) || BeyondFacePlane(b, a.triangle, margin_, 0);
   }
 
   const CollisionModel::Impl& ia_;
@@ -332,6 +403,7 @@ class BucketTest {
   const double margin_;
   const bool planes_only_;
   const std::span<const TrianglePair> skip_;
+  std::vector<PairCache::Candidate>* const candidates_;
   PlacedFaces& faces_b_;
   std::vector<int>& skip_begin_;
   RunBuffers& buffers_;
@@ -356,7 +428,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
                  std::vector<TrianglePair>& pairs) {
   const Matrix3d R = X_AB.linear();
   const Vector3d T = X_AB.translation();
-  const VolumeTest<BV> volumes(mb, R, T, sweep_A);
+  const VolumeTest<BV> volumes(mb, R, T, sweep_A, query.grow_volumes_m);
   const BucketTest buckets(ia, mb, ib, X_AB, sweep_A, query);
   int64_t tests = 0;
   const size_t pairs_before = pairs.size();
@@ -384,6 +456,35 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
       stack.emplace_back(i, nb.rightChild());
     }
   }
+  return tests;
+}
+
+// A static query through `query.cache`: from the region that holds X_AB,
+// built first when none does. Returns the volume tests of the build.
+template <typename BV>
+int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
+                   const fcl::BVHModel<BV>& mb, const CollisionModel::Impl& ib,
+                   const Isometry3d& X_AB, const Query& query, std::vector<TrianglePair>& pairs) {
+  HS_CHECK(!query.sweep_W && !query.first_only);
+  int64_t tests = 0;
+  double moved = 0;
+  PairCache::Region* region = query.cache->Find(ia, ib, query.margin_m, X_AB, moved);
+  if (!region) {
+    moved = 0;
+    PairCache::Region& built = query.cache->Make(ia, ib, query.margin_m, X_AB);
+    const double slack = PairCache::Slack(ia, ib, built);
+    Query build = query;
+    build.margin_m += slack;
+    build.skip = {};
+    build.cache = nullptr;
+    build.grow_volumes_m = slack;
+    build.candidates = &built.candidates;
+    tests = Traverse(ma, ia, mb, ib, X_AB, nullptr, build, pairs);  // adds no pairs
+    region = &built;
+  }
+  const BucketTest buckets(ia, mb, ib, X_AB, nullptr, query);
+  buckets.RunCandidates(region->candidates, moved,
+                        PairCache::Slack(ia, ib, *region) - region->skin_m, pairs);
   return tests;
 }
 
@@ -424,6 +525,7 @@ int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const CollisionMod
       [&](const auto& ma) -> int64_t {
         using Model = typename std::decay_t<decltype(ma)>::element_type;
         const auto& mb = std::get<std::shared_ptr<Model>>(ib.bvh);
+        if (query.cache) return FromRegion(*ma, ia, *mb, ib, X_AB, query, pairs);
         return Traverse(*ma, ia, *mb, ib, X_AB, query.sweep_W ? &sweep_A : nullptr, query, pairs);
       },
       ia.bvh);
@@ -434,13 +536,14 @@ int64_t Find(const CollisionModel& a, const Isometry3d& X_WA, const CollisionMod
 int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
                                   std::vector<TrianglePair>& pairs,
-                                  std::span<const TrianglePair> skip) {
+                                  std::span<const TrianglePair> skip, PairCache* cache) {
   return Find(a, X_WA, b, X_WB,
               {.sweep_W = nullptr,
                .margin_m = margin_m,
                .first_only = false,
                .face_test = SweptFaceTest::kEveryAxis,
-               .skip = skip},
+               .skip = skip,
+               .cache = cache},
               pairs);
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/collision/collision_model.h"
+#include "common/collision/pair_cache.h"
 #include "common/core/types.h"
 
 namespace hs {
@@ -25,10 +26,19 @@ struct TrianglePair {
 /// their margins (else pairs within it could be culled). The pairs in
 /// `skip` (sorted; faces of `a` and `b`), which the caller has decided
 /// already, are left out untested. Returns the number of bounding-volume tests made.
+///
+/// With a `cache` kept for these two models, a query near the pose of an
+/// earlier one tests only the pairs that could meet there (pair_cache.h)
+/// and appends the same pairs in the same order as without it, save where
+/// the hierarchy culls a pair the face test accepts (faces farther apart
+/// than the models' margins that no tested axis separates by the margin,
+/// which needs a sliver or near-parallel edges 1,000 times longer than the
+/// gap; then the cache's answer holds the pair, as the contract above says).
 int64_t FindIntersectingTriangles(const CollisionModel& a, const Isometry3d& X_WA,
                                   const CollisionModel& b, const Isometry3d& X_WB, double margin_m,
                                   std::vector<TrianglePair>& pairs,
-                                  std::span<const TrianglePair> skip = {});
+                                  std::span<const TrianglePair> skip = {},
+                                  PairCache* cache = nullptr);
 
 /// What a swept query's face test asks of a pair whose boxes meet.
 enum class SweptFaceTest {

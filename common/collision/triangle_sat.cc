@@ -122,12 +122,19 @@ bool BeyondPlane(const std::array<double, 3>& d, const Vector3d& n, double margi
   return SeparatedAlong(lo, hi, 0.0, 0.0, norm_sq, margin);
 }
 
+// How far beyond `margin` corners at distances `d` (BeyondPlane's) are.
+double PlaneGap(const std::array<double, 3>& d, const Vector3d& n, double margin) {
+  const double lo = std::min(std::min(d[0], d[1]), d[2]), hi = std::max(std::max(d[0], d[1]), d[2]);
+  return std::max(lo, -hi) / n.norm() - margin;
+}
+
 // Where a triangle crosses the other's plane, along the planes' common
 // line: an interval of p.dot(line), with the triangle's edge that gives
 // each end (as the corner it leaves from and the direction it runs).
 struct LineCrossing {
   Extent on_line;
   Vector3d lo_edge, hi_edge;
+  int lo_index, hi_index;  // those edges in ForEachAxis's numbering, up to sign
 };
 
 // Where `t` crosses the other triangle's plane, given its corners'
@@ -149,9 +156,12 @@ std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array
   const double at_next = line.dot(t[next] - origin), at_last = line.dot(t[last] - origin);
   const double end_next = at_next + (at_lone - at_next) * d[next] / (d[next] - d[lone]);
   const double end_last = at_last + (at_lone - at_last) * d[last] / (d[last] - d[lone]);
+  // Edge `lone` runs from corner lone to next; edge `last` from last to lone.
   const Vector3d edge_next = t[next] - t[lone], edge_last = t[last] - t[lone];
-  if (end_next <= end_last) return LineCrossing{{end_next, end_last}, edge_next, edge_last};
-  return LineCrossing{{end_last, end_next}, edge_last, edge_next};
+  if (end_next <= end_last) {
+    return LineCrossing{{end_next, end_last}, edge_next, edge_last, lone, last};
+  }
+  return LineCrossing{{end_last, end_next}, edge_last, edge_next, last, lone};
 }
 
 // Relative to the triangles' size, what rounding cannot reach: the fast
@@ -160,6 +170,22 @@ std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array
 constexpr double kClearlyRelative = 1e-9;
 
 enum class Crossing { kYes, kApart, kUnknown };
+
+// The edge cross of edge i of `a` and edge j of `b` (edge i from corner i to
+// i + 1), as ForEachAxis builds and projects it: whether it separates them
+// by more than `margin`. When it does, ForEachAxis finds it too.
+bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin) {
+  const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
+  const Vector3d axis = ea.cross(eb);
+  const double norm_sq = axis.squaredNorm();
+  if (!(norm_sq > kAxisRelativeFloor * kAxisRelativeFloor * (ea.squaredNorm() * eb.squaredNorm()) &&
+        norm_sq != 0)) {
+    return false;
+  }
+  const Extent pa = ProjectTwo(axis, a[i], a[(i + 2) % 3]);
+  const Extent pb = ProjectTwo(axis, b[j], b[(j + 2) % 3]);
+  return SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin);
+}
 
 // A fast answer for triangles that straddle each other's planes (Moller's
 // interval test): the two segments where they cut the planes' common line
@@ -171,7 +197,7 @@ enum class Crossing { kYes, kApart, kUnknown };
 // answer. Anything else is left to the SAT.
 Crossing CrossingTest(const Triangle3d& a, const Vector3d& na, const std::array<double, 3>& da,
                       const Triangle3d& b, const Vector3d& nb, const std::array<double, 3>& db,
-                      double margin) {
+                      double margin, int& edge_pair) {
   // The pair's size, squared: five times the sum of the squared lengths
   // of the four edges from corner 0 and the gap between the corners 0,
   // at least the square of the sum of those lengths. Squared thresholds
@@ -196,6 +222,8 @@ Crossing CrossingTest(const Triangle3d& a, const Vector3d& na, const std::array<
   const bool a_first = on_a->on_line.hi < on_b->on_line.lo;
   const Vector3d& edge_a = a_first ? on_a->hi_edge : on_a->lo_edge;
   const Vector3d& edge_b = a_first ? on_b->lo_edge : on_b->hi_edge;
+  edge_pair =
+      3 * (a_first ? on_a->hi_index : on_a->lo_index) + (a_first ? on_b->lo_index : on_b->hi_index);
   const Vector3d axis = edge_a.cross(edge_b);
   const double axis_sq = axis.squaredNorm();
   // Nearly parallel edges give a rounding artefact, as in ForEachAxis.
@@ -253,16 +281,44 @@ bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin)
 
 bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                         const Vector3d& normal_b, double margin) {
+  PairHint hint;
+  return TrianglesIntersect(a, normal_a, b, normal_b, margin, hint);
+}
+
+bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                        const Vector3d& normal_b, double margin, PairHint& hint) {
+  hint.plane_gap_m = 0;
   const std::array<double, 3> db = PlaneDistances(b, a[0], normal_a);
-  if (BeyondPlane(db, normal_a, margin)) return false;
+  if (BeyondPlane(db, normal_a, margin)) {
+    hint.plane_gap_m = PlaneGap(db, normal_a, margin);
+    return false;
+  }
   const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
-  if (BeyondPlane(da, normal_b, margin)) return false;
-  const Crossing crossing = CrossingTest(a, normal_a, da, b, normal_b, db, margin);
+  if (BeyondPlane(da, normal_b, margin)) {
+    hint.plane_gap_m = PlaneGap(da, normal_b, margin);
+    return false;
+  }
+  int& edge_pair = hint.edge_pair;
+  // A separating edge cross makes every path below answer false: the
+  // crossing test's kYes needs a clear common point, which no axis can
+  // separate, and ForEachAxis visits that axis, built the same way.
+  if (edge_pair >= 0 && EdgeCrossSeparates(a, b, edge_pair / 3, edge_pair % 3, margin)) {
+    return false;
+  }
+  const Crossing crossing = CrossingTest(a, normal_a, da, b, normal_b, db, margin, edge_pair);
   if (crossing != Crossing::kUnknown) return crossing == Crossing::kYes;
-  return ForEachAxis(a, normal_a, b, normal_b,
-                     [&](const Vector3d&, double norm_sq, const Extent& ea, const Extent& eb) {
-                       return !SeparatedAlong(ea.lo, ea.hi, eb.lo, eb.hi, norm_sq, margin);
-                     });
+  const bool meet =
+      ForEachAxis(a, normal_a, b, normal_b,
+                  [&](const Vector3d&, double norm_sq, const Extent& ea, const Extent& eb) {
+                    return !SeparatedAlong(ea.lo, ea.hi, eb.lo, eb.hi, norm_sq, margin);
+                  });
+  if (!meet) {  // which edge cross separates them, if one does
+    edge_pair = -1;
+    for (int k = 0; k < 9 && edge_pair < 0; ++k) {
+      if (EdgeCrossSeparates(a, b, k / 3, k % 3, margin)) edge_pair = k;
+    }
+  }
+  return meet;
 }
 
 Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,

@@ -44,6 +44,25 @@ Vector3d TriangleNormal(const Triangle3d& t);
 bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                         const Vector3d& normal_b, double margin);
 
+/// What a test of a pair told about its next test, as the pair moves.
+struct PairHint {
+  /// The edge cross that separated the two (3 i + j: edge i of `a`, from
+  /// corner i to i + 1, and edge j of `b`), or -1.
+  int edge_pair = -1;
+  /// When a face's plane separated them: how far beyond the margin the
+  /// other face lay, metres (so they stay apart while either moves less,
+  /// up to rounding); else 0.
+  double plane_gap_m = 0;
+};
+
+/// The same answer, for callers that test a pair again and again as it
+/// moves: the edge cross of `hint` is tried right after the face planes,
+/// and when it still separates the pair the whole test is skipped (which
+/// gives the same answer: see the definition). `hint` is then set from
+/// this test.
+bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+                        const Vector3d& normal_b, double margin, PairHint& hint);
+
 /// The set of t for which `a` translated by -t * `direction` intersects `b`
 /// (within `margin`; a negative margin asks for an overlap deeper than
 /// -margin along every axis). Always one closed interval (a line through the convex

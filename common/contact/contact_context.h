@@ -27,6 +27,9 @@ struct ContactContext {
   std::vector<TrianglePair> pairs;
   /// ContactQuery::depth_hint_m, metres along direction_F from X_FM; 0: none.
   double depth_hint_m = 0;
+  /// The pair's cache for its static pair queries (M first, F second), or
+  /// none: the answers are the same.
+  PairCache* pair_cache = nullptr;
 
   /// Face `f` of M, in F's frame, at the current pose.
   Triangle3d MovingTriangle(FaceId f) const;

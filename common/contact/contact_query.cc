@@ -198,7 +198,7 @@ absl::StatusOr<std::optional<FirstTouch>> FindFirstTouch(const PosedObject& movi
 }
 
 absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
-                            const ContactQuery& query, ContactSet& set) {
+                            const ContactQuery& query, ContactSet& set, PairCache* cache) {
   HS_ASSIGN_OR_RETURN(const double tolerance,
                       PairTolerance(moving, fixed, query.direction_W, query.relative_tolerance));
   if (!(std::isfinite(query.depth_hint_m) && query.depth_hint_m >= 0)) {
@@ -218,8 +218,9 @@ absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
   absl::Cleanup give_back = [&] { context.pairs.swap(pairs); };
   context.pairs.clear();
   swept.clear();
+  context.pair_cache = cache;
   FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
-                            tolerance, context.pairs);
+                            tolerance, context.pairs, {}, cache);
   const Vector3d direction_F = X_FW.linear() * query.direction_W;
   // Shorter than this, the square of the length underflows: no direction.
   const bool no_direction = !(direction_F.squaredNorm() > 1e-300);

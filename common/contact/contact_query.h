@@ -5,6 +5,7 @@
 
 #include "absl/status/statusor.h"
 #include "common/collision/collision_model.h"
+#include "common/collision/pair_cache.h"
 #include "common/contact/contact_set.h"
 #include "common/hds/haptic_object.h"
 
@@ -52,8 +53,11 @@ absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const Posed
 /// The same, written over `set` (every field; its vectors' storage is kept,
 /// so that a caller reusing `set` step after step allocates nothing once it
 /// is large enough, with the sweep3d method). On error `set` is unspecified.
+/// A `cache` kept for this moving and fixed pair between queries lets a
+/// query near an earlier one's poses skip most of the pair search
+/// (common/collision/pair_cache.h); `set` comes out bit-identical.
 absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
-                            const ContactQuery& query, ContactSet& set);
+                            const ContactQuery& query, ContactSet& set, PairCache* cache = nullptr);
 
 /// Whether `moving` touches or penetrates `fixed` within the tolerance, or,
 /// with `step_W` (the last step's motion, world frame, metres), did so

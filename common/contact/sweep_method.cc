@@ -235,7 +235,8 @@ void ReconstructBySweep(const ContactContext& c, ContactSetF& set) {
       // A pair that could extend the run past t* meets at t*, so one query
       // there, for the pairs not known yet, usually settles it.
       FindIntersectingTriangles(c.moving_model, MovedBack(c, t1), c.fixed_model,
-                                Isometry3d::Identity(), c.tolerance_m, found_at_t1, known.pairs());
+                                Isometry3d::Identity(), c.tolerance_m, found_at_t1, known.pairs(),
+                                c.pair_cache);
       known.Add(found_at_t1);
       t_star = known.ExtendRun(t_star);
       settled = t_star == t1;

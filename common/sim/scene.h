@@ -72,6 +72,9 @@ class Scene {
   const StepFrame& Step();
 
   const StageStatsTable& stats() const { return stats_; }
+  /// The pair caches the scene keeps between steps for the contact set
+  /// stage (common/sim/pair_caches.h): none when it did not run last step.
+  int pair_caches_held() const { return tools_.PairCachesHeld(); }
   /// The objects as the scene holds them (HDS, kind, pose), by ObjectId.
   int num_objects() const { return objects_.size(); }
   const SceneObjects::Object& object(ObjectId id) const { return objects_[id]; }

@@ -321,7 +321,10 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
     StageTimer timer(stats[static_cast<int>(Effect::kCollision)]);
     FindContacts(tool, continuous, frame, scratch);
   }
-  if (!stages.Has(Effect::kContactSet)) return;
+  if (!stages.Has(Effect::kContactSet)) {
+    scratch.pair_caches.FreeUnused();  // every one: none was used
+    return;
+  }
   StageTimer timer(stats[static_cast<int>(Effect::kContactSet)]);
   const PosedObject device = objects_.Posed(tool.id, tool.X_WD);
   // D is the device's way in from its proxy, which the last step left
@@ -345,8 +348,9 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
   along_step.continuous = true;
   for (PairContact& pair : frame.contacts) {
     const SceneObjects::Object& o = objects_[pair.object];
+    PairCache& cache = scratch.pair_caches.For(pair.object);
     if (o.kind == ObjectKind::kTool) {
-      ComputeToolContact(tool, tools_[index_[pair.object]], at_device, pair.contact);
+      ComputeToolContact(tool, tools_[index_[pair.object]], at_device, pair.contact, cache);
       continue;
     }
     const PosedObject other = objects_.Posed(pair.object, o.X_WO);
@@ -360,19 +364,26 @@ void ToolStage::StepContacts(const Tool& tool, EffectSet stages, ToolFrame& fram
                      tool.id, InterpolatePose(tool.X_WD_previous, tool.X_WD,
                                               static_cast<double>(pair.substep) / frame.substeps));
     absl::Status status =
-        ComputeContact(at, other, at_end ? at_device : along_motion, pair.contact);
+        ComputeContact(at, other, at_end ? at_device : along_motion, pair.contact, &cache);
     if (continuous && status.ok() && !pair.contact.colliding) {
-      status = ComputeContact(device, other, along_step, pair.contact);
+      status = ComputeContact(device, other, along_step, pair.contact, &cache);
     }
     if (!status.ok()) {  // as the collision stage left it
       ClearContactSet(pair.contact);
       pair.contact.colliding = true;
     }
   }
+  scratch.pair_caches.FreeUnused();
+}
+
+int ToolStage::PairCachesHeld() const {
+  int held = 0;
+  for (const ToolScratch& scratch : scratch_) held += scratch.pair_caches.held();
+  return held;
 }
 
 void ToolStage::ComputeToolContact(const Tool& tool, const Tool& other, const ContactQuery& query,
-                                   ContactSet& contact) const {
+                                   ContactSet& contact, PairCache& cache) const {
   // Both devices went in from their proxies, which the last step left
   // apart: reversing the one's way in relative to the other's ends where
   // the proxies stood.
@@ -383,8 +394,9 @@ void ToolStage::ComputeToolContact(const Tool& tool, const Tool& other, const Co
   ContactQuery relative = query;
   relative.direction_W = from_proxies.squaredNorm() > 0 ? from_proxies : motion;
   relative.depth_hint_m = from_proxies.norm();
-  const absl::Status status = ComputeContact(
-      objects_.Posed(tool.id, tool.X_WD), objects_.Posed(other.id, other.X_WD), relative, contact);
+  const absl::Status status =
+      ComputeContact(objects_.Posed(tool.id, tool.X_WD), objects_.Posed(other.id, other.X_WD),
+                     relative, contact, &cache);
   if (!status.ok()) {  // as the collision stage left it
     ClearContactSet(contact);
     contact.colliding = true;

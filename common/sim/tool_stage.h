@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/core/scratch.h"
+#include "common/sim/pair_caches.h"
 #include "common/sim/scene_objects.h"
 #include "common/sim/scene_options.h"
 #include "common/sim/step_frame.h"
@@ -59,6 +60,10 @@ class ToolStage {
   };
   ProxyMotion ProxyMotionOf(ObjectId id) const;
 
+  /// The pair caches the tools hold (PairCaches): none unless the contact
+  /// set stage ran in the last step.
+  int PairCachesHeld() const;
+
  private:
   struct Tool {
     ObjectId id;
@@ -93,6 +98,9 @@ class ToolStage {
     // storage kept for this step's (a step allocates nothing once the
     // vectors are large enough).
     std::vector<ContactSet> spare_contacts;
+    // The contacts half, with the contact set stage: the caches of the
+    // pairs whose contact sets it reconstructs.
+    PairCaches pair_caches;
     // Each half's stages' runs and times of this step, added to the
     // scene's after it.
     StageStatsTable contact_stats{};
@@ -139,9 +147,9 @@ class ToolStage {
   // another tool stands): they do not block each other until apart.
   bool ProxiesPenetrate(int index, int other) const;
   // The contact of `tool` with `other`, both at their device poses, along
-  // the way in of the one relative to the other.
+  // the way in of the one relative to the other, through the pair's cache.
   void ComputeToolContact(const Tool& tool, const Tool& other, const ContactQuery& query,
-                          ContactSet& contact) const;
+                          ContactSet& contact, PairCache& cache) const;
   // Adds a pair for each other tool the tool touches at the device poses.
   void FindToolContacts(const Tool& tool, ToolFrame& frame, ToolScratch& scratch) const;
   // The collision stage of one tool, sub-stepped when its step is long.

@@ -62,6 +62,29 @@ TEST(SceneTest, DisabledStageNeverRuns) {
   EXPECT_GT(rig.scene->stats()[static_cast<int>(Effect::kContactSet)].runs, 0);
 }
 
+// The pair caches of the contact set stage live only while it runs and
+// the pair is in contact: a consumer that needs no contact sets costs no
+// cache, and one that stops needing them frees theirs.
+TEST(SceneTest, PairCachesLiveWithTheContactSetStage) {
+  Rig lean = MakeRig(), full = MakeRig();
+  lean.scene->SetNeeded({Effect::kForce, Effect::kFriction});
+  for (const Isometry3d& X : PressAndSlide()) {
+    ASSERT_TRUE(lean.scene->SetDevicePose(lean.probe, X).ok());
+    lean.scene->Step();
+    EXPECT_EQ(lean.scene->pair_caches_held(), 0);
+  }
+  EXPECT_EQ(Drive(full, PressAndSlide()).back().tools[0].contacts.size(), 1u);
+  EXPECT_EQ(full.scene->pair_caches_held(), 1);  // the probe and the floor
+  // Lifted off the floor (a step, then one clear of it all along).
+  Drive(full, {At(0.15, 0.05, 0.05), At(0.15, 0.05, 0.06)});
+  EXPECT_EQ(full.scene->pair_caches_held(), 0);
+  Drive(full, {At(0.15, 0.05, 0.015), At(0.15, 0.05, 0.005)});
+  EXPECT_EQ(full.scene->pair_caches_held(), 1);
+  full.scene->SetNeeded({Effect::kForce});
+  Drive(full, {At(0.15, 0.05, 0.004)});
+  EXPECT_EQ(full.scene->pair_caches_held(), 0);
+}
+
 // A haptic device that needs only its force gets the proxy and the force
 // without the collision stage running or the contact sets being
 // reconstructed, and both equal those of a run with everything enabled.

@@ -1,0 +1,80 @@
+#include "common/collision/pair_cache.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/collision/fcl_bvh.h"
+
+namespace hs {
+
+void PairCache::Clear() {
+  for (Region& region : regions_) {
+    region.a = region.b = 0;
+    region.candidates.clear();
+    region.last_use = 0;
+  }
+}
+
+int PairCache::regions() const {
+  return static_cast<int>(
+      std::count_if(regions_.begin(), regions_.end(), [](const Region& r) { return r.a != 0; }));
+}
+
+double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                           const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
+  // A point p of B moves by (R_to - R_from) (p - c) + (X_to c - X_from c),
+  // c its model's centre, |p - c| <= radius. R_to - R_from = R_from (R - I)
+  // with R a turn by some angle a, whose singular values are 2 sin(a/2)
+  // twice and 0: its largest is the Frobenius norm over sqrt(2), which
+  // the entries give without the cancellation of the angle's cosine. A's
+  // points in B's frame alike, under the inverses.
+  const double turn = (X_AB_to.linear() - X_AB_from.linear()).norm() / std::sqrt(2.0);
+  const double of_b = turn * b.radius + (X_AB_to * b.centre - X_AB_from * b.centre).norm();
+  const double of_a =
+      turn * a.radius + (X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm();
+  return std::max(of_a, of_b);
+}
+
+double PairCache::Slack(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                        const Region& region) {
+  const double coordinates =
+      a.centre.norm() + a.radius + b.centre.norm() + b.radius + region.X_AB.translation().norm();
+  return region.skin_m + kRoundingRelative * coordinates;
+}
+
+PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                                   double margin_m, const Isometry3d& X_AB, double& moved) {
+  for (Region& region : regions_) {
+    if (region.a != a.id || region.b != b.id || region.version_a != a.geometry_version ||
+        region.version_b != b.geometry_version || region.margin_m != margin_m) {
+      continue;
+    }
+    moved = RelativeMotionBound(a, b, region.X_AB, X_AB);
+    if (moved <= region.skin_m) {
+      region.last_use = ++clock_;
+      ++hits_;
+      return &region;
+    }
+  }
+  return nullptr;
+}
+
+PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                                   double margin_m, const Isometry3d& X_AB) {
+  Region& region =
+      *std::min_element(regions_.begin(), regions_.end(),
+                        [](const Region& x, const Region& y) { return x.last_use < y.last_use; });
+  region.a = a.id;
+  region.b = b.id;
+  region.version_a = a.geometry_version;
+  region.version_b = b.geometry_version;
+  region.margin_m = margin_m;
+  region.skin_m = kSkinRelative * (a.radius + b.radius);
+  region.X_AB = X_AB;
+  region.candidates.clear();
+  region.last_use = ++clock_;
+  ++builds_;
+  return region;
+}
+
+}  // namespace hs

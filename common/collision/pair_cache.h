@@ -1,0 +1,100 @@
+#pragma once
+// What a pair query learned near a pose, kept for the next queries of the
+// same two objects (temporal coherence: at 1 kHz a tool moves a fraction of
+// a millimetre between steps). A region holds, for a pose of B in A's frame
+// and a skin s, every face pair that could meet within the margin while
+// each object moves at most s from that pose relative to the other: the
+// pairs whose boxes meet within margin + s and that neither face's plane
+// keeps more than margin + s apart. A query inside a region tests those
+// pairs alone, in the order the hierarchy traversal would reach them, and
+// skips the traversal; a query outside every region builds one. Verlet
+// lists, over face pairs instead of particles.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "common/collision/collision_model.h"
+#include "common/collision/triangle_sat.h"
+#include "common/core/types.h"
+
+namespace hs {
+
+/// Kept by the caller for one pair of collision models between queries
+/// (FindIntersectingTriangles' `cache`); a scene keeps one per tool and
+/// object in contact. Answers are identical with or without it. One query
+/// at a time.
+class PairCache {
+ public:
+  /// Forgets every region, keeping their storage.
+  void Clear();
+
+  /// Regions held, regions built since made, and queries answered from a
+  /// region: for tests and benchmarks.
+  int regions() const;
+  int64_t builds() const { return builds_; }
+  int64_t hits() const { return hits_; }
+
+  // Internal to common/collision (triangle_pairs.cc).
+
+  /// A face pair of a region: A's face by its leaf position, B's by id,
+  /// what its last test said, and until when it is known apart: while the
+  /// region's motion bound (from its pose) stays under `apart_until`,
+  /// metres, its boxes or planes keep it beyond the margin.
+  struct Candidate {
+    int leaf_a;
+    int face_b;
+    PairHint hint;
+    double apart_until = -1;
+  };
+  struct Region {
+    uint64_t a = 0, b = 0;  // the models' ids; 0: free
+    uint64_t version_a = 0, version_b = 0;
+    double margin_m = 0;
+    /// How far each object may move relative to the other, metres.
+    double skin_m = 0;
+    /// B's pose in A's frame when built.
+    Isometry3d X_AB = Isometry3d::Identity();
+    std::vector<Candidate> candidates;
+    uint64_t last_use = 0;
+  };
+
+  /// The region of models `a` and `b` (at their current geometry) for
+  /// `margin_m` that holds B's pose X_AB in A's frame, or null; `moved`
+  /// gets the motion bound from its pose.
+  Region* Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
+               const Isometry3d& X_AB, double& moved);
+  /// A region to build at X_AB, its candidates empty: the least recently
+  /// used one, its storage kept. Its skin is set here.
+  Region& Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
+               const Isometry3d& X_AB);
+
+  /// The skin of a region: this fraction of the sum of the two models'
+  /// radii. Large enough that a hand-held tool stays inside a region for
+  /// several steps, small enough that a region holds few pairs beside those
+  /// that meet (contact_bench Coherent, docs/benchmarks.md).
+  static constexpr double kSkinRelative = 4e-3;
+
+  /// Rounding's share of a region's slack: relative to the size of the
+  /// coordinates the pair tests see, far above the rounding of placing a
+  /// face and of a plane distance.
+  static constexpr double kRoundingRelative = 1e-9;
+
+  /// What a region's build adds to the margin: its skin and rounding's share.
+  static double Slack(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                      const Region& region);
+
+ private:
+  static constexpr int kRegions = 4;  // the contact's pose, its depth, spares
+  std::array<Region, kRegions> regions_;
+  uint64_t clock_ = 0;
+  int64_t builds_ = 0, hits_ = 0;
+};
+
+/// The most any point of A (in B's frame) or of B (in A's frame) moves
+/// between B's poses X_AB_from and X_AB_to in A's frame, bounded through
+/// each model's centre and radius. Metres.
+double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                           const Isometry3d& X_AB_from, const Isometry3d& X_AB_to);
+
+}  // namespace hs

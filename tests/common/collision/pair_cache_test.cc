@@ -1,0 +1,177 @@
+#include "common/collision/pair_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "common/collision/triangle_pairs.h"
+#include "common/model/procedural.h"
+#include "tests/common/random_poses.h"
+
+namespace hs {
+namespace {
+
+using testing_poses::RandomPose;
+
+HapticObject Torus(double major, double minor, int segments = 24, int sides = 12) {
+  return *HapticObject::Create("torus", MakeTorus(major, minor, segments, sides));
+}
+
+// The oracle is the query from scratch: the same call without a cache
+// (itself matched against every face pair in triangle_pairs_test).
+std::vector<TrianglePair> FromScratch(const CollisionModel& ma, const Isometry3d& X_WA,
+                                      const CollisionModel& mb, const Isometry3d& X_WB,
+                                      double margin, std::span<const TrianglePair> skip = {}) {
+  std::vector<TrianglePair> pairs;
+  FindIntersectingTriangles(ma, X_WA, mb, X_WB, margin, pairs, skip);
+  return pairs;
+}
+
+std::vector<TrianglePair> Cached(PairCache& cache, const CollisionModel& ma, const Isometry3d& X_WA,
+                                 const CollisionModel& mb, const Isometry3d& X_WB, double margin,
+                                 std::span<const TrianglePair> skip = {}) {
+  std::vector<TrianglePair> pairs;
+  FindIntersectingTriangles(ma, X_WA, mb, X_WB, margin, pairs, skip, &cache);
+  return pairs;
+}
+
+// A hand-held tool's path: from X0, sliding along x at `speed` m/s and
+// turning about the vertical at 1 rad/s, one pose per millisecond.
+std::vector<Isometry3d> CoherentPath(const Isometry3d& X0, double speed, int steps) {
+  std::vector<Isometry3d> path;
+  for (int k = 0; k < steps; ++k) {
+    const double t = 0.001 * k;
+    Isometry3d X = X0;
+    X.translation().x() += speed * t;
+    X.linear() = Eigen::AngleAxisd(t, Vector3d::UnitZ()).toRotationMatrix() * X0.linear();
+    path.push_back(X);
+  }
+  return path;
+}
+
+// The second torus above the first, tilted, their tubes cutting each other
+// along two closed curves: they stay in contact along CoherentPath.
+Isometry3d Overlapping() {
+  Isometry3d X = Isometry3d::Identity();
+  X.translation() = Vector3d(0.3, 0, 0.2);
+  X.rotate(Eigen::AngleAxisd(0.1, Vector3d::UnitX()));
+  return X;
+}
+
+class PairCacheTest : public testing::TestWithParam<BvType> {};
+
+// Along a coherent path through two interlocking tori, every query answers
+// exactly as from scratch, pairs and order, and most come from a region.
+TEST_P(PairCacheTest, CoherentPathMatchesTheQueryFromScratch) {
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25);
+  const double margin = 1e-9;
+  const CollisionModel ma(a, GetParam(), 1e-6), mb(b, GetParam(), 1e-6);
+  PairCache cache;
+  int touching = 0;
+  const std::vector<Isometry3d> path = CoherentPath(Overlapping(), 0.1, 500);
+  for (size_t k = 0; k < path.size(); ++k) {
+    const auto expected = FromScratch(ma, Isometry3d::Identity(), mb, path[k], margin);
+    ASSERT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, path[k], margin), expected)
+        << "step " << k;
+    touching += !expected.empty();
+  }
+  EXPECT_EQ(touching, 500);
+  EXPECT_LT(cache.builds(), 100);
+  EXPECT_EQ(cache.builds() + cache.hits(), 500);
+}
+
+// Random jumps: every query far from the last builds a region, and still
+// answers as from scratch, with the larger mesh first or second (the
+// traversal turns round to lead with it) and with pairs skipped.
+TEST_P(PairCacheTest, RandomJumpsAndSkippedPairsMatchTheQueryFromScratch) {
+  const HapticObject small = Torus(1.0, 0.3);
+  const HapticObject large = Torus(0.8, 0.25, 40, 20);
+  const double margin = 1e-9;
+  const CollisionModel ms(small, GetParam(), 1e-6), ml(large, GetParam(), 1e-6);
+  std::mt19937 rng(31);
+  PairCache small_first, large_first;
+  int touching = 0;
+  for (int i = 0; i < 40; ++i) {
+    const Isometry3d X_WA = RandomPose(rng, 0.5), X_WB = RandomPose(rng, 0.5);
+    const auto expected = FromScratch(ms, X_WA, ml, X_WB, margin);
+    ASSERT_EQ(Cached(small_first, ms, X_WA, ml, X_WB, margin), expected) << "pose " << i;
+    ASSERT_EQ(Cached(large_first, ml, X_WB, ms, X_WA, margin),
+              FromScratch(ml, X_WB, ms, X_WA, margin))
+        << "pose " << i;
+    // Every other pair found skipped: the rest are found, as from scratch.
+    std::vector<TrianglePair> skip;
+    for (size_t k = 0; k < expected.size(); k += 2) skip.push_back(expected[k]);
+    std::sort(skip.begin(), skip.end());
+    ASSERT_EQ(Cached(small_first, ms, X_WA, ml, X_WB, margin, skip),
+              FromScratch(ms, X_WA, ml, X_WB, margin, skip))
+        << "pose " << i;
+    touching += !expected.empty();
+  }
+  EXPECT_GT(touching, 20);
+}
+
+// Boxes resting face on face (gap 0), sliding and turning on each other at
+// 1e-4, 1 and 1e4 m: the touching pairs, coplanar and all, as from scratch
+// at every step; lifted by twice the margin, none.
+TEST_P(PairCacheTest, TouchingBoxesSlideAsFromScratchAtEveryScale) {
+  for (const double scale : {1e-4, 1.0, 1e4}) {
+    SCOPED_TRACE(scale);
+    const HapticObject box = *HapticObject::Create("box", MakeBox(Vector3d::Constant(scale)));
+    const double margin = 1e-9 * scale;
+    const CollisionModel m(box, GetParam(), 1e-6 * scale);
+    Isometry3d X0 = Isometry3d::Identity();
+    X0.translation() = Vector3d(0.3 * scale, 0.2 * scale, scale);
+    PairCache cache;
+    int touching = 0;
+    for (const Isometry3d& X : CoherentPath(X0, 0.1 * scale, 200)) {
+      const auto expected = FromScratch(m, Isometry3d::Identity(), m, X, margin);
+      ASSERT_EQ(Cached(cache, m, Isometry3d::Identity(), m, X, margin), expected);
+      touching += !expected.empty();
+      Isometry3d lifted = X;
+      lifted.translation().z() += 2 * margin;
+      ASSERT_TRUE(Cached(cache, m, Isometry3d::Identity(), m, lifted, margin).empty());
+    }
+    EXPECT_EQ(touching, 200);
+  }
+}
+
+// Moved vertices (a new geometry version) and another margin each build a
+// region of their own: the answers stay those from scratch.
+TEST_P(PairCacheTest, GeometryAndMarginChangesBuildNewRegions) {
+  HapticObject a = Torus(1.0, 0.3);
+  const HapticObject b = Torus(0.8, 0.25);
+  CollisionModel ma(a, GetParam(), 1e-6);
+  const CollisionModel mb(b, GetParam(), 1e-6);
+  const Isometry3d X_WB = Overlapping();
+  PairCache cache;
+  ASSERT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, X_WB, 1e-9),
+            FromScratch(ma, Isometry3d::Identity(), mb, X_WB, 1e-9));
+  ASSERT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, X_WB, 1e-7),
+            FromScratch(ma, Isometry3d::Identity(), mb, X_WB, 1e-7));
+  EXPECT_EQ(cache.builds(), 2);
+  std::vector<VertexId> ids;
+  std::vector<Vector3d> moved;
+  for (VertexId v = 0; v < a.num_vertices(); v += 2) {
+    ids.push_back(v);
+    moved.push_back(1.05 * a.position(v));
+  }
+  ASSERT_TRUE(a.MoveVertices(ids, moved).ok());
+  ASSERT_TRUE(ma.Sync(a));
+  const auto expected = FromScratch(ma, Isometry3d::Identity(), mb, X_WB, 1e-9);
+  EXPECT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, X_WB, 1e-9), expected);
+  EXPECT_EQ(cache.builds(), 3);
+  EXPECT_FALSE(expected.empty());
+  cache.Clear();
+  EXPECT_EQ(cache.regions(), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllVolumes, PairCacheTest,
+                         testing::Values(BvType::kObbRss, BvType::kObb, BvType::kRss, BvType::kKios,
+                                         BvType::kAabb),
+                         [](const testing::TestParamInfo<BvType>& info) {
+                           return std::string(BvTypeName(info.param));
+                         });
+
+}  // namespace
+}  // namespace hs
