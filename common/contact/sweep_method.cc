@@ -70,11 +70,14 @@ class KnownPairs {
                         .computed = false,
                         .exact = {}});
     }
-    // Merged through a second buffer: std::inplace_merge would allocate one.
-    s_.merged.clear();
-    std::merge(known_.begin(), known_.begin() + old_size, known_.begin() + old_size, known_.end(),
-               std::back_inserter(s_.merged));
-    known_.swap(s_.merged);
+    if (known_.size() == old_size) return;
+    if (old_size > 0) {
+      // Merged through a second buffer: std::inplace_merge would allocate one.
+      s_.merged.clear();
+      std::merge(known_.begin(), known_.begin() + old_size, known_.begin() + old_size, known_.end(),
+                 std::back_inserter(s_.merged));
+      known_.swap(s_.merged);
+    }
     pairs_.clear();
     for (const KnownPair& k : known_) pairs_.push_back(k.pair);
   }

@@ -1,5 +1,6 @@
 // libFuzzer target: the contact query on meshes and poses made of the
-// input's bytes, non-finite numbers and degenerate triangles included.
+// input's bytes, non-finite numbers and degenerate triangles included, from
+// scratch and through a pair cache.
 // Bad input must come back as a status, never as a crash or a hang.
 
 #include <cstddef>
@@ -78,7 +79,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   hs::ContactQuery query;
   query.direction_W = hs::Vector3d(in.Number(), in.Number(), in.Number());
   query.method = in.Small(2) == 0 ? hs::ContactMethod::kSweep3d : hs::ContactMethod::kPaper2d;
-  (void)hs::ComputeContact({moving.get(), &moving_model, Pose(in)},
-                           {fixed.get(), &fixed_model, Pose(in)}, query);
+  const hs::PosedObject at_first{moving.get(), &moving_model, Pose(in)};
+  const hs::PosedObject at_fixed{fixed.get(), &fixed_model, Pose(in)};
+  (void)hs::ComputeContact(at_first, at_fixed, query);
+  // Through a pair cache, at that pose and then at a second one: a region
+  // built, then reused or replaced.
+  hs::PairCache cache;
+  hs::ContactSet set;
+  (void)hs::ComputeContact(at_first, at_fixed, query, set, &cache);
+  (void)hs::ComputeContact({moving.get(), &moving_model, Pose(in)}, at_fixed, query, set, &cache);
   return 0;
 }
