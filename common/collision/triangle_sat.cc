@@ -271,6 +271,46 @@ void CutToSweep(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d&
       });
 }
 
+// TrianglesIntersect; with kLearn, the edge cross of `hint` is tried after
+// the face planes, and `hint` is set from this test.
+template <bool kLearn>
+bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
+               const Vector3d& normal_b, double margin, PairHint* hint) {
+  if constexpr (kLearn) hint->plane_gap_m = 0;
+  const std::array<double, 3> db = PlaneDistances(b, a[0], normal_a);
+  if (BeyondPlane(db, normal_a, margin)) {
+    if constexpr (kLearn) hint->plane_gap_m = PlaneGap(db, normal_a, margin);
+    return false;
+  }
+  const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
+  if (BeyondPlane(da, normal_b, margin)) {
+    if constexpr (kLearn) hint->plane_gap_m = PlaneGap(da, normal_b, margin);
+    return false;
+  }
+  int unused = -1;
+  int& edge_pair = kLearn ? hint->edge_pair : unused;
+  // A separating edge cross makes every path below answer false: the
+  // crossing test's kYes needs a clear common point, which no axis can
+  // separate, and ForEachAxis visits that axis, built the same way.
+  if (kLearn && edge_pair >= 0 && EdgeCrossSeparates(a, b, edge_pair / 3, edge_pair % 3, margin)) {
+    return false;
+  }
+  const Crossing crossing = CrossingTest(a, normal_a, da, b, normal_b, db, margin, edge_pair);
+  if (crossing != Crossing::kUnknown) return crossing == Crossing::kYes;
+  const bool meet =
+      ForEachAxis(a, normal_a, b, normal_b,
+                  [&](const Vector3d&, double norm_sq, const Extent& ea, const Extent& eb) {
+                    return !SeparatedAlong(ea.lo, ea.hi, eb.lo, eb.hi, norm_sq, margin);
+                  });
+  if (kLearn && !meet) {  // which edge cross separates them, if one does
+    edge_pair = -1;
+    for (int k = 0; k < 9 && edge_pair < 0; ++k) {
+      if (EdgeCrossSeparates(a, b, k / 3, k % 3, margin)) edge_pair = k;
+    }
+  }
+  return meet;
+}
+
 }  // namespace
 
 Vector3d TriangleNormal(const Triangle3d& t) { return (t[1] - t[0]).cross(t[2] - t[1]); }
@@ -281,44 +321,12 @@ bool TrianglesIntersect(const Triangle3d& a, const Triangle3d& b, double margin)
 
 bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                         const Vector3d& normal_b, double margin) {
-  PairHint hint;
-  return TrianglesIntersect(a, normal_a, b, normal_b, margin, hint);
+  return Intersect<false>(a, normal_a, b, normal_b, margin, nullptr);
 }
 
 bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                         const Vector3d& normal_b, double margin, PairHint& hint) {
-  hint.plane_gap_m = 0;
-  const std::array<double, 3> db = PlaneDistances(b, a[0], normal_a);
-  if (BeyondPlane(db, normal_a, margin)) {
-    hint.plane_gap_m = PlaneGap(db, normal_a, margin);
-    return false;
-  }
-  const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
-  if (BeyondPlane(da, normal_b, margin)) {
-    hint.plane_gap_m = PlaneGap(da, normal_b, margin);
-    return false;
-  }
-  int& edge_pair = hint.edge_pair;
-  // A separating edge cross makes every path below answer false: the
-  // crossing test's kYes needs a clear common point, which no axis can
-  // separate, and ForEachAxis visits that axis, built the same way.
-  if (edge_pair >= 0 && EdgeCrossSeparates(a, b, edge_pair / 3, edge_pair % 3, margin)) {
-    return false;
-  }
-  const Crossing crossing = CrossingTest(a, normal_a, da, b, normal_b, db, margin, edge_pair);
-  if (crossing != Crossing::kUnknown) return crossing == Crossing::kYes;
-  const bool meet =
-      ForEachAxis(a, normal_a, b, normal_b,
-                  [&](const Vector3d&, double norm_sq, const Extent& ea, const Extent& eb) {
-                    return !SeparatedAlong(ea.lo, ea.hi, eb.lo, eb.hi, norm_sq, margin);
-                  });
-  if (!meet) {  // which edge cross separates them, if one does
-    edge_pair = -1;
-    for (int k = 0; k < 9 && edge_pair < 0; ++k) {
-      if (EdgeCrossSeparates(a, b, k / 3, k % 3, margin)) edge_pair = k;
-    }
-  }
-  return meet;
+  return Intersect<true>(a, normal_a, b, normal_b, margin, &hint);
 }
 
 Interval SweptIntersection(const Triangle3d& a, const Triangle3d& b, const Vector3d& direction,
