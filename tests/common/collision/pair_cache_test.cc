@@ -166,6 +166,35 @@ TEST_P(PairCacheTest, GeometryAndMarginChangesBuildNewRegions) {
   EXPECT_EQ(cache.regions(), 0);
 }
 
+// The motion bound holds every vertex's motion (the oracle: each vertex of
+// A moved in B's frame, of B in A's), from small turns to large jumps, and
+// is zero for no motion.
+TEST(RelativeMotionBoundTest, BoundsEveryVertexMotion) {
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25, 40, 20);
+  const CollisionModel ma(a, BvType::kObbRss, 1e-6), mb(b, BvType::kObbRss, 1e-6);
+  std::mt19937 rng(32);
+  for (int i = 0; i < 50; ++i) {
+    const Isometry3d from = RandomPose(rng, 2.0);
+    Isometry3d to = from;
+    if (i % 2 == 0) {  // a small step
+      to.pretranslate(1e-4 * RandomPose(rng, 1.0).translation());
+      to.rotate(Eigen::AngleAxisd(1e-3, testing_poses::RandomDirection(rng)));
+    } else {
+      to = RandomPose(rng, 2.0);
+    }
+    const double bound = RelativeMotionBound(ma.impl(), mb.impl(), from, to);
+    double most = 0;
+    for (const Vector3d& p : b.positions()) most = std::max(most, (to * p - from * p).norm());
+    for (const Vector3d& p : a.positions()) {
+      most = std::max(most, (to.inverse() * p - from.inverse() * p).norm());
+    }
+    EXPECT_LE(most, bound) << "pose " << i;
+    EXPECT_LE(bound, 3 * most + 1e-12) << "pose " << i;  // not needlessly loose
+  }
+  const Isometry3d X = RandomPose(rng, 2.0);
+  EXPECT_EQ(RelativeMotionBound(ma.impl(), mb.impl(), X, X), 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(AllVolumes, PairCacheTest,
                          testing::Values(BvType::kObbRss, BvType::kObb, BvType::kRss, BvType::kKios,
                                          BvType::kAabb),
