@@ -35,11 +35,17 @@ double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::
   return std::max(of_a, of_b);
 }
 
-double PairCache::Slack(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
-                        const Region& region) {
+double PairCache::Rounding(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                           const Isometry3d& X_AB) {
   const double coordinates =
-      a.centre.norm() + a.radius + b.centre.norm() + b.radius + region.X_AB.translation().norm();
-  return region.skin_m + kRoundingRelative * coordinates;
+      a.centre.norm() + a.radius + b.centre.norm() + b.radius + X_AB.translation().norm();
+  return kRoundingRelative * coordinates;
+}
+
+bool PairCache::Worthwhile(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                           const Isometry3d& X_AB) {
+  const double radii = a.radius + b.radius;
+  return kSkinRelative * radii + Rounding(a, b, X_AB) < radii;
 }
 
 PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b,

@@ -80,9 +80,15 @@ class PairCache {
   /// face and of a plane distance.
   static constexpr double kRoundingRelative = 1e-9;
 
-  /// What a region's build adds to the margin: its skin and rounding's share.
-  static double Slack(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
-                      const Region& region);
+  /// Rounding's share for B at X_AB in A's frame, metres.
+  static double Rounding(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                         const Isometry3d& X_AB);
+  /// Whether a region at X_AB is worth building: its skin and rounding's
+  /// share (its slack) below the two models' radii, so that it holds the
+  /// pairs near the contact rather than nearly all (far from the origin,
+  /// rounding's share grows with the coordinates).
+  static bool Worthwhile(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                         const Isometry3d& X_AB);
 
  private:
   static constexpr int kRegions = 4;  // the contact's pose, its depth, spares

@@ -470,9 +470,14 @@ int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
   double moved = 0;
   PairCache::Region* region = query.cache->Find(ia, ib, query.margin_m, X_AB, moved);
   if (!region) {
+    if (!PairCache::Worthwhile(ia, ib, X_AB)) {
+      Query plain = query;
+      plain.cache = nullptr;
+      return Traverse(ma, ia, mb, ib, X_AB, nullptr, plain, pairs);
+    }
     moved = 0;
     PairCache::Region& built = query.cache->Make(ia, ib, query.margin_m, X_AB);
-    const double slack = PairCache::Slack(ia, ib, built);
+    const double slack = built.skin_m + PairCache::Rounding(ia, ib, X_AB);
     Query build = query;
     build.margin_m += slack;
     build.skip = {};
@@ -483,8 +488,8 @@ int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     region = &built;
   }
   const BucketTest buckets(ia, mb, ib, X_AB, nullptr, query);
-  buckets.RunCandidates(region->candidates, moved,
-                        PairCache::Slack(ia, ib, *region) - region->skin_m, pairs);
+  buckets.RunCandidates(region->candidates, moved, PairCache::Rounding(ia, ib, region->X_AB),
+                        pairs);
   return tests;
 }
 

@@ -136,6 +136,34 @@ TEST_P(PairCacheTest, TouchingBoxesSlideAsFromScratchAtEveryScale) {
   }
 }
 
+// Far from the origin the pair query works in A's frame, where the
+// coordinates are small: regions serve there too. Two objects far from each
+// other would make rounding's share of a region's slack (it grows with the
+// coordinates) larger than the objects, a region of nearly every pair: none
+// is built, and the query runs from scratch. The answers are those from
+// scratch throughout.
+TEST_P(PairCacheTest, FarFromTheOriginAndFromEachOtherAnswersAsFromScratch) {
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25);
+  const CollisionModel ma(a, GetParam(), 1e-6), mb(b, GetParam(), 1e-6);
+  Isometry3d X_WA = Isometry3d::Identity();
+  X_WA.translation() = Vector3d(1e10, -1e10, 1e10);
+  PairCache cache;
+  int touching = 0;
+  for (const Isometry3d& X : CoherentPath(Overlapping(), 0.1, 20)) {
+    const Isometry3d X_WB = X_WA * X;
+    const auto expected = FromScratch(ma, X_WA, mb, X_WB, 1e-9);
+    ASSERT_EQ(Cached(cache, ma, X_WA, mb, X_WB, 1e-9), expected);
+    touching += !expected.empty();
+  }
+  EXPECT_EQ(touching, 20);
+  EXPECT_GT(cache.hits(), 10);
+  cache.Clear();
+  Isometry3d apart = Overlapping();
+  apart.translation().x() += 1e12;
+  EXPECT_TRUE(Cached(cache, ma, Isometry3d::Identity(), mb, apart, 1e-9).empty());
+  EXPECT_EQ(cache.regions(), 0);
+}
+
 // Moved vertices (a new geometry version) and another margin each build a
 // region of their own: the answers stay those from scratch.
 TEST_P(PairCacheTest, GeometryAndMarginChangesBuildNewRegions) {
