@@ -31,6 +31,28 @@ Extent ProjectThree(const Vector3d& axis, const Triangle3d& t) {
   return {std::min(std::min(x, y), z), std::max(std::max(x, y), z)};
 }
 
+// Whether `axis`, formed from vectors whose squared lengths multiply to
+// `scale_sq`, is long enough to trust; `norm_sq` gets its squared length.
+bool UsableAxis(const Vector3d& axis, double scale_sq, double& norm_sq) {
+  norm_sq = axis.squaredNorm();
+  return norm_sq > kAxisRelativeFloor * kAxisRelativeFloor * scale_sq && norm_sq != 0;
+}
+
+// The SAT axis of edge i of `a` crossed with edge j of `b` (ea, eb, of
+// squared lengths la, lb; edge i from corner i to i + 1): calls
+// visit(axis, squared_axis_norm, extent_of_a, extent_of_b) and returns its
+// answer, or true when the axis is too short to trust. An axis normal to an
+// edge sees both ends of it at one point, so one of them is projected.
+template <typename Visit>
+bool VisitEdgeCross(const Triangle3d& a, const Vector3d& ea, double la, int i, const Triangle3d& b,
+                    const Vector3d& eb, double lb, int j, Visit&& visit) {
+  const Vector3d axis = ea.cross(eb);
+  double norm_sq;
+  if (!UsableAxis(axis, la * lb, norm_sq)) return true;
+  return visit(axis, norm_sq, ProjectTwo(axis, a[i], a[(i + 2) % 3]),
+               ProjectTwo(axis, b[j], b[(j + 2) % 3]));
+}
+
 // Calls visit(axis, squared_axis_norm, extent_of_a, extent_of_b) for every
 // usable SAT axis of the pair; stops early and returns false when visit
 // returns false. `na` and `nb` are the face normals (TriangleNormal). An
@@ -42,20 +64,16 @@ bool ForEachAxis(const Triangle3d& a, const Vector3d& na, const Triangle3d& b, c
                  Visit&& visit) {
   const std::array<Vector3d, 3> ea = {a[1] - a[0], a[2] - a[1], a[0] - a[2]};
   const std::array<Vector3d, 3> eb = {b[1] - b[0], b[2] - b[1], b[0] - b[2]};
-  auto usable = [](const Vector3d& axis, double scale_sq, double& norm_sq) {
-    norm_sq = axis.squaredNorm();
-    return norm_sq > kAxisRelativeFloor * kAxisRelativeFloor * scale_sq && norm_sq != 0;
-  };
   const double la[3] = {ea[0].squaredNorm(), ea[1].squaredNorm(), ea[2].squaredNorm()};
   const double lb[3] = {eb[0].squaredNorm(), eb[1].squaredNorm(), eb[2].squaredNorm()};
   const double la_max = std::max(std::max(la[0], la[1]), la[2]);
   const double lb_max = std::max(std::max(lb[0], lb[1]), lb[2]);
   double norm_sq;
-  if (usable(na, la_max * la_max, norm_sq)) {
+  if (UsableAxis(na, la_max * la_max, norm_sq)) {
     const double at = na.dot(a[0]);
     if (!visit(na, norm_sq, Extent{at, at}, ProjectThree(na, b))) return false;
   }
-  if (usable(nb, lb_max * lb_max, norm_sq)) {
+  if (UsableAxis(nb, lb_max * lb_max, norm_sq)) {
     const double at = nb.dot(b[0]);
     if (!visit(nb, norm_sq, ProjectThree(nb, a), Extent{at, at})) return false;
   }
@@ -63,12 +81,7 @@ bool ForEachAxis(const Triangle3d& a, const Vector3d& na, const Triangle3d& b, c
   // Edge i joins corners i and i + 1; corner i + 2 is off it.
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      const Vector3d axis = ea[i].cross(eb[j]);
-      if (usable(axis, la[i] * lb[j], norm_sq) &&
-          !visit(axis, norm_sq, ProjectTwo(axis, a[i], a[(i + 2) % 3]),
-                 ProjectTwo(axis, b[j], b[(j + 2) % 3]))) {
-        return false;
-      }
+      if (!VisitEdgeCross(a, ea[i], la[i], i, b, eb[j], lb[j], j, visit)) return false;
     }
   }
   // The in-plane edge normals separate triangles of (nearly) parallel
@@ -81,13 +94,13 @@ bool ForEachAxis(const Triangle3d& a, const Vector3d& na, const Triangle3d& b, c
   }
   for (int i = 0; i < 3; ++i) {
     const Vector3d axis_a = na.cross(ea[i]);
-    if (usable(axis_a, la_max * la_max * la[i], norm_sq) &&
+    if (UsableAxis(axis_a, la_max * la_max * la[i], norm_sq) &&
         !visit(axis_a, norm_sq, ProjectTwo(axis_a, a[i], a[(i + 2) % 3]),
                ProjectThree(axis_a, b))) {
       return false;
     }
     const Vector3d axis_b = nb.cross(eb[i]);
-    if (usable(axis_b, lb_max * lb_max * lb[i], norm_sq) &&
+    if (UsableAxis(axis_b, lb_max * lb_max * lb[i], norm_sq) &&
         !visit(axis_b, norm_sq, ProjectThree(axis_b, a),
                ProjectTwo(axis_b, b[i], b[(i + 2) % 3]))) {
       return false;
@@ -171,20 +184,15 @@ constexpr double kClearlyRelative = 1e-9;
 
 enum class Crossing { kYes, kApart, kUnknown };
 
-// The edge cross of edge i of `a` and edge j of `b` (edge i from corner i to
-// i + 1), as ForEachAxis builds and projects it: whether it separates them
-// by more than `margin`. When it does, ForEachAxis finds it too.
+// The edge cross of edge i of `a` and edge j of `b`, built and projected
+// by ForEachAxis's own VisitEdgeCross: whether it separates them by more
+// than `margin`. When it does, ForEachAxis finds it too.
 bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin) {
   const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
-  const Vector3d axis = ea.cross(eb);
-  const double norm_sq = axis.squaredNorm();
-  if (!(norm_sq > kAxisRelativeFloor * kAxisRelativeFloor * (ea.squaredNorm() * eb.squaredNorm()) &&
-        norm_sq != 0)) {
-    return false;
-  }
-  const Extent pa = ProjectTwo(axis, a[i], a[(i + 2) % 3]);
-  const Extent pb = ProjectTwo(axis, b[j], b[(j + 2) % 3]);
-  return SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin);
+  return !VisitEdgeCross(a, ea, ea.squaredNorm(), i, b, eb, eb.squaredNorm(), j,
+                         [&](const Vector3d&, double norm_sq, const Extent& pa, const Extent& pb) {
+                           return !SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin);
+                         });
 }
 
 // A fast answer for triangles that straddle each other's planes (Moller's
