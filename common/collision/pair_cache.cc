@@ -20,15 +20,20 @@ int PairCache::regions() const {
       std::count_if(regions_.begin(), regions_.end(), [](const Region& r) { return r.a != 0; }));
 }
 
+double RelativeTurn(const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
+  // R_to - R_from = R_from (R - I) with R a turn by some angle a, whose
+  // singular values are 2 sin(a/2) twice and 0: its largest is the
+  // Frobenius norm over sqrt(2), which the entries give without the
+  // cancellation of the angle's cosine.
+  return (X_AB_to.linear() - X_AB_from.linear()).norm() / std::sqrt(2.0);
+}
+
 double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                            const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
   // A point p of B moves by (R_to - R_from) (p - c) + (X_to c - X_from c),
-  // c its model's centre, |p - c| <= radius. R_to - R_from = R_from (R - I)
-  // with R a turn by some angle a, whose singular values are 2 sin(a/2)
-  // twice and 0: its largest is the Frobenius norm over sqrt(2), which
-  // the entries give without the cancellation of the angle's cosine. A's
-  // points in B's frame alike, under the inverses.
-  const double turn = (X_AB_to.linear() - X_AB_from.linear()).norm() / std::sqrt(2.0);
+  // c its model's centre, |p - c| <= radius. A's points in B's frame alike,
+  // under the inverses.
+  const double turn = RelativeTurn(X_AB_from, X_AB_to);
   const double of_b = turn * b.radius + (X_AB_to * b.centre - X_AB_from * b.centre).norm();
   const double of_a =
       turn * a.radius + (X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm();
@@ -49,14 +54,16 @@ bool PairCache::Worthwhile(const CollisionModel::Impl& a, const CollisionModel::
 }
 
 PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
-                                   double margin_m, const Isometry3d& X_AB, double& moved) {
+                                   double margin_m, const Isometry3d& X_AB) {
   for (Region& region : regions_) {
     if (region.a != a.id || region.b != b.id || region.version_a != a.geometry_version ||
         region.version_b != b.geometry_version || region.margin_m != margin_m) {
       continue;
     }
-    moved = RelativeMotionBound(a, b, region.X_AB, X_AB);
-    if (moved <= region.skin_m) {
+    if (RelativeMotionBound(a, b, region.X_AB, X_AB) <= region.skin_m) {
+      region.travelled_m += RelativeMotionBound(a, b, region.X_AB_last, X_AB);
+      region.turned += RelativeTurn(region.X_AB_last, X_AB);
+      region.X_AB_last = X_AB;
       region.last_use = ++clock_;
       ++hits_;
       return &region;
@@ -77,6 +84,9 @@ PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const Collisio
   region.margin_m = margin_m;
   region.skin_m = kSkinRelative * (a.radius + b.radius);
   region.X_AB = X_AB;
+  region.X_AB_last = X_AB;
+  region.travelled_m = 0;
+  region.turned = 0;
   region.candidates.clear();
   region.last_use = ++clock_;
   ++builds_;

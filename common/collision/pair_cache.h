@@ -41,8 +41,9 @@ class PairCache {
 
   /// A face pair of a region: A's face by its leaf position, B's by id,
   /// what its last test said, and until when it is known apart: while the
-  /// region's motion bound (from its pose) stays under `apart_until`,
-  /// metres, its boxes or planes keep it beyond the margin.
+  /// region's travel and turn (Region::travelled_m + hint.lever_m *
+  /// Region::turned) stay under `apart_until`, metres, its boxes, planes or
+  /// edge cross keep it beyond the margin.
   struct Candidate {
     int leaf_a;
     int face_b;
@@ -57,15 +58,28 @@ class PairCache {
     double skin_m = 0;
     /// B's pose in A's frame when built.
     Isometry3d X_AB = Isometry3d::Identity();
+    /// B's pose at the region's last query, and the sum of the motion
+    /// bounds from each of its queries to the next since built: no point
+    /// has moved more than that difference between two of its queries
+    /// (each step's bound holds every point's motion, and a path is no
+    /// shorter than its chord). Unlike the bound from the region's pose,
+    /// it lets a pair tested late in the region stay skipped as long as
+    /// one tested early.
+    Isometry3d X_AB_last = Isometry3d::Identity();
+    double travelled_m = 0;
+    /// The sum of B's turns in A's frame (RelativeTurn) from each query to
+    /// the next: no direction fixed to B has turned by more than that
+    /// difference between two of its queries.
+    double turned = 0;
     std::vector<Candidate> candidates;
     uint64_t last_use = 0;
   };
 
   /// The region of models `a` and `b` (at their current geometry) for
-  /// `margin_m` that holds B's pose X_AB in A's frame, or null; `moved`
-  /// gets the motion bound from its pose.
+  /// `margin_m` that holds B's pose X_AB in A's frame, or null; a region
+  /// found has moved on to X_AB (its travel counts the step there).
   Region* Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
-               const Isometry3d& X_AB, double& moved);
+               const Isometry3d& X_AB);
   /// A region to build at X_AB, its candidates empty: the least recently
   /// used one, its storage kept. Its skin is set here.
   Region& Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
@@ -75,7 +89,7 @@ class PairCache {
   /// radii. Large enough that a hand-held tool stays inside a region for
   /// several steps, small enough that a region holds few pairs beside those
   /// that meet (contact_bench Coherent, docs/benchmarks.md).
-  static constexpr double kSkinRelative = 4e-3;
+  static constexpr double kSkinRelative = 8e-3;
 
   /// Rounding's share of a region's slack: relative to the size of the
   /// coordinates the pair tests see, far above the rounding of placing a
@@ -98,6 +112,10 @@ class PairCache {
   uint64_t clock_ = 0;
   int64_t builds_ = 0, hits_ = 0;
 };
+
+/// A bound on the angle (radians) through which B turns in A's frame
+/// between poses X_AB_from and X_AB_to: |R u - u| <= it for every unit u.
+double RelativeTurn(const Isometry3d& X_AB_from, const Isometry3d& X_AB_to);
 
 /// The most any point of A (in B's frame) or of B (in A's frame) moves
 /// between B's poses X_AB_from and X_AB_to in A's frame, bounded through

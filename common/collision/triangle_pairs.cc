@@ -254,16 +254,17 @@ class BucketTest {
 
   /// A static query from a region's candidates: each goes through Run's
   /// tests (its box test, `skip`, the face test) in the candidates' order,
-  /// Run's own, save those known apart. B is `moved` (the region's motion
-  /// bound) from the region's pose, and `rounding` (the region's slack
-  /// beside its skin) covers the rounding of what was measured there.
-  void RunCandidates(std::span<PairCache::Candidate> candidates, double moved, double rounding,
-                     std::vector<TrianglePair>& pairs) const {
+  /// Run's own, save those known apart. The region has `travelled` and
+  /// `turned` (Region::travelled_m, Region::turned), and `rounding` (the
+  /// region's slack beside its skin) covers the rounding of what was
+  /// measured there.
+  void RunCandidates(std::span<PairCache::Candidate> candidates, double travelled, double turned,
+                     double rounding, std::vector<TrianglePair>& pairs) const {
     HS_CHECK(!sweep_A_);
     for (PairCache::Candidate& candidate : candidates) {
-      // Apart by more than the motion since it was last tested: its box
-      // or plane test would reject it again.
-      if (moved < candidate.apart_until) continue;
+      // Apart by more than the motion since it was last tested: its box,
+      // plane or edge-cross test would reject it again.
+      if (travelled + candidate.hint.lever_m * turned < candidate.apart_until) continue;
       const int i = candidate.leaf_a;
       const PlacedFace& b = faces_b_.Get(candidate.face_b);
       double box_gap = -std::numeric_limits<double>::infinity();
@@ -271,8 +272,9 @@ class BucketTest {
         box_gap = std::max(box_gap, std::max(ia_.leaf_order_lo[d][i] - (b.hi[d] + margin_),
                                              b.lo[d] - (ia_.leaf_order_hi[d][i] + margin_)));
       }
-      if (box_gap > 0) {  // BucketBoxes::Meeting rejects the pair
-        candidate.apart_until = box_gap - moved - rounding;
+      if (box_gap > 0) {             // BucketBoxes::Meeting rejects the pair
+        candidate.hint.lever_m = 0;  // the box sides do not turn with B
+        candidate.apart_until = travelled + box_gap - rounding;
         continue;
       }
       const int a = ia_.leaf_faces[i];
@@ -285,8 +287,10 @@ class BucketTest {
       if (TrianglesIntersect(face_a.triangle, face_a.normal, b.triangle, b.normal, margin_,
                              candidate.hint)) {
         pairs.push_back({a, candidate.face_b});
+        candidate.apart_until = -1;  // tested again next time, whatever its lever
       } else {
-        candidate.apart_until = candidate.hint.plane_gap_m - moved - rounding;
+        candidate.apart_until =
+            travelled + candidate.hint.lever_m * turned + candidate.hint.gap_m - rounding;
       }
     }
   }
@@ -467,15 +471,13 @@ int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
                    const Isometry3d& X_AB, const Query& query, std::vector<TrianglePair>& pairs) {
   HS_CHECK(!query.sweep_W && !query.first_only);
   int64_t tests = 0;
-  double moved = 0;
-  PairCache::Region* region = query.cache->Find(ia, ib, query.margin_m, X_AB, moved);
+  PairCache::Region* region = query.cache->Find(ia, ib, query.margin_m, X_AB);
   if (!region) {
     if (!PairCache::Worthwhile(ia, ib, X_AB)) {
       Query plain = query;
       plain.cache = nullptr;
       return Traverse(ma, ia, mb, ib, X_AB, nullptr, plain, pairs);
     }
-    moved = 0;
     PairCache::Region& built = query.cache->Make(ia, ib, query.margin_m, X_AB);
     const double slack = built.skin_m + PairCache::Rounding(ia, ib, X_AB);
     Query build = query;
@@ -488,8 +490,8 @@ int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     region = &built;
   }
   const BucketTest buckets(ia, mb, ib, X_AB, nullptr, query);
-  buckets.RunCandidates(region->candidates, moved, PairCache::Rounding(ia, ib, region->X_AB),
-                        pairs);
+  buckets.RunCandidates(region->candidates, region->travelled_m, region->turned,
+                        PairCache::Rounding(ia, ib, region->X_AB), pairs);
   return tests;
 }
 

@@ -184,15 +184,36 @@ constexpr double kClearlyRelative = 1e-9;
 
 enum class Crossing { kYes, kApart, kUnknown };
 
-// The edge cross of edge i of `a` and edge j of `b`, built and projected
-// by ForEachAxis's own VisitEdgeCross: whether it separates them by more
-// than `margin`. When it does, ForEachAxis finds it too.
-bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin) {
+// Whether the edge cross of edge i of `a` and edge j of `b`, built and
+// projected by ForEachAxis's own VisitEdgeCross, separates them by more
+// than `margin` (when it does, ForEachAxis finds it too); with a `hint`,
+// its gap_m and lever_m are set for that axis (0 when it does not
+// separate them).
+bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin,
+                        PairHint& hint) {
   const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
-  return !VisitEdgeCross(a, ea, ea.squaredNorm(), i, b, eb, eb.squaredNorm(), j,
-                         [&](const Vector3d&, double norm_sq, const Extent& pa, const Extent& pb) {
-                           return !SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin);
-                         });
+  const double la = ea.squaredNorm(), lb = eb.squaredNorm();
+  hint.gap_m = hint.lever_m = 0;
+  return !VisitEdgeCross(
+      a, ea, la, i, b, eb, lb, j,
+      [&](const Vector3d&, double norm_sq, const Extent& pa, const Extent& pb) {
+        if (!SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin)) return true;
+        // Turned by an angle u, e_a x e_b moves by at most |e_a| |e_b| u,
+        // the unit axis by twice that over |e_a x e_b|, and the gap along
+        // it by that times how far apart two corners lie. The axis stays
+        // over half its length, so usable, while the gap lasts: below
+        // four times the floor, none is kept.
+        const double floor_sq = kAxisRelativeFloor * kAxisRelativeFloor * la * lb;
+        if (!(norm_sq > 4 * floor_sq * (1 + 1e-6))) return false;
+        Vector3d lo =
+            a[0].cwiseMin(a[1]).cwiseMin(a[2]).cwiseMin(b[0]).cwiseMin(b[1]).cwiseMin(b[2]);
+        Vector3d hi =
+            a[0].cwiseMax(a[1]).cwiseMax(a[2]).cwiseMax(b[0]).cwiseMax(b[1]).cwiseMax(b[2]);
+        const double length = std::sqrt(norm_sq);
+        hint.gap_m = std::max(0.0, std::max(pa.lo - pb.hi, pb.lo - pa.hi) / length - margin);
+        hint.lever_m = 2 * std::sqrt(la * lb) / length * (hi - lo).norm();
+        return false;
+      });
 }
 
 // A fast answer for triangles that straddle each other's planes (Moller's
@@ -284,15 +305,15 @@ void CutToSweep(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d&
 template <bool kLearn>
 bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                const Vector3d& normal_b, double margin, PairHint* hint) {
-  if constexpr (kLearn) hint->plane_gap_m = 0;
+  if constexpr (kLearn) hint->gap_m = hint->lever_m = 0;
   const std::array<double, 3> db = PlaneDistances(b, a[0], normal_a);
   if (BeyondPlane(db, normal_a, margin)) {
-    if constexpr (kLearn) hint->plane_gap_m = PlaneGap(db, normal_a, margin);
+    if constexpr (kLearn) hint->gap_m = PlaneGap(db, normal_a, margin);
     return false;
   }
   const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
   if (BeyondPlane(da, normal_b, margin)) {
-    if constexpr (kLearn) hint->plane_gap_m = PlaneGap(da, normal_b, margin);
+    if constexpr (kLearn) hint->gap_m = PlaneGap(da, normal_b, margin);
     return false;
   }
   int unused = -1;
@@ -300,10 +321,14 @@ bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& 
   // A separating edge cross makes every path below answer false: the
   // crossing test's kYes needs a clear common point, which no axis can
   // separate, and ForEachAxis visits that axis, built the same way.
-  if (kLearn && edge_pair >= 0 && EdgeCrossSeparates(a, b, edge_pair / 3, edge_pair % 3, margin)) {
+  if (kLearn && edge_pair >= 0 &&
+      EdgeCrossSeparates(a, b, edge_pair / 3, edge_pair % 3, margin, *hint)) {
     return false;
   }
   const Crossing crossing = CrossingTest(a, normal_a, da, b, normal_b, db, margin, edge_pair);
+  if (crossing == Crossing::kApart && kLearn) {  // its gap along ForEachAxis's axis
+    EdgeCrossSeparates(a, b, edge_pair / 3, edge_pair % 3, margin, *hint);
+  }
   if (crossing != Crossing::kUnknown) return crossing == Crossing::kYes;
   const bool meet =
       ForEachAxis(a, normal_a, b, normal_b,
@@ -313,7 +338,7 @@ bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& 
   if (kLearn && !meet) {  // which edge cross separates them, if one does
     edge_pair = -1;
     for (int k = 0; k < 9 && edge_pair < 0; ++k) {
-      if (EdgeCrossSeparates(a, b, k / 3, k % 3, margin)) edge_pair = k;
+      if (EdgeCrossSeparates(a, b, k / 3, k % 3, margin, *hint)) edge_pair = k;
     }
   }
   return meet;

@@ -49,10 +49,17 @@ struct PairHint {
   /// The edge cross that separated the two (3 i + j: edge i of `a`, from
   /// corner i to i + 1, and edge j of `b`), or -1.
   int edge_pair = -1;
-  /// When a face's plane separated them: how far beyond the margin the
-  /// other face lay, metres (so they stay apart while either moves less,
-  /// up to rounding); else 0.
-  double plane_gap_m = 0;
+  /// When a face's plane or the edge cross separated them: how far beyond
+  /// the margin, metres; else 0. They stay apart, and the same test says
+  /// so, while each moves less than gap_m - lever_m * (the angle through
+  /// which one turns relative to the other), up to rounding.
+  double gap_m = 0;
+  /// 0 for a face plane, which turns with its face (the distance from it
+  /// only changes as the other face moves); for an edge cross, whose axis
+  /// swings as the edges turn, the most the gap along it changes per
+  /// radian of turn: 2 |e_a| |e_b| / |e_a x e_b| times the farthest two
+  /// corners of the pair lie apart.
+  double lever_m = 0;
 };
 
 /// The same answer, for callers that test a pair again and again as it

@@ -4,8 +4,10 @@
 #include <CGAL/intersections.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 
 namespace hs {
@@ -180,6 +182,69 @@ TEST(TriangleSatTest, PlaneBoundsHoldTheIntervals) {
   }
   EXPECT_GT(nonempty, 1000);
   EXPECT_GT(looser, 100);  // a bound, not a copy
+}
+
+// What a test learns holds while the pair moves less than it says: b is
+// turned by an angle up to pi/6 (mostly far less) about a point near its
+// centre and shifted, scaled
+// so that each corner's motion (of b's, and of a's seen from b) plus the
+// hint's lever times the turn stays under its gap, up to 99.9 % of it: the
+// pair is then still apart, with and without the hint. Both kinds of gap
+// must occur: a face plane's and an edge cross's, whose axis swings as b
+// turns.
+TEST(TriangleSatTest, HintGapHoldsWhileTheMotionStaysUnderIt) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> u(-1, 1), fraction(0, 1);
+  int plane_gaps = 0, edge_gaps = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const auto [a, b] = RandomNearbyPair(rng);
+    for (double margin : {1e-9, 1e-3, 0.05}) {
+      PairHint hint;
+      if (TrianglesIntersect(a, TriangleNormal(a), b, TriangleNormal(b), margin, hint) ||
+          !(hint.gap_m > 0)) {
+        continue;
+      }
+      // About b's centre: b's corners barely move while its edges swing.
+      const Vector3d pivot = (b[0] + b[1] + b[2]) / 3 + 0.1 * Vector3d(u(rng), u(rng), u(rng));
+      const Eigen::AngleAxisd turn(std::numbers::pi / 6 * std::pow(fraction(rng), 3),
+                                   Vector3d(u(rng), u(rng), u(rng)).normalized());
+      const Vector3d shift = Vector3d(u(rng), u(rng), u(rng));
+      // b's motion x -> pivot + R (x - pivot) + s * shift, for the scale s
+      // that spends `spend` of the gap.
+      auto move = [&](double s, const Vector3d& x) -> Vector3d {
+        return pivot + turn.toRotationMatrix() * (x - pivot) + s * shift;
+      };
+      auto unmove = [&](double s, const Vector3d& x) -> Vector3d {
+        return pivot + turn.toRotationMatrix().transpose() * (x - s * shift - pivot);
+      };
+      auto cost = [&](double s) {
+        double most = 0;
+        for (int k = 0; k < 3; ++k) {
+          most = std::max({most, (move(s, b[k]) - b[k]).norm(), (unmove(s, a[k]) - a[k]).norm()});
+        }
+        return most + hint.lever_m * 2 * std::sin(turn.angle() / 2);
+      };
+      const double spend = std::min(0.999, fraction(rng) * 1.2);
+      if (!(cost(0) < spend * hint.gap_m)) continue;  // the turn alone spends too much
+      // The largest shift within the budget, by bisection.
+      double lo = 0, hi = 1;
+      while (cost(hi) < spend * hint.gap_m) hi *= 2;
+      for (int k = 0; k < 60; ++k) {
+        const double mid = (lo + hi) / 2;
+        (cost(mid) < spend * hint.gap_m ? lo : hi) = mid;
+      }
+      Triangle3d moved;
+      for (int k = 0; k < 3; ++k) moved[k] = move(lo, b[k]);
+      PairHint again = hint;
+      ASSERT_FALSE(TrianglesIntersect(a, moved, margin)) << "pair " << i << " margin " << margin;
+      ASSERT_FALSE(
+          TrianglesIntersect(a, TriangleNormal(a), moved, TriangleNormal(moved), margin, again))
+          << "pair " << i << " margin " << margin;
+      (hint.lever_m > 0 ? edge_gaps : plane_gaps) += 1;
+    }
+  }
+  EXPECT_GT(plane_gaps, 3000);
+  EXPECT_GT(edge_gaps, 1000);
 }
 
 // A margin makes triangles a small gap apart count, and only within it.
