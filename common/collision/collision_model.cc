@@ -81,12 +81,19 @@ std::vector<int> LeafFaces(const AnyBvh& bvh) {
       bvh);
 }
 
-// The centre of the object's box and its vertices' largest distance from it.
+// The centre of the object's box, its vertices' largest distance from it,
+// and each face's.
 void PlaceCentre(const HapticObject& object, CollisionModel::Impl& impl) {
   impl.centre = object.bounding_box().center();
   impl.radius = 0;
   for (const Vector3d& p : object.positions()) {
     impl.radius = std::max(impl.radius, (p - impl.centre).norm());
+  }
+  impl.face_reach.assign(object.num_faces(), 0);
+  for (int f = 0; f < object.num_faces(); ++f) {
+    for (const VertexId v : object.face(f).vertices) {
+      impl.face_reach[f] = std::max(impl.face_reach[f], (object.position(v) - impl.centre).norm());
+    }
   }
 }
 

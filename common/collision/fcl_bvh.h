@@ -42,6 +42,9 @@ struct CollisionModel::Impl {
   /// of a vertex from it: how far a turn can move the object's points.
   Vector3d centre = Vector3d::Zero();
   double radius = 0;
+  /// Per face: its corners' largest distance from `centre`, how far a turn
+  /// can move that face (at most `radius`).
+  std::vector<double> face_reach;
   AnyBvh bvh;
   /// Per face: zero area, so skipped by the leaf test (a flat triangle has
   /// no normal and SAT cannot separate it reliably; in a closed mesh its

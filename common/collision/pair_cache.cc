@@ -28,6 +28,12 @@ double RelativeTurn(const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
   return (X_AB_to.linear() - X_AB_from.linear()).norm() / std::sqrt(2.0);
 }
 
+double RelativeShift(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                     const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
+  return std::max((X_AB_to * b.centre - X_AB_from * b.centre).norm(),
+                  (X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm());
+}
+
 double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                            const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
   // A point p of B moves by (R_to - R_from) (p - c) + (X_to c - X_from c),
@@ -61,7 +67,7 @@ PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const Collisio
       continue;
     }
     if (RelativeMotionBound(a, b, region.X_AB, X_AB) <= region.skin_m) {
-      region.travelled_m += RelativeMotionBound(a, b, region.X_AB_last, X_AB);
+      region.shifted_m += RelativeShift(a, b, region.X_AB_last, X_AB);
       region.turned += RelativeTurn(region.X_AB_last, X_AB);
       region.X_AB_last = X_AB;
       region.last_use = ++clock_;
@@ -85,7 +91,7 @@ PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const Collisio
   region.skin_m = kSkinRelative * (a.radius + b.radius);
   region.X_AB = X_AB;
   region.X_AB_last = X_AB;
-  region.travelled_m = 0;
+  region.shifted_m = 0;
   region.turned = 0;
   region.candidates.clear();
   region.last_use = ++clock_;

@@ -40,15 +40,18 @@ class PairCache {
   // Internal to common/collision (triangle_pairs.cc).
 
   /// A face pair of a region: A's face by its leaf position, B's by id,
-  /// what its last test said, and until when it is known apart: while the
-  /// region's travel and turn (Region::travelled_m + hint.lever_m *
-  /// Region::turned) stay under `apart_until`, metres, its boxes, planes or
-  /// edge cross keep it beyond the margin.
+  /// the edge cross that last separated them (PairHint::edge_pair), and
+  /// until when they are known apart: while Region::shifted_m + per_turn_m
+  /// * Region::turned stays under `apart_until`, metres, their boxes,
+  /// planes or edge cross keep them beyond the margin. per_turn_m is how
+  /// far the two faces move per radian of turn (their reach from their
+  /// models' centres) plus the lever of that edge cross (PairHint).
   struct Candidate {
     int leaf_a;
     int face_b;
-    PairHint hint;
+    int edge_pair = -1;
     double apart_until = -1;
+    double per_turn_m = 0;
   };
   struct Region {
     uint64_t a = 0, b = 0;  // the models' ids; 0: free
@@ -58,18 +61,18 @@ class PairCache {
     double skin_m = 0;
     /// B's pose in A's frame when built.
     Isometry3d X_AB = Isometry3d::Identity();
-    /// B's pose at the region's last query, and the sum of the motion
-    /// bounds from each of its queries to the next since built: no point
-    /// has moved more than that difference between two of its queries
-    /// (each step's bound holds every point's motion, and a path is no
-    /// shorter than its chord). Unlike the bound from the region's pose,
-    /// it lets a pair tested late in the region stay skipped as long as
-    /// one tested early.
+    /// B's pose at the region's last query, and since built, summed from
+    /// each of its queries to the next: B's turns in A's frame
+    /// (RelativeTurn) and the larger of the shifts of the two models'
+    /// centres (RelativeShift). Between two of its queries, a point at
+    /// distance r from its model's centre has moved at most the difference
+    /// in shifted_m plus r times the difference in turned (each step's
+    /// bound holds its motion, and a path is no shorter than its chord),
+    /// and a direction fixed to B has turned by at most the difference in
+    /// turned. Unlike a bound from the region's pose, this lets a pair
+    /// tested late in the region stay skipped as long as one tested early.
     Isometry3d X_AB_last = Isometry3d::Identity();
-    double travelled_m = 0;
-    /// The sum of B's turns in A's frame (RelativeTurn) from each query to
-    /// the next: no direction fixed to B has turned by more than that
-    /// difference between two of its queries.
+    double shifted_m = 0;
     double turned = 0;
     std::vector<Candidate> candidates;
     uint64_t last_use = 0;
@@ -116,6 +119,11 @@ class PairCache {
 /// A bound on the angle (radians) through which B turns in A's frame
 /// between poses X_AB_from and X_AB_to: |R u - u| <= it for every unit u.
 double RelativeTurn(const Isometry3d& X_AB_from, const Isometry3d& X_AB_to);
+
+/// The larger of the distances that A's centre moves in B's frame and B's
+/// in A's frame between B's poses X_AB_from and X_AB_to in A's frame.
+double RelativeShift(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                     const Isometry3d& X_AB_from, const Isometry3d& X_AB_to);
 
 /// The most any point of A (in B's frame) or of B (in A's frame) moves
 /// between B's poses X_AB_from and X_AB_to in A's frame, bounded through

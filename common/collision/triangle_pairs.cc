@@ -241,7 +241,7 @@ class BucketTest {
           continue;
         }
         if (candidates_) {
-          if (!PlanesKeepApart(face_a, *b.face)) candidates_->push_back({i, b.id, {}, -1});
+          if (!PlanesKeepApart(face_a, *b.face)) candidates_->push_back({i, b.id});
           continue;
         }
         const bool hit = sweep_A_ ? SweptFacesMeet(face_a, *b.face)
@@ -254,43 +254,48 @@ class BucketTest {
 
   /// A static query from a region's candidates: each goes through Run's
   /// tests (its box test, `skip`, the face test) in the candidates' order,
-  /// Run's own, save those known apart. The region has `travelled` and
-  /// `turned` (Region::travelled_m, Region::turned), and `rounding` (the
+  /// Run's own, save those known apart. The region has `shifted` and
+  /// `turned` (Region::shifted_m, Region::turned), and `rounding` (the
   /// region's slack beside its skin) covers the rounding of what was
   /// measured there.
-  void RunCandidates(std::span<PairCache::Candidate> candidates, double travelled, double turned,
+  void RunCandidates(std::span<PairCache::Candidate> candidates, double shifted, double turned,
                      double rounding, std::vector<TrianglePair>& pairs) const {
     HS_CHECK(!sweep_A_);
     for (PairCache::Candidate& candidate : candidates) {
       // Apart by more than the motion since it was last tested: its box,
       // plane or edge-cross test would reject it again.
-      if (travelled + candidate.hint.lever_m * turned < candidate.apart_until) continue;
+      if (shifted + candidate.per_turn_m * turned < candidate.apart_until) continue;
       const int i = candidate.leaf_a;
+      const int a = ia_.leaf_faces[i];
       const PlacedFace& b = faces_b_.Get(candidate.face_b);
+      // How far the two faces move per radian of turn.
+      const double reach = std::max(ia_.face_reach[a], ib_.face_reach[candidate.face_b]);
       double box_gap = -std::numeric_limits<double>::infinity();
       for (int d = 0; d < 3; ++d) {
         box_gap = std::max(box_gap, std::max(ia_.leaf_order_lo[d][i] - (b.hi[d] + margin_),
                                              b.lo[d] - (ia_.leaf_order_hi[d][i] + margin_)));
       }
-      if (box_gap > 0) {             // BucketBoxes::Meeting rejects the pair
-        candidate.hint.lever_m = 0;  // the box sides do not turn with B
-        candidate.apart_until = travelled + box_gap - rounding;
+      if (box_gap > 0) {  // BucketBoxes::Meeting rejects the pair
+        candidate.per_turn_m = reach;
+        candidate.apart_until = shifted + reach * turned + box_gap - rounding;
         continue;
       }
-      const int a = ia_.leaf_faces[i];
       const std::span<const TrianglePair> skipped = Skipped(a);
       if (!skipped.empty() &&
           std::ranges::binary_search(skipped, TrianglePair{a, candidate.face_b})) {
         continue;
       }
       const PlacedFace& face_a = ia_.leaf_order_faces[i];
-      if (TrianglesIntersect(face_a.triangle, face_a.normal, b.triangle, b.normal, margin_,
-                             candidate.hint)) {
+      PairHint hint{.edge_pair = candidate.edge_pair};
+      const bool meet =
+          TrianglesIntersect(face_a.triangle, face_a.normal, b.triangle, b.normal, margin_, hint);
+      candidate.edge_pair = hint.edge_pair;
+      if (meet) {
         pairs.push_back({a, candidate.face_b});
-        candidate.apart_until = -1;  // tested again next time, whatever its lever
+        candidate.apart_until = -1;  // tested again next time
       } else {
-        candidate.apart_until =
-            travelled + candidate.hint.lever_m * turned + candidate.hint.gap_m - rounding;
+        candidate.per_turn_m = reach + hint.lever_m;
+        candidate.apart_until = shifted + candidate.per_turn_m * turned + hint.gap_m - rounding;
       }
     }
   }
@@ -490,7 +495,7 @@ int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     region = &built;
   }
   const BucketTest buckets(ia, mb, ib, X_AB, nullptr, query);
-  buckets.RunCandidates(region->candidates, region->travelled_m, region->turned,
+  buckets.RunCandidates(region->candidates, region->shifted_m, region->turned,
                         PairCache::Rounding(ia, ib, region->X_AB), pairs);
   return tests;
 }

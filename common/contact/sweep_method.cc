@@ -87,6 +87,9 @@ class KnownPairs {
   // A pair whose bound ends before the run as it stands cannot extend it,
   // nor bridge a gap inside it: the pairs bound to reach furthest are
   // computed first, in batches that double, until none of the rest can.
+  // Which of them are computed beyond that does not change the run (one
+  // that ends before it cannot extend it), so they are taken from a heap,
+  // not sorted: most runs end after a batch or two.
   double ExtendRun(double t_star) {
     double run = Chain(t_star);
     std::vector<KnownPair*>& reaching = reaching_;
@@ -94,14 +97,16 @@ class KnownPairs {
     for (KnownPair& k : known_) {
       if (!k.computed && k.bounds.exact.hi > run) reaching.push_back(&k);
     }
-    std::sort(reaching.begin(), reaching.end(), [](const KnownPair* x, const KnownPair* y) {
-      return x->bounds.exact.hi > y->bounds.exact.hi;
-    });
-    size_t next = 0;
-    for (size_t batch = 8; next < reaching.size() && reaching[next]->bounds.exact.hi > run;
+    const auto reaches_less = [](const KnownPair* x, const KnownPair* y) {
+      return x->bounds.exact.hi < y->bounds.exact.hi;
+    };
+    std::make_heap(reaching.begin(), reaching.end(), reaches_less);
+    for (size_t batch = 8; !reaching.empty() && reaching.front()->bounds.exact.hi > run;
          batch *= 2) {
-      for (const size_t end = std::min(reaching.size(), next + batch); next < end; ++next) {
-        Compute(*reaching[next]);
+      for (size_t k = 0; k < batch && !reaching.empty(); ++k) {
+        std::pop_heap(reaching.begin(), reaching.end(), reaches_less);
+        Compute(*reaching.back());
+        reaching.pop_back();
       }
       run = Chain(t_star);
     }

@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "common/collision/fcl_bvh.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/model/procedural.h"
 #include "tests/common/random_poses.h"
@@ -221,6 +222,54 @@ TEST(RelativeMotionBoundTest, BoundsEveryVertexMotion) {
   }
   const Isometry3d X = RandomPose(rng, 2.0);
   EXPECT_EQ(RelativeMotionBound(ma.impl(), mb.impl(), X, X), 0);
+}
+
+// The per-face bound a region spends its pairs' gaps by: each face's
+// corners (of B in A's frame, of A in B's) move at most the centres' shift
+// plus the face's reach times the turn, and every direction fixed to B
+// turns by at most the turn; a face's reach is at most its model's radius,
+// and on a torus most are well inside it.
+TEST(RelativeMotionBoundTest, FaceReachBoundsEachFacesMotion) {
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25, 40, 20);
+  const CollisionModel ma(a, BvType::kObbRss, 1e-6), mb(b, BvType::kObbRss, 1e-6);
+  std::mt19937 rng(33);
+  for (int i = 0; i < 50; ++i) {
+    const Isometry3d from = RandomPose(rng, 2.0);
+    Isometry3d to = from;
+    if (i % 2 == 0) {  // a small step
+      to.pretranslate(1e-4 * RandomPose(rng, 1.0).translation());
+      to.rotate(Eigen::AngleAxisd(1e-3, testing_poses::RandomDirection(rng)));
+    } else {
+      to = RandomPose(rng, 2.0);
+    }
+    const double shift = RelativeShift(ma.impl(), mb.impl(), from, to);
+    const double turn = RelativeTurn(from, to);
+    for (int f = 0; f < b.num_faces(); ++f) {
+      for (const VertexId v : b.face(f).vertices) {
+        const Vector3d& p = b.position(v);
+        ASSERT_LE((to * p - from * p).norm(), shift + mb.impl().face_reach[f] * turn)
+            << "pose " << i << " face " << f;
+      }
+    }
+    for (int f = 0; f < a.num_faces(); ++f) {
+      for (const VertexId v : a.face(f).vertices) {
+        const Vector3d& p = a.position(v);
+        ASSERT_LE((to.inverse() * p - from.inverse() * p).norm(),
+                  shift + ma.impl().face_reach[f] * turn)
+            << "pose " << i << " face " << f;
+      }
+    }
+    for (int k = 0; k < 10; ++k) {
+      const Vector3d u = testing_poses::RandomDirection(rng);
+      EXPECT_LE((to.linear() * u - from.linear() * u).norm(), turn * (1 + 1e-12)) << i;
+    }
+  }
+  int inside = 0;
+  for (const double reach : mb.impl().face_reach) {
+    EXPECT_LE(reach, mb.impl().radius);
+    inside += reach < 0.9 * mb.impl().radius;
+  }
+  EXPECT_GT(inside, b.num_faces() / 4);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllVolumes, PairCacheTest,
