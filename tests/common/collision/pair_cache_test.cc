@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "common/collision/fcl_bvh.h"
@@ -195,22 +196,36 @@ TEST_P(PairCacheTest, GeometryAndMarginChangesBuildNewRegions) {
   EXPECT_EQ(cache.regions(), 0);
 }
 
+// Two tori, and pairs of B's poses in A's frame, from and to: small steps
+// (a 0.1 mm shift and a 1 mrad turn) and large jumps, alternately.
+class RelativeMotionBoundTest : public testing::Test {
+ protected:
+  RelativeMotionBoundTest() {
+    for (int i = 0; i < 50; ++i) {
+      const Isometry3d from = RandomPose(rng, 2.0);
+      Isometry3d to = from;
+      if (i % 2 == 0) {
+        to.pretranslate(1e-4 * RandomPose(rng, 1.0).translation());
+        to.rotate(Eigen::AngleAxisd(1e-3, testing_poses::RandomDirection(rng)));
+      } else {
+        to = RandomPose(rng, 2.0);
+      }
+      moves.emplace_back(from, to);
+    }
+  }
+
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25, 40, 20);
+  const CollisionModel ma{a, BvType::kObbRss, 1e-6}, mb{b, BvType::kObbRss, 1e-6};
+  std::mt19937 rng{32};
+  std::vector<std::pair<Isometry3d, Isometry3d>> moves;
+};
+
 // The motion bound holds every vertex's motion (the oracle: each vertex of
 // A moved in B's frame, of B in A's), from small turns to large jumps, and
 // is zero for no motion.
-TEST(RelativeMotionBoundTest, BoundsEveryVertexMotion) {
-  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25, 40, 20);
-  const CollisionModel ma(a, BvType::kObbRss, 1e-6), mb(b, BvType::kObbRss, 1e-6);
-  std::mt19937 rng(32);
-  for (int i = 0; i < 50; ++i) {
-    const Isometry3d from = RandomPose(rng, 2.0);
-    Isometry3d to = from;
-    if (i % 2 == 0) {  // a small step
-      to.pretranslate(1e-4 * RandomPose(rng, 1.0).translation());
-      to.rotate(Eigen::AngleAxisd(1e-3, testing_poses::RandomDirection(rng)));
-    } else {
-      to = RandomPose(rng, 2.0);
-    }
+TEST_F(RelativeMotionBoundTest, BoundsEveryVertexMotion) {
+  for (size_t i = 0; i < moves.size(); ++i) {
+    const auto& [from, to] = moves[i];
     const double bound = RelativeMotionBound(ma.impl(), mb.impl(), from, to);
     double most = 0;
     for (const Vector3d& p : b.positions()) most = std::max(most, (to * p - from * p).norm());
@@ -229,19 +244,9 @@ TEST(RelativeMotionBoundTest, BoundsEveryVertexMotion) {
 // plus the face's reach times the turn, and every direction fixed to B
 // turns by at most the turn; a face's reach is at most its model's radius,
 // and on a torus most are well inside it.
-TEST(RelativeMotionBoundTest, FaceReachBoundsEachFacesMotion) {
-  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25, 40, 20);
-  const CollisionModel ma(a, BvType::kObbRss, 1e-6), mb(b, BvType::kObbRss, 1e-6);
-  std::mt19937 rng(33);
-  for (int i = 0; i < 50; ++i) {
-    const Isometry3d from = RandomPose(rng, 2.0);
-    Isometry3d to = from;
-    if (i % 2 == 0) {  // a small step
-      to.pretranslate(1e-4 * RandomPose(rng, 1.0).translation());
-      to.rotate(Eigen::AngleAxisd(1e-3, testing_poses::RandomDirection(rng)));
-    } else {
-      to = RandomPose(rng, 2.0);
-    }
+TEST_F(RelativeMotionBoundTest, FaceReachBoundsEachFacesMotion) {
+  for (size_t i = 0; i < moves.size(); ++i) {
+    const auto& [from, to] = moves[i];
     const double shift = RelativeShift(ma.impl(), mb.impl(), from, to);
     const double turn = RelativeTurn(from, to);
     for (int f = 0; f < b.num_faces(); ++f) {
