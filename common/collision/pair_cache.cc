@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <span>
 
 #include "common/collision/fcl_bvh.h"
 
@@ -59,13 +61,60 @@ bool PairCache::Worthwhile(const CollisionModel::Impl& a, const CollisionModel::
   return kSkinRelative * radii + Rounding(a, b, X_AB) < radii;
 }
 
+namespace {
+
+// Whether `region` was built for models `a` and `b` at their current
+// geometry and for `margin_m`.
+bool BuiltFor(const PairCache::Region& region, const CollisionModel::Impl& a,
+              const CollisionModel::Impl& b, double margin_m) {
+  return region.a == a.id && region.b == b.id && region.version_a == a.geometry_version &&
+         region.version_b == b.geometry_version && region.margin_m == margin_m;
+}
+
+// B's pose `steps` steps on from X_AB at the step from X_AB_from to X_AB:
+// the step's turn and shift each taken `steps` times, close to where a
+// steady motion goes.
+Isometry3d StepsOn(const Isometry3d& X_AB_from, const Isometry3d& X_AB, double steps) {
+  const Isometry3d step = X_AB_from.inverse() * X_AB;
+  Eigen::AngleAxisd turn(step.linear());
+  turn.angle() *= steps;
+  Isometry3d ahead = X_AB;
+  ahead.translate(steps * step.translation());
+  ahead.rotate(turn);
+  return ahead;
+}
+
+// Where to build a region of skin `skin_m` for a query at X_AB: ahead of
+// it along the motion of the queries of the region it has just left (the
+// one whose last query lies nearest, a small step away), so that a steady
+// motion crosses the skin's whole width before it leaves, twice what it
+// crosses from a region built at its own pose: half the builds. At X_AB
+// itself when no region's last query is a small step away (a jump, or the
+// first query), or the motion does not go on as it went.
+Isometry3d BuildPose(std::span<const PairCache::Region> regions, const CollisionModel::Impl& a,
+                     const CollisionModel::Impl& b, double margin_m, const Isometry3d& X_AB,
+                     double skin_m) {
+  const PairCache::Region* last = nullptr;
+  double step = std::numeric_limits<double>::infinity();
+  for (const PairCache::Region& region : regions) {
+    if (!BuiltFor(region, a, b, margin_m)) continue;
+    const double from_last = RelativeMotionBound(a, b, region.X_AB_last, X_AB);
+    if (from_last < step) {
+      step = from_last;
+      last = &region;
+    }
+  }
+  if (!last || !(step > 0) || !(step < skin_m / 4)) return X_AB;
+  const Isometry3d ahead = StepsOn(last->X_AB_last, X_AB, std::floor(0.8 * skin_m / step));
+  return RelativeMotionBound(a, b, ahead, X_AB) <= 0.9 * skin_m ? ahead : X_AB;
+}
+
+}  // namespace
+
 PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                                    double margin_m, const Isometry3d& X_AB) {
   for (Region& region : regions_) {
-    if (region.a != a.id || region.b != b.id || region.version_a != a.geometry_version ||
-        region.version_b != b.geometry_version || region.margin_m != margin_m) {
-      continue;
-    }
+    if (!BuiltFor(region, a, b, margin_m)) continue;
     if (RelativeMotionBound(a, b, region.X_AB, X_AB) <= region.skin_m) {
       region.shifted_m += RelativeShift(a, b, region.X_AB_last, X_AB);
       region.turned += RelativeTurn(region.X_AB_last, X_AB);
@@ -80,6 +129,8 @@ PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const Collisio
 
 PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                                    double margin_m, const Isometry3d& X_AB) {
+  const double skin_m = kSkinRelative * (a.radius + b.radius);
+  const Isometry3d X_AB_built = BuildPose(regions_, a, b, margin_m, X_AB, skin_m);
   Region& region =
       *std::min_element(regions_.begin(), regions_.end(),
                         [](const Region& x, const Region& y) { return x.last_use < y.last_use; });
@@ -88,8 +139,8 @@ PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const Collisio
   region.version_a = a.geometry_version;
   region.version_b = b.geometry_version;
   region.margin_m = margin_m;
-  region.skin_m = kSkinRelative * (a.radius + b.radius);
-  region.X_AB = X_AB;
+  region.skin_m = skin_m;
+  region.X_AB = X_AB_built;
   region.X_AB_last = X_AB;
   region.shifted_m = 0;
   region.turned = 0;

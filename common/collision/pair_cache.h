@@ -59,7 +59,8 @@ class PairCache {
     double margin_m = 0;
     /// How far each object may move relative to the other, metres.
     double skin_m = 0;
-    /// B's pose in A's frame when built.
+    /// B's pose in A's frame that the region was built at: the query's
+    /// that built it, or ahead of it along a steady motion (Make).
     Isometry3d X_AB = Isometry3d::Identity();
     /// B's pose at the region's last query, and since built, summed from
     /// each of its queries to the next: B's turns in A's frame
@@ -83,8 +84,12 @@ class PairCache {
   /// found has moved on to X_AB (its travel counts the step there).
   Region* Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
                const Isometry3d& X_AB);
-  /// A region to build at X_AB, its candidates empty: the least recently
-  /// used one, its storage kept. Its skin is set here.
+  /// A region to build for a query at X_AB, its candidates empty: the
+  /// least recently used one, its storage kept. Its skin and pose are set
+  /// here: when the queries of the region X_AB has just left move on
+  /// steadily, its pose is ahead of X_AB along that motion, so that the
+  /// motion crosses the skin's whole width before it leaves (half the
+  /// builds of a region at X_AB).
   Region& Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
                const Isometry3d& X_AB);
 

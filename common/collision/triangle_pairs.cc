@@ -484,14 +484,14 @@ int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
       return Traverse(ma, ia, mb, ib, X_AB, nullptr, plain, pairs);
     }
     PairCache::Region& built = query.cache->Make(ia, ib, query.margin_m, X_AB);
-    const double slack = built.skin_m + PairCache::Rounding(ia, ib, X_AB);
+    const double slack = built.skin_m + PairCache::Rounding(ia, ib, built.X_AB);
     Query build = query;
     build.margin_m += slack;
     build.skip = {};
     build.cache = nullptr;
     build.grow_volumes_m = slack;
     build.candidates = &built.candidates;
-    tests = Traverse(ma, ia, mb, ib, X_AB, nullptr, build, pairs);  // adds no pairs
+    tests = Traverse(ma, ia, mb, ib, built.X_AB, nullptr, build, pairs);  // adds no pairs
     region = &built;
   }
   const BucketTest buckets(ia, mb, ib, X_AB, nullptr, query);

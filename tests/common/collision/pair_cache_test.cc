@@ -83,6 +83,28 @@ TEST_P(PairCacheTest, CoherentPathMatchesTheQueryFromScratch) {
   EXPECT_EQ(cache.builds() + cache.hits(), 500);
 }
 
+// A steady motion leaves each region after crossing the skin's whole
+// width: regions are built ahead of the pose along the motion, so there
+// are far fewer builds than the motion over the skin (what regions built
+// at the pose need), and every answer is still the one from scratch.
+TEST(PairCacheBuildTest, SteadyMotionBuildsAheadOfThePose) {
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25);
+  const double margin = 1e-9;
+  const CollisionModel ma(a, BvType::kObbRss, 1e-6), mb(b, BvType::kObbRss, 1e-6);
+  PairCache cache;
+  const std::vector<Isometry3d> path = CoherentPath(Overlapping(), 0.1, 500);
+  double motion = 0;  // the sum of the steps' motion bounds
+  for (size_t k = 0; k < path.size(); ++k) {
+    ASSERT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, path[k], margin),
+              FromScratch(ma, Isometry3d::Identity(), mb, path[k], margin))
+        << "step " << k;
+    if (k > 0) motion += RelativeMotionBound(ma.impl(), mb.impl(), path[k - 1], path[k]);
+  }
+  const double skin = PairCache::kSkinRelative * (ma.impl().radius + mb.impl().radius);
+  EXPECT_GT(motion / skin, 20);  // regions at the pose: a build every skin's worth
+  EXPECT_LT(cache.builds(), 0.7 * motion / skin);
+}
+
 // Random jumps: every query far from the last builds a region, and still
 // answers as from scratch, with the larger mesh first or second (the
 // traversal turns round to lead with it) and with pairs skipped.
