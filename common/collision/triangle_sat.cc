@@ -186,9 +186,8 @@ enum class Crossing { kYes, kApart, kUnknown };
 
 // Whether the edge cross of edge i of `a` and edge j of `b`, built and
 // projected by ForEachAxis's own VisitEdgeCross, separates them by more
-// than `margin` (when it does, ForEachAxis finds it too); with a `hint`,
-// its gap_m and lever_m are set for that axis (0 when it does not
-// separate them).
+// than `margin` (when it does, ForEachAxis finds it too). `hint` gets the
+// gap and lever of that axis (PairHint), 0 when it does not separate them.
 bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin,
                         PairHint& hint) {
   const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
@@ -205,9 +204,9 @@ bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, 
         // four times the floor, none is kept.
         const double floor_sq = kAxisRelativeFloor * kAxisRelativeFloor * la * lb;
         if (!(norm_sq > 4 * floor_sq * (1 + 1e-6))) return false;
-        Vector3d lo =
+        const Vector3d lo =
             a[0].cwiseMin(a[1]).cwiseMin(a[2]).cwiseMin(b[0]).cwiseMin(b[1]).cwiseMin(b[2]);
-        Vector3d hi =
+        const Vector3d hi =
             a[0].cwiseMax(a[1]).cwiseMax(a[2]).cwiseMax(b[0]).cwiseMax(b[1]).cwiseMax(b[2]);
         const double length = std::sqrt(norm_sq);
         hint.gap_m = std::max(0.0, std::max(pa.lo - pb.hi, pb.lo - pa.hi) / length - margin);
