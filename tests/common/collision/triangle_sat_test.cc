@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <utility>
 
 namespace hs {
 namespace {
@@ -197,7 +198,9 @@ TEST(TriangleSatTest, HintGapHoldsWhileTheMotionStaysUnderIt) {
   std::uniform_real_distribution<double> u(-1, 1), fraction(0, 1);
   int plane_gaps = 0, edge_gaps = 0;
   for (int i = 0; i < 20000; ++i) {
-    const auto [a, b] = RandomNearbyPair(rng);
+    // Named, not bound: the lambdas below capture them.
+    const std::pair<Triangle3d, Triangle3d> pair = RandomNearbyPair(rng);
+    const Triangle3d &a = pair.first, &b = pair.second;
     for (double margin : {1e-9, 1e-3, 0.05}) {
       PairHint hint;
       if (TrianglesIntersect(a, TriangleNormal(a), b, TriangleNormal(b), margin, hint) ||
