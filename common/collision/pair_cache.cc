@@ -30,10 +30,25 @@ double RelativeTurn(const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
   return (X_AB_to.linear() - X_AB_from.linear()).norm() / std::sqrt(2.0);
 }
 
+namespace {
+
+// How far A's centre moves in B's frame and B's in A's frame between B's
+// poses X_AB_from and X_AB_to in A's frame.
+struct CentreShifts {
+  double of_a, of_b;
+};
+CentreShifts ShiftsOfCentres(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                             const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
+  return {(X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm(),
+          (X_AB_to * b.centre - X_AB_from * b.centre).norm()};
+}
+
+}  // namespace
+
 double RelativeShift(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                      const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
-  return std::max((X_AB_to * b.centre - X_AB_from * b.centre).norm(),
-                  (X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm());
+  const CentreShifts shifts = ShiftsOfCentres(a, b, X_AB_from, X_AB_to);
+  return std::max(shifts.of_a, shifts.of_b);
 }
 
 double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
@@ -42,10 +57,8 @@ double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::
   // c its model's centre, |p - c| <= radius. A's points in B's frame alike,
   // under the inverses.
   const double turn = RelativeTurn(X_AB_from, X_AB_to);
-  const double of_b = turn * b.radius + (X_AB_to * b.centre - X_AB_from * b.centre).norm();
-  const double of_a =
-      turn * a.radius + (X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm();
-  return std::max(of_a, of_b);
+  const CentreShifts shifts = ShiftsOfCentres(a, b, X_AB_from, X_AB_to);
+  return std::max(turn * a.radius + shifts.of_a, turn * b.radius + shifts.of_b);
 }
 
 double PairCache::Rounding(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
