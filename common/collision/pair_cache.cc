@@ -98,28 +98,67 @@ Isometry3d StepsOn(const Isometry3d& X_AB_from, const Isometry3d& X_AB, double s
 }
 
 // Where to build a region of skin `skin_m` for a query at X_AB: ahead of
-// it along the motion of the queries of the region it has just left (the
-// one whose last query lies nearest, a small step away), so that a steady
-// motion crosses the skin's whole width before it leaves, twice what it
-// crosses from a region built at its own pose: half the builds. At X_AB
-// itself when no region's last query is a small step away (a jump, or the
-// first query), or the motion does not go on as it went.
+// it along the motion of the run of queries it has just left (the run, of
+// any region, whose last query lies nearest, a small step away), so that a
+// steady motion crosses the skin's whole width before it leaves, twice
+// what it crosses from a region built at its own pose: half the builds. At
+// X_AB itself when no run's last query is a small step away (a jump, or
+// the first query), or the motion does not go on as it went.
 Isometry3d BuildPose(std::span<const PairCache::Region> regions, const CollisionModel::Impl& a,
                      const CollisionModel::Impl& b, double margin_m, const Isometry3d& X_AB,
                      double skin_m) {
-  const PairCache::Region* last = nullptr;
+  const PairCache::Stream* last = nullptr;
   double step = std::numeric_limits<double>::infinity();
   for (const PairCache::Region& region : regions) {
     if (!BuiltFor(region, a, b, margin_m)) continue;
-    const double from_last = RelativeMotionBound(a, b, region.X_AB_last, X_AB);
-    if (from_last < step) {
-      step = from_last;
-      last = &region;
+    for (const PairCache::Stream& stream : region.streams) {
+      if (!stream.used) continue;
+      const double from_last = RelativeMotionBound(a, b, stream.X_AB_last, X_AB);
+      if (from_last < step) {
+        step = from_last;
+        last = &stream;
+      }
     }
   }
   if (!last || !(step > 0) || !(step < skin_m / 4)) return X_AB;
   const Isometry3d ahead = StepsOn(last->X_AB_last, X_AB, std::floor(0.8 * skin_m / step));
   return RelativeMotionBound(a, b, ahead, X_AB) <= 0.9 * skin_m ? ahead : X_AB;
+}
+
+// Moves `region` on to a query at X_AB: the query joins the run whose last
+// query lies nearest, or starts a free one unless that last query is at
+// X_AB itself, and each run's travel to it is taken.
+void MoveOn(PairCache::Region& region, const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+            const Isometry3d& X_AB) {
+  int joined = -1, free = -1;
+  double nearest_m = std::numeric_limits<double>::infinity();
+  for (int s = 0; s < PairCache::kStreams; ++s) {
+    const PairCache::Stream& stream = region.streams[s];
+    if (!stream.used) {
+      if (free < 0) free = s;
+      continue;
+    }
+    const double from_last = RelativeMotionBound(a, b, stream.X_AB_last, X_AB);
+    if (from_last < nearest_m) {
+      nearest_m = from_last;
+      joined = s;
+    }
+  }
+  if (free >= 0 && nearest_m != 0) {
+    joined = free;
+    region.streams[joined] = {.used = true, .X_AB_last = X_AB, .travel = {}};
+  }
+  for (int s = 0; s < PairCache::kStreams; ++s) {
+    const PairCache::Stream& stream = region.streams[s];
+    PairCache::Travel& to_query = region.to_query[s];
+    to_query = stream.travel;
+    if (!stream.used) continue;
+    to_query.shifted_m += RelativeShift(a, b, stream.X_AB_last, X_AB);
+    to_query.turned += RelativeTurn(stream.X_AB_last, X_AB);
+  }
+  region.streams[joined].travel = region.to_query[joined];
+  region.streams[joined].X_AB_last = X_AB;
+  region.stream = joined;
 }
 
 }  // namespace
@@ -129,9 +168,7 @@ PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const Collisio
   for (Region& region : regions_) {
     if (!BuiltFor(region, a, b, margin_m)) continue;
     if (RelativeMotionBound(a, b, region.X_AB, X_AB) <= region.skin_m) {
-      region.shifted_m += RelativeShift(a, b, region.X_AB_last, X_AB);
-      region.turned += RelativeTurn(region.X_AB_last, X_AB);
-      region.X_AB_last = X_AB;
+      MoveOn(region, a, b, X_AB);
       region.last_use = ++clock_;
       ++hits_;
       return &region;
@@ -154,9 +191,8 @@ PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const Collisio
   region.margin_m = margin_m;
   region.skin_m = skin_m;
   region.X_AB = X_AB_built;
-  region.X_AB_last = X_AB;
-  region.shifted_m = 0;
-  region.turned = 0;
+  region.streams = {};
+  MoveOn(region, a, b, X_AB);
   region.candidates.clear();
   region.last_use = ++clock_;
   ++builds_;

@@ -39,17 +39,44 @@ class PairCache {
 
   // Internal to common/collision (triangle_pairs.cc).
 
+  /// How far B has moved in A's frame along a run of queries, summed from
+  /// each query to the next: B's turns in A's frame (RelativeTurn) and the
+  /// larger of the shifts of the two models' centres (RelativeShift).
+  /// Between two queries of the run, a point at distance r from its
+  /// model's centre has moved at most the difference in shifted_m plus r
+  /// times the difference in turned (each step's bound holds its motion,
+  /// and a path is no shorter than its chord), and a direction fixed to B
+  /// has turned by at most the difference in turned.
+  struct Travel {
+    double shifted_m = 0;
+    double turned = 0;
+  };
+
+  /// A run of a region's queries, each near the last: the query at a
+  /// contact's pose step after step, or the one at its depth. A contact
+  /// whose depth lies within the skin has its two queries in one region,
+  /// alternately; summed over one run, the jumps between the pose and the
+  /// depth would spend every pair's gap twice a step.
+  struct Stream {
+    bool used = false;
+    Isometry3d X_AB_last = Isometry3d::Identity();  // B's pose at its last query
+    Travel travel;                                  // since its first query
+  };
+  static constexpr int kStreams = 2;
+
   /// A face pair of a region: A's face by its leaf position, B's by id,
   /// the edge cross that last separated them (PairHint::edge_pair), and
-  /// until when they are known apart: while Region::shifted_m + per_turn_m
-  /// * Region::turned stays under `apart_until`, metres, their boxes,
-  /// planes or edge cross keep them beyond the margin. per_turn_m is how
-  /// far the two faces move per radian of turn (their reach from their
-  /// models' centres) plus the lever of that edge cross (PairHint).
+  /// until when they are known apart: while `stream`'s travel to the query
+  /// (Region::to_query) has shifted_m + per_turn_m * turned under
+  /// `apart_until`, metres, their boxes, planes or edge cross keep them
+  /// beyond the margin. per_turn_m is how far the two faces move per
+  /// radian of turn (their reach from their models' centres) plus the
+  /// lever of that edge cross (PairHint).
   struct Candidate {
     int leaf_a;
     int face_b;
     int edge_pair = -1;
+    int stream = 0;  // that last tested them
     double apart_until = -1;
     double per_turn_m = 0;
   };
@@ -62,34 +89,31 @@ class PairCache {
     /// B's pose in A's frame that the region was built at: the query's
     /// that built it, or ahead of it along a steady motion (Make).
     Isometry3d X_AB = Isometry3d::Identity();
-    /// B's pose at the region's last query, and since built, summed from
-    /// each of its queries to the next: B's turns in A's frame
-    /// (RelativeTurn) and the larger of the shifts of the two models'
-    /// centres (RelativeShift). Between two of its queries, a point at
-    /// distance r from its model's centre has moved at most the difference
-    /// in shifted_m plus r times the difference in turned (each step's
-    /// bound holds its motion, and a path is no shorter than its chord),
-    /// and a direction fixed to B has turned by at most the difference in
-    /// turned. Unlike a bound from the region's pose, this lets a pair
-    /// tested late in the region stay skipped as long as one tested early.
-    Isometry3d X_AB_last = Isometry3d::Identity();
-    double shifted_m = 0;
-    double turned = 0;
+    /// Its queries, in runs: each joins the run whose last query lies
+    /// nearest, or starts one while one is free. Unlike a bound from the
+    /// region's pose, a run's travel lets a pair tested late in the region
+    /// stay skipped as long as one tested early.
+    std::array<Stream, kStreams> streams;
+    /// The run of the current query, and each run's travel to it: its own
+    /// for `stream`, through its last query for another (bounding the
+    /// motion from any of its queries to this one).
+    int stream = 0;
+    std::array<Travel, kStreams> to_query;
     std::vector<Candidate> candidates;
     uint64_t last_use = 0;
   };
 
   /// The region of models `a` and `b` (at their current geometry) for
   /// `margin_m` that holds B's pose X_AB in A's frame, or null; a region
-  /// found has moved on to X_AB (its travel counts the step there).
+  /// found has moved on to X_AB (a run's travel counts the step there).
   Region* Find(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
                const Isometry3d& X_AB);
   /// A region to build for a query at X_AB, its candidates empty: the
   /// least recently used one, its storage kept. Its skin and pose are set
-  /// here: when the queries of the region X_AB has just left move on
-  /// steadily, its pose is ahead of X_AB along that motion, so that the
-  /// motion crosses the skin's whole width before it leaves (half the
-  /// builds of a region at X_AB).
+  /// here: when the run of queries X_AB has just left moves on steadily,
+  /// its pose is ahead of X_AB along that motion, so that the motion
+  /// crosses the skin's whole width before it leaves (half the builds of a
+  /// region at X_AB).
   Region& Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b, double margin_m,
                const Isometry3d& X_AB);
 

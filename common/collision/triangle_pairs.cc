@@ -254,17 +254,21 @@ class BucketTest {
 
   /// A static query from a region's candidates: each goes through Run's
   /// tests (its box test, `skip`, the face test) in the candidates' order,
-  /// Run's own, save those known apart. The region has `shifted` and
-  /// `turned` (Region::shifted_m, Region::turned), and `rounding` (the
-  /// region's slack beside its skin) covers the rounding of what was
-  /// measured there.
-  void RunCandidates(std::span<PairCache::Candidate> candidates, double shifted, double turned,
-                     double rounding, std::vector<TrianglePair>& pairs) const {
+  /// Run's own, save those known apart. The region's runs' travel to the
+  /// query (Region::to_query) says how far each pair has moved since it
+  /// was last tested, and `rounding` (the region's slack beside its skin)
+  /// covers the rounding of what was measured there.
+  void RunCandidates(PairCache::Region& region, double rounding,
+                     std::vector<TrianglePair>& pairs) const {
     HS_CHECK(!sweep_A_);
-    for (PairCache::Candidate& candidate : candidates) {
+    const std::array<PairCache::Travel, PairCache::kStreams>& to_query = region.to_query;
+    const int stream = region.stream;
+    const double shifted = to_query[stream].shifted_m, turned = to_query[stream].turned;
+    for (PairCache::Candidate& candidate : region.candidates) {
       // Apart by more than the motion since it was last tested: its box,
       // plane or edge-cross test would reject it again.
-      if (shifted + candidate.per_turn_m * turned < candidate.apart_until) continue;
+      const PairCache::Travel& since = to_query[candidate.stream];
+      if (since.shifted_m + candidate.per_turn_m * since.turned < candidate.apart_until) continue;
       const int i = candidate.leaf_a;
       const int a = ia_.leaf_faces[i];
       const PlacedFace& b = faces_b_.Get(candidate.face_b);
@@ -276,6 +280,7 @@ class BucketTest {
                                              b.lo[d] - (ia_.leaf_order_hi[d][i] + margin_)));
       }
       if (box_gap > 0) {  // BucketBoxes::Meeting rejects the pair
+        candidate.stream = stream;
         candidate.per_turn_m = reach;
         candidate.apart_until = shifted + reach * turned + box_gap - rounding;
         continue;
@@ -294,6 +299,7 @@ class BucketTest {
         pairs.push_back({a, candidate.face_b});
         candidate.apart_until = -1;  // tested again next time
       } else {
+        candidate.stream = stream;
         candidate.per_turn_m = reach + hint.lever_m;
         candidate.apart_until = shifted + candidate.per_turn_m * turned + hint.gap_m - rounding;
       }
@@ -495,8 +501,7 @@ int64_t FromRegion(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     region = &built;
   }
   const BucketTest buckets(ia, mb, ib, X_AB, nullptr, query);
-  buckets.RunCandidates(region->candidates, region->shifted_m, region->turned,
-                        PairCache::Rounding(ia, ib, region->X_AB), pairs);
+  buckets.RunCandidates(*region, PairCache::Rounding(ia, ib, region->X_AB), pairs);
   return tests;
 }
 

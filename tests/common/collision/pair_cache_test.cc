@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <utility>
 #include <vector>
@@ -83,26 +84,66 @@ TEST_P(PairCacheTest, CoherentPathMatchesTheQueryFromScratch) {
   EXPECT_EQ(cache.builds() + cache.hits(), 500);
 }
 
+// Two tori along a steady coherent path, and how many skins' worth of
+// motion it takes: regions built at the pose would need a build for each.
+class PairCacheBuildTest : public testing::Test {
+ protected:
+  // The pairs at B's pose X_AB in A's frame, from scratch and through the
+  // cache, those in `skip` left out.
+  std::vector<TrianglePair> FromScratchAt(const Isometry3d& X_AB,
+                                          std::span<const TrianglePair> skip = {}) const {
+    return FromScratch(ma_, Isometry3d::Identity(), mb_, X_AB, kMargin, skip);
+  }
+  std::vector<TrianglePair> CachedAt(const Isometry3d& X_AB,
+                                     std::span<const TrianglePair> skip = {}) {
+    return Cached(cache_, ma_, Isometry3d::Identity(), mb_, X_AB, kMargin, skip);
+  }
+  // The sum of the path's steps' motion bounds over the skin.
+  double SkinsOfMotion() const {
+    double motion = 0;
+    for (size_t k = 1; k < path_.size(); ++k) {
+      motion += RelativeMotionBound(ma_.impl(), mb_.impl(), path_[k - 1], path_[k]);
+    }
+    return motion / (PairCache::kSkinRelative * (ma_.impl().radius + mb_.impl().radius));
+  }
+
+  static constexpr double kMargin = 1e-9;
+  const HapticObject a_ = Torus(1.0, 0.3), b_ = Torus(0.8, 0.25);
+  const CollisionModel ma_{a_, BvType::kObbRss, 1e-6}, mb_{b_, BvType::kObbRss, 1e-6};
+  const std::vector<Isometry3d> path_ = CoherentPath(Overlapping(), 0.1, 500);
+  PairCache cache_;
+};
+
 // A steady motion leaves each region after crossing the skin's whole
 // width: regions are built ahead of the pose along the motion, so there
-// are far fewer builds than the motion over the skin (what regions built
-// at the pose need), and every answer is still the one from scratch.
-TEST(PairCacheBuildTest, SteadyMotionBuildsAheadOfThePose) {
-  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25);
-  const double margin = 1e-9;
-  const CollisionModel ma(a, BvType::kObbRss, 1e-6), mb(b, BvType::kObbRss, 1e-6);
-  PairCache cache;
-  const std::vector<Isometry3d> path = CoherentPath(Overlapping(), 0.1, 500);
-  double motion = 0;  // the sum of the steps' motion bounds
-  for (size_t k = 0; k < path.size(); ++k) {
-    ASSERT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, path[k], margin),
-              FromScratch(ma, Isometry3d::Identity(), mb, path[k], margin))
-        << "step " << k;
-    if (k > 0) motion += RelativeMotionBound(ma.impl(), mb.impl(), path[k - 1], path[k]);
+// are far fewer builds than the motion over the skin, and every answer is
+// still the one from scratch.
+TEST_F(PairCacheBuildTest, SteadyMotionBuildsAheadOfThePose) {
+  for (size_t k = 0; k < path_.size(); ++k) {
+    ASSERT_EQ(CachedAt(path_[k]), FromScratchAt(path_[k])) << "step " << k;
   }
-  const double skin = PairCache::kSkinRelative * (ma.impl().radius + mb.impl().radius);
-  EXPECT_GT(motion / skin, 20);  // regions at the pose: a build every skin's worth
-  EXPECT_LT(cache.builds(), 0.7 * motion / skin);
+  EXPECT_GT(SkinsOfMotion(), 20);
+  EXPECT_LT(cache_.builds(), 0.7 * SkinsOfMotion());
+}
+
+// A contact's two queries a step, at its pose and at its depth (the pose
+// moved back along the approach by 2-6 mm, varying smoothly, within the
+// skin of 19 mm), share a region, alternately. Each run of queries keeps
+// its own travel: every answer is the one from scratch, with every other
+// pair found at the pose skipped at the depth (as the sweep skips the
+// pairs it knows), and the steady motion of the pose still builds regions
+// ahead of it.
+TEST_F(PairCacheBuildTest, PoseAndDepthQueriesInTurnMatchTheQueryFromScratch) {
+  for (size_t k = 0; k < path_.size(); ++k) {
+    const std::vector<TrianglePair> at_pose = FromScratchAt(path_[k]);
+    ASSERT_EQ(CachedAt(path_[k]), at_pose) << "step " << k;
+    std::vector<TrianglePair> known;
+    for (size_t i = 0; i < at_pose.size(); i += 2) known.push_back(at_pose[i]);
+    Isometry3d at_depth = path_[k];
+    at_depth.pretranslate(Vector3d(0, 0, 0.004 + 0.002 * std::sin(0.02 * k)));
+    ASSERT_EQ(CachedAt(at_depth, known), FromScratchAt(at_depth, known)) << "step " << k;
+  }
+  EXPECT_LT(cache_.builds(), 0.7 * SkinsOfMotion());
 }
 
 // Random jumps: every query far from the last builds a region, and still
