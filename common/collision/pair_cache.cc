@@ -130,7 +130,7 @@ Isometry3d BuildPose(std::span<const PairCache::Region> regions, const Collision
 // X_AB itself, and each run's travel to it is taken.
 void MoveOn(PairCache::Region& region, const CollisionModel::Impl& a, const CollisionModel::Impl& b,
             const Isometry3d& X_AB) {
-  int joined = -1, free = -1;
+  int joined = 0, free = -1;
   double nearest_m = std::numeric_limits<double>::infinity();
   for (int s = 0; s < PairCache::kStreams; ++s) {
     const PairCache::Stream& stream = region.streams[s];
