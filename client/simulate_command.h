@@ -20,7 +20,7 @@ struct SimulateArgs {
   /// starts a comment. After its last line the tool stays where it is.
   std::vector<std::string> tool_paths;
   /// What the consumer needs (effect names); empty means everything.
-  std::vector<std::string> needs;
+  std::vector<std::string> needs{};
   bool json = false;
 };
 

@@ -13,7 +13,7 @@
 namespace hs::cli {
 
 struct WatchArgs {
-  ConnectionOptions server;
+  ConnectionOptions server{};
   std::string scene;
   /// "poses", "contacts", "forces"; empty: all.
   std::vector<std::string> parts;

@@ -53,7 +53,7 @@ struct DeviceClaim {
   /// What the scene must compute for it (with prerequisites).
   EffectSet needs;
   /// Who holds the tool as frames name it (Caller::name), "" for none.
-  std::string holder;
+  std::string holder{};
 };
 
 class StreamRegistry {
@@ -116,11 +116,11 @@ class StreamRegistry {
 
  private:
   struct Attached {
-    std::string tool;  // empty for viewers
+    std::string tool{};  // empty for viewers
     EffectSet needs;
-    std::string holder;
+    std::string holder{};
     bool sent_pose = false;
-    std::chrono::steady_clock::time_point heard;  // attached or sent its last pose
+    std::chrono::steady_clock::time_point heard{};  // attached or sent its last pose
   };
   // Whether every attached device has a pose not taken yet (and there is one).
   bool DevicesFreshLocked() const;

@@ -18,7 +18,7 @@ namespace hs::cli {
 struct RemoteDriveArgs {
   std::string scene;
   std::string tool;
-  RemoteRunOptions run;
+  RemoteRunOptions run{};
   double duration_s = 4;
   /// Write "t_s,fx,fy,fz,x,y,z" per tick (the rendered force, N, and the
   /// device position, m) to this file; empty for none.

@@ -13,16 +13,16 @@
 namespace hs::cli {
 
 struct ScoreArgs {
-  std::string exercise;
+  std::string exercise{};
   /// A device path (device_path.h): CSV, one pose per step, or JSON lines
   /// with times (each pose held until the next).
-  std::string path;
+  std::string path{};
   /// Or a recorded session of the exercise's scene (its first file).
-  std::string recording;
+  std::string recording{};
   bool json = false;
   /// Write a report here (report.h), comparing with these earlier ones.
-  std::string report_dir;
-  std::vector<std::string> compare;
+  std::string report_dir{};
+  std::vector<std::string> compare{};
 };
 
 /// Prints the summary to `out` (one JSON object with --json). kExitOk;

@@ -18,14 +18,14 @@
 namespace hs::cli {
 
 struct TrainArgs {
-  ConnectionOptions server;
+  ConnectionOptions server{};
   /// Exercise files, all of one scene, each for a different tool.
   std::vector<std::string> exercises;
   bool json = false;
   /// Write each trainee's report in DIR/TOOL (report.h), comparing with
   /// these earlier report folders.
-  std::string report_dir;
-  std::vector<std::string> compare;
+  std::string report_dir{};
+  std::vector<std::string> compare{};
 };
 
 /// Scores until done or `*stop` turns true. kExitOk when every exercise

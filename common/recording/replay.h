@@ -21,12 +21,12 @@ struct ReplayOptions {
   /// Effects every step computes besides those it was asked for (a scorer
   /// needs contacts and forces); frames then differ from the recorded ones
   /// where these add to them.
-  EffectSet extra_needs;
+  EffectSet extra_needs{};
   /// Called after each re-run step with the runner's simulated time
   /// (seconds since the session's scene first stepped), the frame and the
   /// object names by ObjectId.
   std::function<void(double time_s, const StepFrame& frame, const std::vector<std::string>& names)>
-      on_step;
+      on_step{};
 };
 
 struct ReplayReport {

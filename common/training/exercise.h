@@ -31,7 +31,7 @@ struct Target {
 struct Forbidden {
   std::string object;
   /// None: the whole object.
-  std::optional<Ball> region;
+  std::optional<Ball> region{};
 };
 
 struct ForceLimit {

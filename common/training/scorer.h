@@ -31,7 +31,7 @@ inline constexpr double kJerkPeriodS = 0.02;
 struct ScoringContact {
   std::string object;
   /// Contact points, world frame, metres.
-  std::vector<Vector3d> points_W;
+  std::vector<Vector3d> points_W{};
 };
 
 /// What the scorer reads of a step, for the exercise's tool.
@@ -42,7 +42,7 @@ struct ScoringFrame {
   Vector3d p_WD = Vector3d::Zero();
   /// The force on the device, world frame, newtons.
   Vector3d force_W = Vector3d::Zero();
-  std::vector<ScoringContact> contacts;
+  std::vector<ScoringContact> contacts{};
 };
 
 struct TargetResult {
