@@ -1,6 +1,7 @@
 #include "common/collision/pair_cache.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -32,33 +33,40 @@ double RelativeTurn(const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
 
 namespace {
 
-// How far A's centre moves in B's frame and B's in A's frame between B's
-// poses X_AB_from and X_AB_to in A's frame.
-struct CentreShifts {
-  double of_a, of_b;
+// B's motion in A's frame between two of its poses, as the bounds below
+// take it: the turn (RelativeTurn), and how far A's centre moves in B's
+// frame and B's in A's frame.
+struct Step {
+  double turn = 0;
+  double a_centre_m = 0, b_centre_m = 0;
+
+  // RelativeShift.
+  double Shift() const { return std::max(a_centre_m, b_centre_m); }
+  // RelativeMotionBound: a point p of B moves by (R_to - R_from) (p - c) +
+  // (X_to c - X_from c), c its model's centre, |p - c| <= radius. A's
+  // points in B's frame alike, under the inverses.
+  double MotionBound(const CollisionModel::Impl& a, const CollisionModel::Impl& b) const {
+    return std::max(turn * a.radius + a_centre_m, turn * b.radius + b_centre_m);
+  }
 };
-CentreShifts ShiftsOfCentres(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
-                             const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
-  return {(X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm(),
-          (X_AB_to * b.centre - X_AB_from * b.centre).norm()};
+
+Step StepBetween(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
+                 const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
+  return {.turn = RelativeTurn(X_AB_from, X_AB_to),
+          .a_centre_m = (X_AB_to.inverse() * a.centre - X_AB_from.inverse() * a.centre).norm(),
+          .b_centre_m = (X_AB_to * b.centre - X_AB_from * b.centre).norm()};
 }
 
 }  // namespace
 
 double RelativeShift(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                      const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
-  const CentreShifts shifts = ShiftsOfCentres(a, b, X_AB_from, X_AB_to);
-  return std::max(shifts.of_a, shifts.of_b);
+  return StepBetween(a, b, X_AB_from, X_AB_to).Shift();
 }
 
 double RelativeMotionBound(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                            const Isometry3d& X_AB_from, const Isometry3d& X_AB_to) {
-  // A point p of B moves by (R_to - R_from) (p - c) + (X_to c - X_from c),
-  // c its model's centre, |p - c| <= radius. A's points in B's frame alike,
-  // under the inverses.
-  const double turn = RelativeTurn(X_AB_from, X_AB_to);
-  const CentreShifts shifts = ShiftsOfCentres(a, b, X_AB_from, X_AB_to);
-  return std::max(turn * a.radius + shifts.of_a, turn * b.radius + shifts.of_b);
+  return StepBetween(a, b, X_AB_from, X_AB_to).MotionBound(a, b);
 }
 
 double PairCache::Rounding(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
@@ -127,9 +135,12 @@ Isometry3d BuildPose(std::span<const PairCache::Region> regions, const Collision
 
 // Moves `region` on to a query at X_AB: the query joins the run whose last
 // query lies nearest, or starts a free one unless that last query is at
-// X_AB itself, and each run's travel to it is taken.
+// X_AB itself, and each run's travel to it is taken. Each run's step to
+// X_AB is computed once, for both.
 void MoveOn(PairCache::Region& region, const CollisionModel::Impl& a, const CollisionModel::Impl& b,
             const Isometry3d& X_AB) {
+  // From each run's last query; zero for a run this query starts.
+  std::array<Step, PairCache::kStreams> steps;
   int joined = 0, free = -1;
   double nearest_m = std::numeric_limits<double>::infinity();
   for (int s = 0; s < PairCache::kStreams; ++s) {
@@ -138,7 +149,8 @@ void MoveOn(PairCache::Region& region, const CollisionModel::Impl& a, const Coll
       if (free < 0) free = s;
       continue;
     }
-    const double from_last = RelativeMotionBound(a, b, stream.X_AB_last, X_AB);
+    steps[s] = StepBetween(a, b, stream.X_AB_last, X_AB);
+    const double from_last = steps[s].MotionBound(a, b);
     if (from_last < nearest_m) {
       nearest_m = from_last;
       joined = s;
@@ -153,8 +165,8 @@ void MoveOn(PairCache::Region& region, const CollisionModel::Impl& a, const Coll
     PairCache::Travel& to_query = region.to_query[s];
     to_query = stream.travel;
     if (!stream.used) continue;
-    to_query.shifted_m += RelativeShift(a, b, stream.X_AB_last, X_AB);
-    to_query.turned += RelativeTurn(stream.X_AB_last, X_AB);
+    to_query.shifted_m += steps[s].Shift();
+    to_query.turned += steps[s].turn;
   }
   region.streams[joined].travel = region.to_query[joined];
   region.streams[joined].X_AB_last = X_AB;
