@@ -13,7 +13,7 @@
 #include "common/contact/projection_options.h"
 #include "common/contact/side_contact.h"
 
-// The paper's method (s.4, fig. 5 and 6, appendix), as shared/ALGORITHM.md
+// The paper's method (s.4, fig. 5 and 6, appendix), as docs/algorithm.md
 // reads it, with one reading changed (see PenetrationTest in
 // projection_options.h): for each plane xy, yz, xz of F's frame, project the
 // candidate features, back every penetrating vertex of M along the projected
