@@ -55,7 +55,7 @@ def self_check():
     cases = {
         "see ../" "shared/notes.md\nfine\n": [(1, ["../" "shared/"])],
         "docs/algorithm.md and a shared/ scratch folder\n": [],
-        "x\n// as shared/" "ALGORITHM.md says\n": [(2, ["shared/" "ALGORITHM", "ALGORITHM" ".md"])],
+        "x\n// as shared/" "ALGORITHM" ".md says\n": [(2, ["shared/" "ALGORITHM", "ALGORITHM" ".md"])],
     }
     return [f"self-check: expected {expected}, got {offending_lines(text)} on {text!r}"
             for text, expected in cases.items() if offending_lines(text) != expected]
