@@ -5,8 +5,8 @@
 // collisions needs (collision), in the same run. Prints
 // the median and p99 step time of each; the target is 1 kHz with margin,
 // p99 under 500 us on scenes of 50,000 triangles (fine_organ). Also the
-// heap allocations per step (a global operator new counter): DESIGN.md
-// asks for none in steady state. The 10,000-triangle scenes also step at
+// heap allocations per step (a global operator new counter): none in
+// steady state (docs/simulation.md). The 10,000-triangle scenes also step at
 // 10 kHz (step_s 0.0001) with a haptic device's needs, the path's poses
 // interpolated ten to a 1 kHz sample; the target there is p99 at or under
 // 100 us.
