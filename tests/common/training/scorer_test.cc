@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace hs {
 namespace {
@@ -95,6 +98,72 @@ TEST(ScorerTest, JerkOfACubicIsSixTimesItsCoefficient) {
     scorer.Add(At(i, Vector3d(0, 0, 0.05 + a * t * t * t)));
   }
   EXPECT_NEAR(scorer.Summary().jerk_rms, 6 * a, 1e-6);
+}
+
+// A device's samples of p(t) = p0 + c t^3 at irregular times of its own
+// clock (every 5 ms, each moved by up to 2 ms), delivered through frames
+// at 1 ms steps after a delay of 30-40 ms (in order): each frame carries
+// the newest pose come in, so poses repeat over frames, and one that comes
+// in with the next within a step is never seen. Seed 7.
+struct CubicRun {
+  Vector3d p0 = Vector3d(0, 0, 0.05);
+  Vector3d c = Vector3d(1, -2, 0.5);  // m/s^3: the jerk is 6c everywhere
+  std::vector<ScoringFrame> frames;
+  // The poses the frames carry, once each, in order.
+  std::vector<Vector3d> seen;
+};
+
+CubicRun Cubic() {
+  CubicRun run;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> shift(-0.002, 0.002), delay(0.030, 0.040);
+  std::vector<double> made, arrives;
+  for (int i = 0; i < 100; ++i) {
+    made.push_back(0.005 * i + shift(random));
+    arrives.push_back(std::max(made.back() + delay(random), arrives.empty() ? 0 : arrives.back()));
+  }
+  // The last pose comes in by 0.54 s.
+  size_t next = 0;
+  for (int k = 0; k <= 600; ++k) {
+    const double step_s = 0.001 * k;
+    const size_t before = next;
+    while (next < made.size() && arrives[next] <= step_s) ++next;
+    if (next == 0) continue;
+    const double t = made[next - 1];
+    run.frames.push_back({.time_s = step_s, .p_WD = run.p0 + run.c * t * t * t, .pose_time_s = t});
+    if (next != before) run.seen.push_back(run.frames.back().p_WD);
+  }
+  return run;
+}
+
+// Timed by the device's clock, the jerk of a cubic sampled at irregular
+// times and delivered late and unevenly is still 6c (a third divided
+// difference is exact for a cubic), and the path is that of the poses
+// seen, once each; timed by the frames instead, the jerk is far off.
+TEST(ScorerTest, JerkOfACubicOnTheDevicesClockIgnoresDelivery) {
+  Exercise e = OneTarget();
+  e.time_limit_s = 10;
+  const CubicRun run = Cubic();
+  ASSERT_LT(run.seen.size(), 100u) << "some pose must be lost to delivery";
+  Scorer device(e), frames(e);
+  for (const ScoringFrame& f : run.frames) {
+    device.Add(f);
+    ScoringFrame untimed = f;
+    untimed.pose_time_s.reset();
+    frames.Add(untimed);
+  }
+  double path = 0;
+  for (size_t i = 1; i < run.seen.size(); ++i) path += (run.seen[i] - run.seen[i - 1]).norm();
+  const ScoreSummary s = device.Summary();
+  EXPECT_NEAR(s.jerk_rms, 6 * run.c.norm(), 1e-6 * run.c.norm());
+  EXPECT_NEAR(s.path_length_m, path, 1e-12);
+  EXPECT_GT(std::abs(frames.Summary().jerk_rms - 6 * run.c.norm()), 3 * run.c.norm());
+}
+
+// A device clock of 0 is a device that does not stamp its poses: no time.
+TEST(ScorerTest, DevicePoseTimeOfZeroIsNone) {
+  EXPECT_FALSE(DevicePoseTime(0).has_value());
+  EXPECT_EQ(DevicePoseTime(1'500'000'000), 1.5);
 }
 
 // A break in the hold starts it again; force out of range does not hold.
