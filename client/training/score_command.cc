@@ -59,8 +59,15 @@ absl::Status ScorePath(const LoadedExercise& exercise, const std::string& file, 
     // device that takes it.
     if (moved) HS_RETURN_IF_ERROR(ApplyDevicePose(s, tool, path[next - 1].X_WD, seated++ == 0));
     ScoringFrame scored = ScoringFrameFromStep(s.Step(), tool, scene.names);
-    // The path's times are the device's clock of its poses.
-    if (next > 0) scored.pose_time_s = path[next - 1].t_s;
+    // The path's times are the device's clock of its poses. After the
+    // last, the device holds still sending it every step, so that its
+    // clock runs on while a hold begun at the end finishes.
+    const double step_time_s = static_cast<double>(k) * step_s;
+    if (step_time_s > path.back().t_s) {
+      scored.pose_time_s = step_time_s;
+    } else if (next > 0) {
+      scored.pose_time_s = path[next - 1].t_s;
+    }
     scorer.Add(scored);
   }
   return absl::OkStatus();

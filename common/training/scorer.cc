@@ -25,7 +25,9 @@ Vector3d Jerk(const double t[4], const Vector3d p[4]) {
 
 std::optional<double> DevicePoseTime(int64_t device_time_ns) {
   if (device_time_ns == 0) return std::nullopt;
-  return static_cast<double>(device_time_ns) * 1e-9;
+  // Divided, not multiplied by 1e-9: a stamp of whole nanoseconds then
+  // reads as the seconds it was made from (0.005 s as 0.005).
+  return static_cast<double>(device_time_ns) / 1e9;
 }
 
 Scorer::Scorer(Exercise exercise)
@@ -54,42 +56,40 @@ void Scorer::Add(const ScoringFrame& frame) {
   if (!started_) {
     if (exercise_.tool_home_W && frame.p_WD == *exercise_.tool_home_W) return;
     started_ = true;
-    start_s_ = last_s_ = frame.time_s;
-    start_p_ = frame.p_WD;
     device_clock_ = frame.pose_time_s.has_value();
+    start_s_ = last_s_ = device_clock_ ? *frame.pose_time_s : frame.time_s;
+    start_p_ = frame.p_WD;
   }
-  if (frame.time_s - start_s_ > exercise_.time_limit_s) {
+  // On the device's clock a frame is as late as the pose it applies, not
+  // as late as the network brought that pose to a step; a frame that
+  // brings no newer pose adds no time.
+  const double t = device_clock_ ? std::max(last_s_, frame.pose_time_s.value_or(last_s_))
+                                 : frame.time_s;
+  if (t - start_s_ > exercise_.time_limit_s) {
     timed_out_ = true;
     return;
   }
-  const double dt = std::max(0.0, frame.time_s - last_s_);
-  last_s_ = frame.time_s;
-  SampleMotion(frame);
+  const double dt = std::max(0.0, t - last_s_);
+  last_s_ = t;
+  SampleMotion(t, frame.p_WD);
   const double force = frame.force_W.norm();
   force_now_ = force;
   max_force_ = std::max(max_force_, force);
   ScoreLimits(frame, force, dt);
   ScoreForbidden(frame, force, dt);
   ScoreTargets(frame, force, dt);
-  trace_.push_back({frame.time_s - start_s_, force, limit_now_, frame.p_WD});
+  trace_.push_back({t - start_s_, force, limit_now_, frame.p_WD});
 }
 
-void Scorer::SampleMotion(const ScoringFrame& frame) {
-  // On the device's clock, a pose is timed as the device made it, not as
-  // late as the network brought it to a step.
-  double t = frame.time_s;
-  if (device_clock_) {
-    if (!frame.pose_time_s) return;
-    t = *frame.pose_time_s;
-  }
+void Scorer::SampleMotion(double t, const Vector3d& p) {
   // A time already taken is the same pose again (the device sent none
   // since), or one that came out of order.
   if (has_last_p_ && t <= last_pose_t_) return;
-  if (has_last_p_) path_m_ += (frame.p_WD - last_p_).norm();
-  last_p_ = frame.p_WD;
+  if (has_last_p_) path_m_ += (p - last_p_).norm();
+  last_p_ = p;
   last_pose_t_ = t;
   has_last_p_ = true;
-  SampleJerk(t, frame.p_WD);
+  SampleJerk(t, p);
 }
 
 void Scorer::SampleJerk(double t, const Vector3d& p) {
@@ -137,7 +137,7 @@ void Scorer::ScoreForbidden(const ScoringFrame& frame, double force, double dt) 
     }
     if (open < 0) {
       open = static_cast<int>(forbidden_.size());
-      forbidden_.push_back({.object = f.object, .start_s = frame.time_s - start_s_});
+      forbidden_.push_back({.object = f.object, .start_s = last_s_ - start_s_});
     } else {
       forbidden_[open].duration_s += dt;
     }
@@ -159,10 +159,10 @@ void Scorer::ScoreTargets(const ScoringFrame& frame, double force, double dt) {
   holding_ = true;
   if (held_s_ + 1e-9 < target.hold_s) return;
   targets_[current_].reached = true;
-  targets_[current_].reached_at_s = frame.time_s - start_s_;
+  targets_[current_].reached_at_s = last_s_ - start_s_;
   holding_ = false;
   ++current_;
-  if (done()) finished_at_s_ = frame.time_s - start_s_;
+  if (done()) finished_at_s_ = last_s_ - start_s_;
 }
 
 ScoreProgress Scorer::progress() const {

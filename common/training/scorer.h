@@ -15,9 +15,11 @@
 //   and the impulse beyond the limit;
 // - path length, largest force and jerk are the device's; frames past the
 //   time limit are not scored;
-// - the device's motion (path, jerk) is taken over the device's own clock
-//   of its poses when the frames carry it, so that a path scores the same
-//   whichever delays brought its poses to the steps they were applied at.
+// - a run's times (its start, holds, durations, the limit, the jerk's
+//   derivatives) are on the device's own clock of the poses applied when
+//   the frames carry it, so that a path scores the same whichever delays
+//   brought its poses to the steps they were applied at; else on the
+//   frames' simulated time.
 
 #include <cstdint>
 #include <optional>
@@ -58,7 +60,7 @@ struct ScoringFrame {
 struct TargetResult {
   std::string name;
   bool reached = false;
-  /// Since the first frame, seconds (when reached).
+  /// Since the run's start, seconds on its clock (when reached).
   double reached_at_s = 0;
   /// The largest force while touching it, newtons.
   double max_force_n = 0;
@@ -73,7 +75,7 @@ struct ForbiddenContact {
 
 /// One scored frame, for a report's plots.
 struct TracePoint {
-  double t_s = 0;  // since the first frame
+  double t_s = 0;  // since the run's start, seconds on its clock
   double force_n = 0;
   /// The limit of the object pressed then (0: none).
   double limit_n = 0;
@@ -137,7 +139,7 @@ class Scorer {
   void ScoreTargets(const ScoringFrame& frame, double force, double dt);
   void ScoreForbidden(const ScoringFrame& frame, double force, double dt);
   void ScoreLimits(const ScoringFrame& frame, double force, double dt);
-  void SampleMotion(const ScoringFrame& frame);
+  void SampleMotion(double t, const Vector3d& p);
   void SampleJerk(double t, const Vector3d& p);
 
   // A pose taken for the jerk: its time and the device's origin.
@@ -153,7 +155,7 @@ class Scorer {
   double last_s_ = 0;
 
   // A run is timed by one clock: the device's when its first scored frame
-  // carries a pose time, else the frames'.
+  // carries a pose time, else the frames'. start_s_ and last_s_ are on it.
   bool device_clock_ = false;
   // The device's last pose and its time, for the path.
   Vector3d last_p_ = Vector3d::Zero();

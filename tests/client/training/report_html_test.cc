@@ -38,7 +38,8 @@ TEST(ReportHtmlTest, FiguresAreRoundedWithUnits) {
   s.excess_impulse_ns = 0.01234;
   s.forbidden_contacts = 1;
   s.jerk_rms = 9.3099;
-  s.target_results = {{.name = "crest", .reached = true, .reached_at_s = 1.2345, .max_force_n = 1.5}};
+  s.target_results = {
+      {.name = "crest", .reached = true, .reached_at_s = 1.2345, .max_force_n = 1.5}};
   s.forbidden_list = {
       {.object = "table", .start_s = 2.004, .duration_s = 0.05, .max_force_n = 2.104}};
   const std::vector<TracePoint> trace;

@@ -67,6 +67,47 @@ TEST(ScorerTest, ReachesATargetWithHandComputedMetrics) {
   EXPECT_NEAR(s.score, (50 + 10 * 0.987 + 10 + 15 + 10 + 5 * smooth), 1e-9);
 }
 
+// The run above from a server stepping at half pace, each pose applied
+// two steps late, with the device's clock in its frames: the hold, the
+// duration and the time of the target are the device's (13 ms, the
+// figures above), not the frames' (26 ms apart).
+TEST(ScorerTest, TimesAreTheDevicesClockWhenFramesCarryIt) {
+  Scorer scorer(OneTarget());
+  auto late = [](ScoringFrame f) {
+    f.pose_time_s = f.time_s;
+    f.time_s = 2 * f.time_s + 2 * kDt;
+    return f;
+  };
+  for (int i = 0; i <= 10; ++i) scorer.Add(late(At(i, Vector3d(0, 0, 0.01 - 0.001 * i))));
+  for (int i = 11; i <= 13; ++i) scorer.Add(late(At(i, Vector3d::Zero(), 2, "organ")));
+  ASSERT_TRUE(scorer.done());
+  const ScoreSummary s = scorer.Summary();
+  EXPECT_NEAR(s.duration_s, 0.013, 1e-12);
+  EXPECT_NEAR(s.target_results[0].reached_at_s, 0.013, 1e-12);
+  EXPECT_NEAR(s.path_length_m, 0.01, 1e-12);
+  EXPECT_NEAR(s.score, 50 + 10 * 0.987 + 10 + 15 + 10 + 5, 1e-9);
+}
+
+// Frames that repeat the pose of a device time already scored add no time
+// and no path: the hold of 2 ms needs two more milliseconds of poses.
+TEST(ScorerTest, RepeatedDeviceTimeAddsNoTime) {
+  Scorer scorer(OneTarget());
+  auto stamped = [](ScoringFrame f, double pose_s) {
+    f.pose_time_s = pose_s;
+    return f;
+  };
+  scorer.Add(stamped(At(0, Vector3d(0, 0, 0.001)), 0));
+  for (int i = 1; i <= 5; ++i) scorer.Add(stamped(At(i, Vector3d::Zero(), 2, "organ"), 0.001));
+  EXPECT_FALSE(scorer.done());
+  EXPECT_EQ(scorer.progress().elapsed_s, 0.001);
+  scorer.Add(stamped(At(6, Vector3d::Zero(), 2, "organ"), 0.002));
+  EXPECT_FALSE(scorer.done());
+  scorer.Add(stamped(At(7, Vector3d::Zero(), 2, "organ"), 0.003));
+  ASSERT_TRUE(scorer.done());
+  EXPECT_NEAR(scorer.Summary().duration_s, 0.003, 1e-12);
+  EXPECT_NEAR(scorer.Summary().path_length_m, 0.001, 1e-12);
+}
+
 // The same run after 500 steps resting at the tool's home (z = 0.01): the
 // clock starts at the first frame away from home (step 501, 1 mm down),
 // so the hand-computed figures are those of the run above less the first
