@@ -25,10 +25,10 @@ TEST(FrameRateArgsTest, Bounds) {
   EXPECT_TRUE(CheckFrameRate(kMinFrameRateHz).ok());
   EXPECT_TRUE(CheckFrameRate(1000).ok());
   EXPECT_TRUE(CheckFrameRate(kMaxFrameRateHz).ok());
-  for (const double bad : {0.0, 0.999, -1.0, std::nextafter(kMaxFrameRateHz, 1e9),
-                           std::numeric_limits<double>::quiet_NaN(),
-                           std::numeric_limits<double>::infinity(),
-                           -std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {0.0, 0.999, -1.0, std::nextafter(kMaxFrameRateHz, 1e9),
+        std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity()}) {
     const absl::Status status = CheckFrameRate(bad);
     EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << bad;
     EXPECT_NE(status.message().find("--frame-rate-hz"), std::string::npos) << status;
