@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "client/exit_codes.h"
+#include "client/frame_rate_args.h"
 #include "client/needs_args.h"
 #include "client/server_call.h"
 #include "common/api/local_model_convert.h"
@@ -60,6 +61,7 @@ RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
   EffectSet needs{Effect::kForce, Effect::kFriction, Effect::kContactSet, Effect::kReversingVector};
   if (options.local_model) needs = needs.With(Effect::kLocalModel);
   SetNeeds(needs, *open.mutable_open());
+  SetFrameRate(*open.mutable_open(), args.frame_rate_hz);
   stream->Write(open);
   RemoteRun run(options, start);
   const Clock::time_point t0 = Clock::now();

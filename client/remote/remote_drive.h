@@ -24,6 +24,8 @@ struct RemoteDriveArgs {
   /// device position, m) to this file; empty for none.
   std::string trace_path;
   bool json = false;
+  /// Frames a second asked of the server (frame_rate_args.h); 0: its own.
+  double frame_rate_hz = 0;
 };
 
 /// Runs and prints the summary to `out`: one JSON object with --json.
