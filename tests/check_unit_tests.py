@@ -46,8 +46,6 @@ PENDING = {
     "common/api/local_model_convert",
     "common/api/proto_file",
     "common/api/scene_geometry",
-    "common/collision/bv_type",
-    "common/collision/collision_model",
     "common/collision/faces_in_box",
     "common/contact/closest_points",
     "common/contact/contact_features",
