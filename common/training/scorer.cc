@@ -63,8 +63,8 @@ void Scorer::Add(const ScoringFrame& frame) {
   // On the device's clock a frame is as late as the pose it applies, not
   // as late as the network brought that pose to a step; a frame that
   // brings no newer pose adds no time.
-  const double t = device_clock_ ? std::max(last_s_, frame.pose_time_s.value_or(last_s_))
-                                 : frame.time_s;
+  const double t =
+      device_clock_ ? std::max(last_s_, frame.pose_time_s.value_or(last_s_)) : frame.time_s;
   if (t - start_s_ > exercise_.time_limit_s) {
     timed_out_ = true;
     return;
