@@ -34,6 +34,8 @@ void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const Fram
     const ToolHolder* holder = HolderOf(s, i);
     const bool own = holder != nullptr && holder->sink == stream;
     if (holder != nullptr) frame.mutable_tools(i)->set_holder(holder->name);
+    frame.mutable_tools(i)->set_last_pose_sequence(s.applied[i].sequence);
+    frame.mutable_tools(i)->set_last_pose_device_time_ns(s.applied[i].device_time_ns);
     if (own) {
       frame.set_last_pose_sequence(s.applied[i].sequence);
       frame.set_last_pose_device_time_ns(s.applied[i].device_time_ns);

@@ -18,6 +18,10 @@ ScoringFrame ScoringFrameFromProto(const haptics::v1::Frame& frame, const std::s
   };
   for (const haptics::v1::ToolState& t : frame.tools()) {
     if (t.tool() != tool) continue;
+    // Every stream's frames say each tool's last pose (ToolState).
+    if (!out.pose_time_s && t.last_pose_sequence() > 0) {
+      out.pose_time_s = DevicePoseTime(t.last_pose_device_time_ns());
+    }
     out.p_WD = vector(t.device_pose().position_m());
     out.force_W = vector(t.force_w_n());
     for (const haptics::v1::Contact& c : t.contacts()) {
