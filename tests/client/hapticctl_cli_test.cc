@@ -86,6 +86,11 @@ TEST(HapticctlCliTest, MalformedValuesAreUsageErrors) {
       {"drive --scene s --tool t --operator press --latency-ms 5000", "--latency-ms: Value 5000"},
       {"drive --scene s --tool t --operator press --loss 0.9", "--loss: Value 0.9"},
       {"drive --scene s --tool t --operator press --jitter-ms -1", "--jitter-ms: Value -1"},
+      {"drive --scene s --tool t --motion press --frame-rate-hz nan",
+       "--frame-rate-hz must be a finite number from 1 to 100000"},
+      {"loadtest --frame-rate-hz 0", "--frame-rate-hz must be a finite number from 1 to 100000"},
+      {"loadtest --frame-rate-hz inf", "--frame-rate-hz must be a finite number"},
+      {"loadtest --server-metrics 127.0.0.1:9464", "--server-metrics must be http://HOST:PORT"},
       {"--server 1.2.3.4:5 scenes list",
        "options go after the subcommand (hapticctl SUBCOMMAND [OPTIONS]); not expected before "
        "it: --server"},
