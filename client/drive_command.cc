@@ -54,6 +54,10 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
       return kExitUsage;
     }
   }
+  if (absl::Status link = CheckLinkConditions(args.link); !link.ok()) {
+    ReportError("drive", link, err);
+    return kExitUsage;
+  }
   absl::StatusOr<EffectSet> needs = ParseNeeds(args.needs);
   if (!needs.ok()) return ReportError("drive", needs.status(), err);
   absl::StatusOr<std::shared_ptr<grpc::Channel>> opened = MakeChannel(args.server);
@@ -195,8 +199,16 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
                   "With --operator: up to this much more each way, milliseconds (uniform)")
       ->check(CLI::Range(0.0, 1000.0));
   cmd->add_option("--loss", args->link.loss,
-                  "With --operator: probability each message is lost, each way")
+                  "With --operator: probability each message is lost, each way (as an "
+                  "unreliable transport would lose it)")
       ->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--stall-prob", args->link.stall_prob,
+                  "With --operator: probability a message is held --stall-ms longer, with "
+                  "everything behind it, each way (as a reliable stream holds a lost segment)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--stall-ms", args->link.stall_ms,
+                  "With --operator: how long a stalled message is held, milliseconds")
+      ->check(CLI::Range(0.0, kMaxLinkMs));
   cmd->add_option("--seed", args->link.seed, "With --operator: the link's random seed")
       ->capture_default_str();
   cmd->add_option("--trace", args->trace_path,

@@ -5,7 +5,7 @@
 // SessionService.Interact and prints each frame that applies a new pose:
 // its contacts and force. With `--operator press|slide|tap` instead, a
 // simulated hand drives the tool in a closed loop through a simulated link
-// (--latency-ms, --jitter-ms, --loss, --seed), rendering from the local
+// (--latency-ms, --jitter-ms, --loss, --stall-prob, --stall-ms, --seed), rendering from the local
 // contact model or not (--local-model on|off), and one summary is printed
 // (client/remote/remote_drive.h).
 

@@ -104,6 +104,8 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"latency_ms", link.latency_ms},
           {"jitter_ms", link.jitter_ms},
           {"loss", link.loss},
+          {"stall_prob", link.stall_prob},
+          {"stall_ms", link.stall_ms},
           {"seed", link.seed},
           {"ticks", s.ticks},
           {"energy_j", s.energy_j},
@@ -118,6 +120,8 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"round_trip_p99_ms", s.round_trip_p99_ms},
           {"poses_lost", s.poses_lost},
           {"frames_lost", s.frames_lost},
+          {"poses_stalled", s.poses_stalled},
+          {"frames_stalled", s.frames_stalled},
           {"models_rejected", s.models_rejected},
           {"models_restarted", s.models_restarted},
           {"beyond_validity_ticks", s.beyond_validity_ticks}};

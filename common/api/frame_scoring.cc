@@ -4,8 +4,14 @@
 
 namespace hs {
 
-ScoringFrame ScoringFrameFromProto(const haptics::v1::Frame& frame, const std::string& tool) {
+ScoringFrame ScoringFrameFromProto(const haptics::v1::Frame& frame, const std::string& tool,
+                                   FrameStream stream) {
   ScoringFrame out{.time_s = frame.time_s()};
+  // Before the device's first pose the tool rests where the scene put it,
+  // at no time of the device's.
+  if (stream == FrameStream::kToolsDevice && frame.last_pose_sequence() > 0) {
+    out.pose_time_s = DevicePoseTime(frame.last_pose_device_time_ns());
+  }
   auto vector = [](const haptics::v1::Vector3& v) {
     absl::StatusOr<Vector3d> read = VectorFromProto(v, "frame");
     return read.ok() ? *read : Vector3d::Zero();
