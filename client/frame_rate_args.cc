@@ -30,10 +30,8 @@ void AddFrameRateOption(CLI::App& cmd, double& hz) {
       }));
 }
 
-// PENDING PROTO FIELD: InteractRequest.Open has no frame_rate_hz yet
-// (proto/haptics/v1/session_service.proto), so nothing is sent. When the
-// field lands, this becomes `if (hz > 0) open.set_frame_rate_hz(hz);`.
-void SetFrameRate([[maybe_unused]] haptics::v1::InteractRequest::Open& open,
-                  [[maybe_unused]] double hz) {}
+void SetFrameRate(haptics::v1::InteractRequest::Open& open, double hz) {
+  if (hz > 0) open.set_frame_rate_hz(hz);
+}
 
 }  // namespace hs::cli

@@ -22,8 +22,9 @@ absl::Status CheckFrameRate(double hz);
 /// error.
 void AddFrameRateOption(CLI::App& cmd, double& hz);
 
-/// Asks the server for `hz` frames a second in `open` (0: the server's own
-/// rate, nothing asked).
+/// Asks the server for `hz` frames a second in `open`
+/// (InteractRequest.Open.frame_rate_hz; 0: nothing asked, one frame a
+/// step).
 void SetFrameRate(haptics::v1::InteractRequest::Open& open, double hz);
 
 }  // namespace hs::cli

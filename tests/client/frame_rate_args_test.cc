@@ -50,15 +50,14 @@ TEST(FrameRateArgsTest, Flag) {
   }
 }
 
-// Until InteractRequest.Open has a frame_rate_hz field, asking for a rate
-// leaves the open message as it was.
-TEST(FrameRateArgsTest, OpenMessageUnchangedWithoutTheField) {
+// A rate asked for goes out in the open message; none (0) leaves the
+// field unset, the server's own rate.
+TEST(FrameRateArgsTest, OpenMessage) {
   haptics::v1::InteractRequest::Open open;
-  open.set_scene("s");
-  open.set_tool("t");
-  const std::string before = open.SerializeAsString();
+  SetFrameRate(open, 0);
+  EXPECT_EQ(open.frame_rate_hz(), 0);
   SetFrameRate(open, 500);
-  EXPECT_EQ(open.SerializeAsString(), before);
+  EXPECT_EQ(open.frame_rate_hz(), 500);
 }
 
 }  // namespace

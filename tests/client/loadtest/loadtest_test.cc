@@ -21,8 +21,8 @@ LoadtestOptions Small(const hs::testing::TestServer& server) {
 }
 
 // The server's CPU per device is its CPU over the devices' turns divided
-// among them; the in-process server is read through /proc; a frame rate
-// asked for does not change the run.
+// among them; the in-process server is read through /proc. The devices
+// ask for half the scene's frames: every pose is still answered.
 TEST(LoadtestTest, ServerCpuPerDeviceFromProc) {
   hs::testing::TestServer server;
   LoadtestOptions options = Small(server);
