@@ -28,7 +28,7 @@ absl::Status CheckMetricsUrl(const std::string& url) {
   const absl::Status bad = absl::InvalidArgumentError(
       "--server-metrics must be http://HOST:PORT/PATH (e.g. http://127.0.0.1:9464/metrics), not '" +
       url + "'");
-  constexpr std::string_view kScheme = "http://";
+  constexpr absl::string_view kScheme = "http://";
   if (!absl::StartsWith(url, kScheme)) return bad;
   const std::string authority =
       url.substr(kScheme.size(), url.find('/', kScheme.size()) - kScheme.size());

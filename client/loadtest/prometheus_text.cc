@@ -1,6 +1,7 @@
 #include "client/loadtest/prometheus_text.h"
 
 #include "absl/strings/ascii.h"
+#include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
@@ -11,7 +12,7 @@ namespace {
 // Where the label set that opens `rest` ends (past its '}'), label values
 // being quoted strings that may hold '}' and escaped quotes; npos when it
 // does not close.
-size_t PastLabels(std::string_view rest) {
+size_t PastLabels(absl::string_view rest) {
   bool quoted = false;
   for (size_t i = 1; i < rest.size(); ++i) {
     if (quoted && rest[i] == '\\') {
@@ -22,27 +23,27 @@ size_t PastLabels(std::string_view rest) {
       return i + 1;
     }
   }
-  return std::string_view::npos;
+  return absl::string_view::npos;
 }
 
 }  // namespace
 
-absl::StatusOr<double> PrometheusValue(std::string_view text, std::string_view name) {
+absl::StatusOr<double> PrometheusValue(absl::string_view text, absl::string_view name) {
   double sum = 0;
   bool found = false;
-  for (std::string_view line : absl::StrSplit(text, '\n')) {
+  for (absl::string_view line : absl::StrSplit(text, '\n')) {
     line = absl::StripAsciiWhitespace(line);
-    if (!line.starts_with(name)) continue;
-    std::string_view rest = line.substr(name.size());
+    if (!absl::StartsWith(line, name)) continue;
+    absl::string_view rest = line.substr(name.size());
     if (rest.empty() || (rest[0] != '{' && rest[0] != ' ' && rest[0] != '\t')) continue;
     const absl::Status bad =
         absl::InvalidArgumentError(absl::StrCat("metrics: cannot read the line '", line, "'"));
     if (rest[0] == '{') {
       const size_t end = PastLabels(rest);
-      if (end == std::string_view::npos) return bad;
+      if (end == absl::string_view::npos) return bad;
       rest.remove_prefix(end);
     }
-    const std::vector<std::string_view> fields =
+    const std::vector<absl::string_view> fields =
         absl::StrSplit(rest, absl::ByAnyChar(" \t"), absl::SkipEmpty());
     double value = 0;
     // A value, and maybe a timestamp (milliseconds, a whole number).

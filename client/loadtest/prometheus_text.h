@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 
 namespace hs::cli {
 
@@ -14,6 +15,6 @@ namespace hs::cli {
 /// other metrics, those whose name only begins with `name` included.
 /// NOT_FOUND naming it when it has no sample; INVALID_ARGUMENT quoting the
 /// line when one of its samples does not parse.
-absl::StatusOr<double> PrometheusValue(std::string_view text, std::string_view name);
+absl::StatusOr<double> PrometheusValue(absl::string_view text, absl::string_view name);
 
 }  // namespace hs::cli
