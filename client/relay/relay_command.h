@@ -15,7 +15,7 @@
 namespace hs::cli {
 
 struct RelayArgs {
-  RelayOptions relay;
+  RelayOptions relay{};
   /// Stop after this many seconds; 0: at Ctrl-C.
   double duration_s = 0;
 };

@@ -21,7 +21,7 @@ namespace hs::cli {
 struct RelayOptions {
   /// HOST:PORT to accept on (port 0: any free one) and to connect to.
   std::string listen = "127.0.0.1:0";
-  std::string to;
+  std::string to{};
   /// Each chunk is held this long each way, plus up to jitter_ms
   /// (uniformly), milliseconds.
   double one_way_ms = 0;
