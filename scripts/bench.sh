@@ -30,7 +30,7 @@ fi
 # device's needs; linked_rings (the hardest) also on two threads; the two
 # large Table 1 cases, alone and along their coherent sequences.
 step_filter='^(Yardstick/.*|Step/[a-z_]+/(all_effects|force_only)/threads:1|Step/linked_rings/all_effects/threads:2)$'
-contact_filter='^(Table1/case[34]/(pairs|sweep3d|paper2d|fcl_contacts)|Coherent/case[34]/(sweep3d|paper2d))$'
+contact_filter='^(Table1/case[34]/(pairs|sweep3d|paper2d|fcl_contacts)|Coherent/case[34]/(sweep3d|paper2d)/iterations:[0-9]+)$'
 cmake --build "$build" -j2 --target step_bench contact_bench
 out="$build/bench_check"
 mkdir -p "$out"

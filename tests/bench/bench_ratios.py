@@ -132,7 +132,6 @@ def make_record(step_run, contact_run, commit, command):
         "command": command,
         "load_avg": {"step_bench": context.get("load_avg"),
                      "contact_bench": contact_run.get("context", {}).get("load_avg")},
-        "library_build_type": context.get("library_build_type"),
         "yardstick_us": {"step_bench": step_yardstick, "contact_bench": contact_yardstick},
         "benchmarks": dict(sorted({**step, **contact}.items())),
     }
