@@ -1,6 +1,7 @@
 #pragma once
 // The server's Prometheus metrics (prometheus-cpp): step time, per-effect
-// time, clients, frames sent and dropped, rejected requests. Exposed over
+// time, clients, frames sent and dropped, rejected requests, and the
+// process's CPU time (process_cpu_seconds_total). Exposed over
 // HTTP at /metrics when an address is given. Thread-safe.
 
 #include <array>
@@ -11,6 +12,7 @@
 #include "common/sim/step_frame.h"
 
 namespace prometheus {
+class Collectable;
 class Counter;
 class Exposer;
 class Gauge;
@@ -69,6 +71,8 @@ class Metrics {
 
  private:
   std::shared_ptr<prometheus::Registry> registry_;
+  // process_cpu_seconds_total, collected beside the registry.
+  std::shared_ptr<prometheus::Collectable> process_;
   std::unique_ptr<prometheus::Exposer> exposer_;
   prometheus::Histogram* step_seconds_;
   std::array<prometheus::Counter*, kNumEffects> effect_seconds_;

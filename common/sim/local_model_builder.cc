@@ -10,11 +10,6 @@
 namespace hs {
 namespace {
 
-// A triangle in the world frame with its unit normal (out of its object).
-struct WorldFace {
-  Vector3d a, b, c, n;
-};
-
 // Kept between steps (common/core/scratch.h): the faces near the tool, and
 // the tool's vertices and faces at the proxy pose.
 struct NearFeatures {
@@ -28,14 +23,10 @@ struct ObjectNear {
 struct ToolNear {
   NearFeatures features;
 };
-// An edge in the world frame: its ends and the sum of its faces' normals
-// (which side is out).
-struct WorldEdge {
-  Vector3d from, to, out;
-};
 struct PlacedTool {
   std::vector<Vector3d> vertices;
   std::vector<WorldFace> faces;
+  std::vector<FaceId> face_ids;
   std::vector<WorldEdge> edges;
 };
 struct CandidatePlanes {
@@ -60,11 +51,14 @@ bool PlaceFace(const PosedObject& o, FaceId f, WorldFace& out) {
 }
 
 // Whether `p` (on the face's plane) lies in the face, within `slack` of its
-// edges (relative to the face's size).
-bool Inside(const WorldFace& f, const Vector3d& p, double slack) {
+// edges (relative to the face's size) and `margin_m` more.
+bool Inside(const WorldFace& f, const Vector3d& p, double slack, double margin_m = 0) {
   for (const auto& [from, to] : {std::pair{&f.a, &f.b}, {&f.b, &f.c}, {&f.c, &f.a}}) {
     const Vector3d edge = *to - *from;
-    if (f.n.cross(edge).dot(p - *from) < -slack * edge.squaredNorm()) return false;
+    const double squared = edge.squaredNorm();
+    if (f.n.cross(edge).dot(p - *from) < -slack * squared - margin_m * std::sqrt(squared)) {
+      return false;
+    }
   }
   return true;
 }
@@ -165,6 +159,9 @@ bool Nearer(const ConstraintPlane& x, const ConstraintPlane& y) {
   for (int i = 0; i < 3; ++i) {
     if (x.tool_point_W[i] != y.tool_point_W[i]) return x.tool_point_W[i] < y.tool_point_W[i];
   }
+  for (int i = 0; i < 3; ++i) {
+    if (x.point_W[i] != y.point_W[i]) return x.point_W[i] < y.point_W[i];
+  }
   return x.object < y.object;
 }
 
@@ -175,19 +172,262 @@ void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures
   placed.vertices.clear();
   for (const VertexId v : near.vertices) placed.vertices.push_back(X_WP * t.position(v));
   placed.faces.clear();
+  placed.face_ids.clear();
   for (const FaceId g : near.faces) {
     WorldFace face;
-    if (PlaceFace(at_proxy, g, face)) placed.faces.push_back(face);
+    if (!PlaceFace(at_proxy, g, face)) continue;
+    placed.faces.push_back(face);
+    placed.face_ids.push_back(g);
   }
   placed.edges.clear();
   for (const EdgeId e : near.edges) placed.edges.push_back(PlaceEdge(at_proxy, e));
 }
 
+// Whether segments a and b may come within `within_m` of each other: their
+// bounding balls do.
+bool SegmentsMayMeet(const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1,
+                     double within_m) {
+  const double half_a = 0.5 * (a1 - a0).norm(), half_b = 0.5 * (b1 - b0).norm();
+  return (0.5 * (a0 + a1) - 0.5 * (b0 + b1)).norm() <= half_a + half_b + within_m;
+}
+
+// Whether tool edge `t` and object edge `o` may give a plane (EdgePairPlane,
+// its gap in [-behind_m, radius_m]) once the tool has moved by at most
+// `margin_m`, turning by at most `turn`: EdgePairPlane's tests, each
+// loosened by what such a move may change. The plane's normal, across two
+// edges at an angle whose sine is s, turns by at most turn / s (twice that
+// here); the closest points slide along the edges by at most margin / s
+// (thrice here); the lines' distance changes by at most twice the margin.
+// Edges within four turns of parallel are kept whenever their balls may
+// meet: their normal may turn any way. Without a margin, the test itself.
+bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_m, double turn,
+                          double radius_m, double behind_m) {
+  if (margin_m == 0) {
+    ConstraintPlane plane;
+    return EdgePairPlane(t, o, plane) && plane.gap_m >= -behind_m && plane.gap_m <= radius_m;
+  }
+  const double apart_m = std::max(radius_m, behind_m) + 2 * margin_m;
+  if (!SegmentsMayMeet(t.from, t.to, o.from, o.to, apart_m)) return false;
+  const Vector3d u = t.to - t.from, v = o.to - o.from;
+  const double lu = u.norm(), lv = v.norm();
+  Vector3d n = u.cross(v);
+  const double sine = n.norm() / (lu * lv);
+  if (!(sine > 4 * turn + 1e-9)) return true;
+  n.normalize();
+  const double turned = 2 * turn / sine;
+  const double out_o = o.out.norm(), out_t = t.out.norm();
+  if (!(out_o > 0 && out_t > 0)) return false;
+  const double along_o = n.dot(o.out) / out_o, along_t = n.dot(t.out) / out_t;
+  const bool either = (along_o >= -turned && along_t <= turned + turn) ||
+                      (-along_o >= -turned && -along_t <= turned + turn);
+  if (!either) return false;
+  const Vector3d w = t.from - o.from;
+  const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
+  const double det = uu * vv - uv * uv;
+  const double a = (uv * vw - vv * uw) / det, b = (uu * vw - uv * uw) / det;
+  const double slide_m = 3 * margin_m / sine + 1e-9 * (lu + lv);
+  if (a < -slide_m / lu || a > 1 + slide_m / lu || b < -slide_m / lv || b > 1 + slide_m / lv) {
+    return false;
+  }
+  return std::abs(n.dot(t.from + a * u - o.from - b * v)) <= apart_m;
+}
+
+// The farthest corner of the tool's box from its origin.
+double Reach(const HapticObject& t) {
+  const AlignedBox3d box = t.bounding_box();
+  double reach_m = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    reach_m = std::max(reach_m, box.corner(static_cast<AlignedBox3d::CornerType>(corner)).norm());
+  }
+  return reach_m;
+}
+
+// The tool's faces and edges placed at one proxy pose, each once however
+// many pairs name it: `stamp` tells this placing's entries from older ones.
+struct PlacedById {
+  std::vector<WorldFace> faces;
+  std::vector<bool> face_ok;
+  std::vector<WorldEdge> edges;
+  std::vector<uint64_t> face_stamp, edge_stamp;
+  uint64_t stamp = 0;
+
+  void Begin(const HapticObject& t) {
+    ++stamp;
+    faces.resize(t.num_faces());
+    face_ok.resize(t.num_faces());
+    face_stamp.resize(t.num_faces(), 0);
+    edges.resize(t.num_edges());
+    edge_stamp.resize(t.num_edges(), 0);
+  }
+  const WorldFace* Face(const PosedObject& at_proxy, FaceId f) {
+    if (face_stamp[f] != stamp) {
+      face_stamp[f] = stamp;
+      face_ok[f] = PlaceFace(at_proxy, f, faces[f]);
+    }
+    return face_ok[f] ? &faces[f] : nullptr;
+  }
+  const WorldEdge& Edge(const PosedObject& at_proxy, EdgeId e) {
+    if (edge_stamp[e] != stamp) {
+      edge_stamp[e] = stamp;
+      edges[e] = PlaceEdge(at_proxy, e);
+    }
+    return edges[e];
+  }
+};
+
+// The planes of `pairs` at `proxy` into `candidates`: the tests of a pair
+// at the proxy's pose, without margin.
+void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelPairs& pairs,
+                double radius_m, double behind_m, std::vector<ConstraintPlane>& candidates) {
+  constexpr double kSlack = 1e-9;
+  const PosedObject at_proxy{&t, nullptr, X_WP};
+  PlacedById& placed = Scratch<PlacedById>();
+  placed.Begin(t);
+  // Where point `p` falls on `face` along its normal, and how far in front
+  // it is: false when that is outside [-behind_m, radius_m] or the foot is
+  // off the face.
+  auto foot_on_face = [&](const WorldFace& face, const Vector3d& p, Vector3d& foot, double& gap) {
+    gap = face.n.dot(p - face.a);
+    if (gap < -behind_m || gap > radius_m) return false;
+    foot = p - gap * face.n;
+    return Inside(face, foot, kSlack);
+  };
+  Vector3d foot;
+  double gap;
+  for (const LocalModelPairs::VertexFace& pair : pairs.vertex_faces) {
+    const Vector3d v = X_WP * t.position(pair.tool_vertex);
+    if (!foot_on_face(pair.face, v, foot, gap)) continue;
+    ConstraintPlane& plane = candidates.emplace_back(pairs.materials[pair.material]);
+    plane.normal_W = pair.face.n;
+    plane.gap_m = std::max(gap, 0.0);
+    plane.point_W = foot;
+    plane.tool_point_W = v;
+  }
+  for (const LocalModelPairs::FaceVertex& pair : pairs.face_vertices) {
+    const WorldFace* tool_face = placed.Face(at_proxy, pair.tool_face);
+    if (tool_face == nullptr || !foot_on_face(*tool_face, pair.vertex_W, foot, gap)) continue;
+    ConstraintPlane& plane = candidates.emplace_back(pairs.materials[pair.material]);
+    plane.normal_W = -tool_face->n;
+    plane.gap_m = std::max(gap, 0.0);
+    plane.point_W = pair.vertex_W;
+    plane.tool_point_W = foot;
+  }
+  for (const LocalModelPairs::EdgeEdge& pair : pairs.edge_edges) {
+    ConstraintPlane plane = pairs.materials[pair.material];
+    if (!EdgePairPlane(placed.Edge(at_proxy, pair.tool_edge), pair.edge, plane)) continue;
+    if (plane.gap_m < -behind_m || plane.gap_m > radius_m) continue;
+    plane.gap_m = std::max(plane.gap_m, 0.0);
+    candidates.push_back(plane);
+  }
+}
+
+// BuildLocalModel's pairs, kept between calls (common/core/scratch.h).
+struct FreshPairs {
+  LocalModelPairs pairs;
+};
+
 }  // namespace
 
-void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
-                     std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
-                     const LocalModelOptions& options, LocalModel& model) {
+double LocalModelPairs::Moved(const Isometry3d& X_WP_now) const {
+  const double turn = Eigen::AngleAxisd(X_WP.linear().transpose() * X_WP_now.linear()).angle();
+  return (X_WP_now.translation() - X_WP.translation()).norm() + lever_m * turn;
+}
+
+void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
+                           std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                           const LocalModelOptions& options, double margin_m,
+                           LocalModelPairs& pairs) {
+  const HapticObject& t = *tool.object;
+  const double behind = 1e-6 * t.bounding_box().diagonal().norm();
+  // How far a pair's features may be apart now and still meet the tests
+  // after a move of at most the margin.
+  const double within = options.radius_m + margin_m;
+  constexpr double kSlack = 1e-9;
+  pairs.X_WP = X_WP;
+  pairs.margin_m = margin_m;
+  // Every point of the tool is within Reach of its origin, and the objects'
+  // features the pairs hold within `within` of the tool's box: each
+  // coordinate within Reach + within of the origin.
+  pairs.lever_m = std::sqrt(3.0) * (Reach(t) + within);
+  pairs.obstacle_count = obstacles.size();
+  pairs.materials.clear();
+  pairs.vertex_faces.clear();
+  pairs.face_vertices.clear();
+  pairs.edge_edges.clear();
+  PlacedTool& placed = Scratch<PlacedTool>();
+  const PosedObject at_proxy{tool.object, tool.model, X_WP};
+  const AlignedBox3d near = GrowBox(WorldBox(t, X_WP), within);
+  NearFeatures& object_near = Scratch<ObjectNear>().features;
+  NearFeatures& tool_near = Scratch<ToolNear>().features;
+  for (size_t k = 0; k < obstacles.size(); ++k) {
+    const PosedObject& o = obstacles[k];
+    // The object's features near the tool, and the tool's near those: on
+    // both sides only what may come within the radius after the margin.
+    const AlignedBox3d object_box = FindNearFeatures(o, near, object_near);
+    if (object_box.isEmpty()) continue;
+    FindNearFeatures(at_proxy, GrowBox(object_box, within), tool_near);
+    PlaceTool(t, X_WP, tool_near, placed);
+    for (const FaceId f : object_near.faces) {  // tool vertex, object face
+      WorldFace face;
+      if (!PlaceFace(o, f, face)) continue;
+      int material = -1;
+      for (size_t i = 0; i < placed.vertices.size(); ++i) {
+        const Vector3d& v = placed.vertices[i];
+        const double gap = face.n.dot(v - face.a);
+        if (gap < -behind - margin_m || gap > within) continue;
+        if (!Inside(face, v - gap * face.n, kSlack, margin_m)) continue;
+        if (material < 0) {
+          material = static_cast<int>(pairs.materials.size());
+          pairs.materials.push_back(MaterialPlane(*o.object, f, ids[k]));
+        }
+        pairs.vertex_faces.push_back({tool_near.vertices[i], face, material});
+      }
+    }
+    // Features beyond the box are farther than the radius and the margin
+    // from the tool: a move the pairs hold for cannot bring them together.
+    for (const VertexId v : object_near.vertices) {  // object vertex, tool face
+      const Vector3d q = o.X_WO * o.object->position(v);
+      if (!near.contains(q)) continue;
+      int material = -1;
+      for (size_t i = 0; i < placed.faces.size(); ++i) {
+        const WorldFace& g = placed.faces[i];
+        const double gap = g.n.dot(q - g.a);
+        if (gap < -behind - margin_m || gap > within) continue;
+        if (!Inside(g, q - gap * g.n, kSlack, margin_m)) continue;
+        if (material < 0) {
+          material = static_cast<int>(pairs.materials.size());
+          pairs.materials.push_back(
+              MaterialPlane(*o.object, o.object->VertexFaces(v).front(), ids[k]));
+        }
+        pairs.face_vertices.push_back({placed.face_ids[i], q, material});
+      }
+    }
+    for (const EdgeId e : object_near.edges) {  // object edge, tool edge
+      const WorldEdge edge = PlaceEdge(o, e);
+      AlignedBox3d box(edge.from);
+      box.extend(edge.to);
+      if (!box.intersects(near)) continue;
+      int material = -1;
+      for (size_t i = 0; i < placed.edges.size(); ++i) {
+        const WorldEdge& g = placed.edges[i];
+        if (!EdgePairMayGivePlane(g, edge, margin_m, margin_m / pairs.lever_m, options.radius_m,
+                                  behind)) {
+          continue;
+        }
+        if (material < 0) {
+          material = static_cast<int>(pairs.materials.size());
+          pairs.materials.push_back(
+              MaterialPlane(*o.object, o.object->EdgeFaces(e).front(), ids[k]));
+        }
+        pairs.edge_edges.push_back({tool_near.edges[i], edge, material});
+      }
+    }
+  }
+}
+
+void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
+                    const LocalModelPairs& pairs, const LocalModelOptions& options,
+                    LocalModel& model) {
   model.X_WP = proxy.X_WP;
   model.p_WD = p_WD;
   model.validity_radius_m = options.radius_m;
@@ -196,86 +436,13 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vec
   model.touching = proxy.touching;
   model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
   model.planes.clear();
-  const HapticObject& t = *tool.object;
-  const double size = t.bounding_box().diagonal().norm();
+  const double size = tool.bounding_box().diagonal().norm();
   // A pair this far behind its plane (the proxy's stand-off is 1e-6 of the
   // size in front) is not one the tool rests on.
   const double behind = 1e-6 * size;
-  constexpr double kSlack = 1e-9;
-  PlacedTool& placed = Scratch<PlacedTool>();
-  const PosedObject at_proxy{tool.object, tool.model, proxy.X_WP};
-  const AlignedBox3d near = GrowBox(WorldBox(t, proxy.X_WP), options.radius_m);
   std::vector<ConstraintPlane>& candidates = Scratch<CandidatePlanes>().planes;
   candidates.clear();
-  NearFeatures& object_near = Scratch<ObjectNear>().features;
-  NearFeatures& tool_near = Scratch<ToolNear>().features;
-  const std::vector<FaceId>& faces = object_near.faces;
-  const std::vector<VertexId>& vertices = object_near.vertices;
-  const std::vector<EdgeId>& edges = object_near.edges;
-  // The planes of the translations the tool may make (the faces of the
-  // obstacle in configuration space): where a vertex of the tool meets a
-  // face of an object (the face's plane), where a vertex of an object
-  // meets a face of the tool (the tool face's plane, turned round), and
-  // where an edge of each meets (the plane of both). Each pair counts when
-  // its features, moved along the plane's normal, would meet, and lie in
-  // front by at most the radius.
-  for (size_t k = 0; k < obstacles.size(); ++k) {
-    const PosedObject& o = obstacles[k];
-    // The object's features near the tool, and the tool's near those: on
-    // both sides only what may meet within the radius.
-    const AlignedBox3d object_box = FindNearFeatures(o, near, object_near);
-    if (object_box.isEmpty()) continue;
-    FindNearFeatures(at_proxy, GrowBox(object_box, options.radius_m), tool_near);
-    PlaceTool(t, proxy.X_WP, tool_near, placed);
-    for (const FaceId f : faces) {  // tool vertex, object face
-      WorldFace face;
-      if (!PlaceFace(o, f, face)) continue;
-      ConstraintPlane plane = MaterialPlane(*o.object, f, ids[k]);
-      for (const Vector3d& v : placed.vertices) {
-        const double gap = face.n.dot(v - face.a);
-        if (gap < -behind || gap > options.radius_m) continue;
-        const Vector3d on_face = v - gap * face.n;
-        if (!Inside(face, on_face, kSlack)) continue;
-        plane.normal_W = face.n;
-        plane.gap_m = std::max(gap, 0.0);
-        plane.point_W = on_face;
-        plane.tool_point_W = v;
-        candidates.push_back(plane);
-      }
-    }
-    // Features beyond the box are farther than the radius from the tool:
-    // a move the model holds for cannot bring them together.
-    for (const VertexId v : vertices) {  // object vertex, tool face
-      const Vector3d q = o.X_WO * o.object->position(v);
-      if (!near.contains(q)) continue;
-      ConstraintPlane plane = MaterialPlane(*o.object, o.object->VertexFaces(v).front(), ids[k]);
-      for (const WorldFace& g : placed.faces) {
-        const double gap = g.n.dot(q - g.a);
-        if (gap < -behind || gap > options.radius_m) continue;
-        const Vector3d on_tool = q - gap * g.n;
-        if (!Inside(g, on_tool, kSlack)) continue;
-        plane.normal_W = -g.n;
-        plane.gap_m = std::max(gap, 0.0);
-        plane.point_W = q;
-        plane.tool_point_W = on_tool;
-        candidates.push_back(plane);
-      }
-    }
-    for (const EdgeId e : edges) {  // object edge, tool edge
-      const Edge& ends = o.object->edge(e);
-      AlignedBox3d box(o.X_WO * o.object->position(ends.vertices[0]));
-      box.extend(o.X_WO * o.object->position(ends.vertices[1]));
-      if (!box.intersects(near)) continue;
-      const WorldEdge edge = PlaceEdge(o, e);
-      ConstraintPlane plane = MaterialPlane(*o.object, o.object->EdgeFaces(e).front(), ids[k]);
-      for (const WorldEdge& g : placed.edges) {
-        if (!EdgePairPlane(g, edge, plane)) continue;
-        if (plane.gap_m < -behind || plane.gap_m > options.radius_m) continue;
-        plane.gap_m = std::max(plane.gap_m, 0.0);
-        candidates.push_back(plane);
-      }
-    }
-  }
+  PairPlanes(tool, proxy.X_WP, pairs, options.radius_m, behind, candidates);
   // The nearest distinct planes, at most max_planes.
   std::sort(candidates.begin(), candidates.end(), Nearer);
   for (const ConstraintPlane& plane : candidates) {
@@ -287,27 +454,12 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vec
   }
 }
 
-void ReanchorLocalModel(const LocalModel& built, const ProxyState& proxy, const Vector3d& p_WD,
-                        double moved_m, double behind_m, LocalModel& model) {
-  const Vector3d shift = proxy.X_WP.translation() - built.X_WP.translation();
-  model.revision = built.revision;
-  model.X_WP = proxy.X_WP;
-  model.p_WD = p_WD;
-  model.validity_radius_m = std::max(built.validity_radius_m - moved_m, behind_m);
-  model.force_clamp_n = built.force_clamp_n;
-  model.friction = built.friction;
-  model.touching = proxy.touching;
-  model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
-  model.planes.clear();
-  for (const ConstraintPlane& plane : built.planes) {
-    // The tool's point moved with the proxy: its gap in front of the plane
-    // changed by the shift along the normal.
-    const double gap = plane.gap_m + plane.normal_W.dot(shift);
-    if (gap < -behind_m) continue;
-    model.planes.push_back(plane);
-    model.planes.back().gap_m = std::max(gap, 0.0);
-    model.planes.back().tool_point_W = plane.tool_point_W + shift;
-  }
+void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
+                     std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                     const LocalModelOptions& options, LocalModel& model) {
+  LocalModelPairs& pairs = Scratch<FreshPairs>().pairs;
+  GatherLocalModelPairs(tool, proxy.X_WP, obstacles, ids, options, 0, pairs);
+  ModelFromPairs(*tool.object, proxy, p_WD, pairs, options, model);
 }
 
 }  // namespace hs

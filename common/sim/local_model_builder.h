@@ -20,27 +20,89 @@ struct LocalModelOptions {
   bool friction = false;
 };
 
+/// A triangle in the world frame with its unit normal (out of its object).
+struct WorldFace {
+  Vector3d a, b, c, n;
+};
+/// An edge in the world frame: its ends and the sum of its faces' normals
+/// (which side is out).
+struct WorldEdge {
+  Vector3d from, to, out;
+};
+
+/// The pairs of features of a tool and the fixed objects near it (a tool
+/// vertex and an object face, an object vertex and a tool face, a tool edge
+/// and an object edge) that may give a plane of the tool's local model while
+/// the tool stays within `margin_m` of where they were gathered (Moved): a
+/// model is made from them (ModelFromPairs) at each step's proxy, and only
+/// a proxy that moved farther needs the face search again. The objects'
+/// features are kept in the world frame, the tool's by id.
+struct LocalModelPairs {
+  struct VertexFace {
+    VertexId tool_vertex;
+    WorldFace face;
+    int material;  ///< Index into `materials`.
+  };
+  struct FaceVertex {
+    FaceId tool_face;
+    Vector3d vertex_W;
+    int material;
+  };
+  struct EdgeEdge {
+    EdgeId tool_edge;
+    WorldEdge edge;
+    int material;
+  };
+  /// The proxy pose they were gathered at, and the margin.
+  Isometry3d X_WP = Isometry3d::Identity();
+  double margin_m = -1;  ///< < 0: never gathered.
+  /// The arm a turn of the tool moves the features by (Moved).
+  double lever_m = 0;
+  /// How many fixed objects there were.
+  size_t obstacle_count = 0;
+  /// Object id and face material of the pairs' planes (their other fields
+  /// unused).
+  std::vector<ConstraintPlane> materials;
+  std::vector<VertexFace> vertex_faces;
+  std::vector<FaceVertex> face_vertices;
+  std::vector<EdgeEdge> edge_edges;
+
+  /// How far, at most, any feature of a pair has moved relative to the
+  /// other with the proxy at X_WP instead of where they were gathered: the
+  /// shift of the origin and the turn times the lever (the farthest point
+  /// of the tool or of an object feature within the radius of it, from the
+  /// tool's origin).
+  double Moved(const Isometry3d& X_WP) const;
+};
+
+/// Fills `pairs` for `tool` (its pose field ignored) at proxy pose X_WP
+/// among `obstacles` (fixed objects, ids `ids`): every pair BuildLocalModel
+/// would take a plane from with the proxy anywhere `Moved` says is within
+/// `margin_m` (>= 0) of X_WP. Allocates nothing once the vectors are large
+/// enough.
+void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
+                           std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                           const LocalModelOptions& options, double margin_m,
+                           LocalModelPairs& pairs);
+
+/// Fills `model` for `tool` at `proxy`, moved toward the device at `p_WD`,
+/// from `pairs`: while `pairs.Moved(proxy.X_WP) <= pairs.margin_m`, the
+/// model BuildLocalModel makes there (its revision left as it was).
+void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
+                    const LocalModelPairs& pairs, const LocalModelOptions& options,
+                    LocalModel& model);
+
 /// Fills `model` for `tool` (its pose field ignored) at `proxy`, moved
-/// toward the device at `p_WD`, among
-/// `obstacles` (fixed objects, ids `ids`; `proxy.obstacle` is an id). A
-/// plane is taken for each face whose box comes within the radius of the
-/// tool's box and whose plane the tool is in front of by at most the
-/// radius; planes that coincide are taken once. Allocates nothing once
-/// `model.planes` and the query buffers are large enough.
+/// toward the device at `p_WD`, among `obstacles` (fixed objects, ids
+/// `ids`; `proxy.obstacle` is an id): the planes of the translations the
+/// tool may make. A pair of features (a tool vertex and an object face,
+/// an object vertex and a tool face, two edges) gives a plane when its
+/// features, moved along the plane's normal, would meet, and they lie in
+/// front by at most the radius; planes that coincide are taken once, the
+/// nearest `max_planes` kept. Its revision is left as it was. Allocates
+/// nothing once `model.planes` and the query buffers are large enough.
 void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                      std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                      const LocalModelOptions& options, LocalModel& model);
-
-/// Fills `model` from `built` (a model BuildLocalModel made) for the proxy
-/// at `proxy`, moved toward `p_WD`, without a new face search: each
-/// plane's gap and tool point follow the proxy's shift since `built` was
-/// taken, a plane the proxy has gone more than `behind_m` behind (a face
-/// it has slid past) is left out, and the validity radius shrinks by
-/// `moved_m`, how far any point of the tool has moved since (the model
-/// holds within what is left of the built one's sphere; at least
-/// `behind_m`). Revision, clamp and friction are `built`'s. Allocates
-/// nothing once `model.planes` is as large as `built`'s.
-void ReanchorLocalModel(const LocalModel& built, const ProxyState& proxy, const Vector3d& p_WD,
-                        double moved_m, double behind_m, LocalModel& model);
 
 }  // namespace hs

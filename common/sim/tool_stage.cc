@@ -16,19 +16,14 @@ namespace {
 // than this many shortest box edges in one step may pass through.
 constexpr int kMaxSubsteps = 256;
 
-// A tool's local model is searched for again when its proxy has moved
-// more than this fraction of the validity radius since the last search, or
-// that search is older than the age below; in between, the last search's
-// planes are moved to each step's proxy. A millionth: only a proxy that has
-// not moved but by rounding (a proxy pressed on a surface may swap between
-// two places 1e-13 m apart for ever) keeps its planes, which a search
-// would find the same; the rest search.
-// A quarter, an eighth and a sixteenth of the radius were tried
-// (2026-11-27): the remote slide at 100 ms round trip then changed the
-// force by up to 0.6-0.9 N in a tick against its 0.5 N bound, the loop
-// leaning on faces it has slid past for longer.
-constexpr double kLocalModelMoveFraction = 1e-6;
-constexpr double kLocalModelMaxAgeS = 0.05;
+// A face search gathers the pairs of features that may give a plane while
+// the proxy moves by this fraction of the validity radius; each step makes
+// its model from them, as a search there would, until the proxy has moved
+// farther or the search is older than the period below (which no
+// correctness needs: the fixed objects do not move, and a scene edit makes
+// a new scene). A quarter: ### measured below.
+constexpr double kPairMarginFraction = 0.15;
+constexpr double kLongestSearchPeriodS = 1.0;
 
 // The contact ProxiesPenetrate reconstructs, kept from step to step.
 struct StartContact {
@@ -48,18 +43,12 @@ void AddStats(StageStatsTable& to, StageStatsTable& from) {
 void ToolStage::Add(ObjectId id, const Isometry3d& X_WO) {
   if (static_cast<int>(index_.size()) <= id) index_.resize(id + 1, -1);
   index_[id] = static_cast<int>(tools_.size());
-  const AlignedBox3d box = objects_[id].object.bounding_box();
-  double reach_m = 0;
-  for (int corner = 0; corner < 8; ++corner) {
-    reach_m = std::max(reach_m, box.corner(static_cast<AlignedBox3d::CornerType>(corner)).norm());
-  }
   tools_.push_back(Tool{.id = id,
                         .X_WD_previous = X_WO,
                         .X_WD = X_WO,
                         .X_WP = X_WO,
                         .X_WP_previous = X_WO,
-                        .X_WO_home = X_WO,
-                        .reach_m = reach_m});
+                        .X_WO_home = X_WO});
   scratch_.emplace_back();
 }
 
@@ -87,15 +76,12 @@ bool ToolStage::NothingToStep() const {
 
 void ToolStage::RequestLocalModel(ObjectId id) { scratch_[index_[id]].model_wanted = true; }
 
-double ToolStage::ModelMoved(const Tool& tool, const Isometry3d& X_WP, bool friction,
-                             ToolScratch& scratch) const {
-  const LocalModel& built = scratch.built_model;
-  if (built.revision == 0 || scratch.model_wanted || built.friction != friction) return -1;
-  if (++scratch.steps_since_model * options_.step_s > kLocalModelMaxAgeS) return -1;
-  // The origin's shift, and the turn times the tool's reach.
-  const double turn = Eigen::AngleAxisd(built.X_WP.linear().transpose() * X_WP.linear()).angle();
-  const double moved = (X_WP.translation() - built.X_WP.translation()).norm() + tool.reach_m * turn;
-  return moved <= kLocalModelMoveFraction * built.validity_radius_m ? moved : -1;
+bool ToolStage::PairsServe(const Isometry3d& X_WP, ToolScratch& scratch) const {
+  const LocalModelPairs& pairs = scratch.model_pairs;
+  if (pairs.margin_m < 0 || scratch.model_wanted) return false;
+  if (pairs.obstacle_count != objects_.obstacles().size()) return false;
+  if (++scratch.steps_since_search * options_.step_s > kLongestSearchPeriodS) return false;
+  return pairs.Moved(X_WP) <= pairs.margin_m;
 }
 
 ToolStage::ProxyMotion ToolStage::ProxyMotionOf(ObjectId id) const {
@@ -476,31 +462,27 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
   }
   if (stages.Has(Effect::kLocalModel)) {
     StageTimer timer(stats[static_cast<int>(Effect::kLocalModel)]);
-    const bool friction = stages.Has(Effect::kFriction);
-    // Every change of the model the frames carry is a new revision.
-    const uint64_t revision = scratch.model.revision + 1;
-    const double moved = ModelMoved(tool, proxy.X_WP, friction, scratch);
-    if (moved < 0) {
-      BuildLocalModel(objects_.Posed(tool.id, proxy.X_WP), proxy, tool.X_WD.translation(),
-                      objects_.obstacles(), objects_.obstacle_ids(),
-                      {.radius_m = options_.local_model_radius_m,
-                       .force_clamp_n = options_.force_clamp_n,
-                       .friction = friction},
-                      scratch.built_model);
-      scratch.built_model.revision = revision;
-      scratch.steps_since_model = 0;
-      scratch.model_wanted = false;
-      scratch.model = scratch.built_model;
-    } else if (!proxy.X_WP.isApprox(scratch.model.X_WP, 0.0) ||
-               tool.X_WD.translation() != scratch.model.p_WD) {
-      // The planes of the last search, moved to this step's proxy: a device
-      // corrects its drift against each step's proxy, as with a new model.
-      // A plane the proxy went behind by more than its stand-off (1e-6 of
-      // the tool's size, as the search's) is a face it slid past.
-      ReanchorLocalModel(scratch.built_model, proxy, tool.X_WD.translation(), moved,
-                         1e-6 * tool.reach_m, scratch.model);
-      scratch.model.revision = revision;
+    const LocalModelOptions model_options{.radius_m = options_.local_model_radius_m,
+                                          .force_clamp_n = options_.force_clamp_n,
+                                          .friction = stages.Has(Effect::kFriction)};
+    const bool search = !PairsServe(proxy.X_WP, scratch);
+    if (search) {
+      GatherLocalModelPairs(objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP, objects_.obstacles(),
+                            objects_.obstacle_ids(), model_options,
+                            kPairMarginFraction * options_.local_model_radius_m,
+                            scratch.model_pairs);
+      scratch.steps_since_search = 0;
     }
+    // A model changes only with the proxy, the device or the options: a
+    // device's loop takes each revision once.
+    if (search || !proxy.X_WP.isApprox(scratch.model.X_WP, 0.0) ||
+        tool.X_WD.translation() != scratch.model.p_WD ||
+        scratch.model.friction != model_options.friction) {
+      ModelFromPairs(objects_[tool.id].object, proxy, tool.X_WD.translation(), scratch.model_pairs,
+                     model_options, scratch.model);
+      ++scratch.model.revision;
+    }
+    scratch.model_wanted = false;
     frame.local_model = scratch.model;
   }
   if (stages.Has(Effect::kForce) && proxy.touching) {

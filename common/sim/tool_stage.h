@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/core/scratch.h"
+#include "common/sim/local_model_builder.h"
 #include "common/sim/pair_caches.h"
 #include "common/sim/scene_objects.h"
 #include "common/sim/scene_options.h"
@@ -77,7 +78,6 @@ class ToolStage {
     Isometry3d X_WP;           // proxy pose
     Isometry3d X_WP_previous;  // proxy pose of the last step
     Isometry3d X_WO_home;      // where Add put it
-    double reach_m = 0;        // farthest point of its box from its origin, metres
     bool moved = true;
     bool seated = false;  // SeatDevice since the last step
   };
@@ -115,12 +115,13 @@ class ToolStage {
     // so that they stop growing once each half has met its largest contact.
     ScratchSpace contacts_space;
     ScratchSpace proxy_space;
-    // The proxy half, with the local model stage: the tool's last model as
-    // built, which serves until a step builds the next (ModelMoved), the
-    // steps since, whether a device asked for a fresh one, and the model
-    // the frames carry: the built one moved to each step's proxy.
-    LocalModel built_model;
-    int steps_since_model = 0;
+    // The proxy half, with the local model stage: the feature pairs of the
+    // last face search, which serve until the proxy moves past their
+    // margin (PairsServe), the steps since, whether a device asked for a
+    // fresh model, and the model the frames carry, made from the pairs at
+    // each step's proxy.
+    LocalModelPairs model_pairs;
+    int steps_since_search = 0;
     bool model_wanted = false;
     LocalModel model;
   };
@@ -151,12 +152,10 @@ class ToolStage {
   // `island` holds the tool (indices into tools_).
   void StepProxy(int index, std::span<const int> island, EffectSet stages, ToolFrame& frame,
                  ToolScratch& scratch) const;
-  // How far any point of the tool has moved since `scratch.built_model`
-  // was taken, with its proxy at X_WP, when that model still serves
-  // (docs/simulation.md, Local models only when needed); -1 when a new one
-  // must be built.
-  double ModelMoved(const Tool& tool, const Isometry3d& X_WP, bool friction,
-                    ToolScratch& scratch) const;
+  // Whether the pairs of the last face search still serve the tool's
+  // model with its proxy at X_WP (docs/simulation.md, Local models only
+  // when needed); counts the step.
+  bool PairsServe(const Isometry3d& X_WP, ToolScratch& scratch) const;
   // Fills scratch.candidates with the targets the tool may touch this step.
   void FindCandidates(const Tool& tool, Candidates which, ToolScratch& scratch) const;
   // Fills scratch.proxy_obstacles with the fixed objects and the proxies of

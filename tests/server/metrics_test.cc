@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 #include <prometheus/counter.h>
+#include <time.h>
+
+#include <string>
 
 namespace hs {
 namespace {
@@ -48,6 +51,29 @@ TEST(MetricsTest, CountsAppearInExposition) {
   EXPECT_TRUE(Has(text,
                   "hs_tool_clash_seconds_total{scene=\"demo\",tool_a=\"left\",tool_b=\"right\"} "
                   "0.002"));
+}
+
+double ProcessCpuSeconds() {
+  timespec cpu{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu);
+  return static_cast<double>(cpu.tv_sec) + 1e-9 * static_cast<double>(cpu.tv_nsec);
+}
+
+// process_cpu_seconds_total is the process's CPU time when scraped: it lies
+// between the process's own clock read before and after the scrape.
+TEST(MetricsTest, ProcessCpuSecondsAreTheProcesssCpuTime) {
+  Metrics metrics;
+  const std::string name = "process_cpu_seconds_total ";
+  const double before = ProcessCpuSeconds();
+  const std::string text = metrics.Text();
+  const double after = ProcessCpuSeconds();
+  const size_t at = text.find("\n" + name);
+  ASSERT_NE(at, std::string::npos) << text;
+  const double scraped = std::stod(text.substr(at + 1 + name.size()));
+  // The exposition prints the value with at most 1e-9 relative rounding.
+  EXPECT_GE(scraped, before * (1 - 1e-9));
+  EXPECT_LE(scraped, after * (1 + 1e-9));
+  EXPECT_TRUE(Has(text, "# TYPE process_cpu_seconds_total counter"));
 }
 
 // An address it cannot listen on is an error, not an exception.

@@ -207,5 +207,86 @@ TEST(LocalModelBuilderTest, TranslationsThePlanesAllowMeetNothing) {
   EXPECT_GT(allowed, 1000);  // the draws reached both sides of the planes
 }
 
+// A move bounded by `margin`: a random shift and turn scaled so that
+// Moved says at most the margin.
+Isometry3d MoveWithin(const LocalModelPairs& pairs, std::mt19937& rng, double margin) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  Isometry3d X = pairs.X_WP;
+  X.translation() += 0.5 * margin * unit(rng) * testing_poses::RandomDirection(rng);
+  X.linear() = X.linear() * Eigen::AngleAxisd(0.5 * margin / pairs.lever_m * unit(rng),
+                                              testing_poses::RandomDirection(rng))
+                                .toRotationMatrix();
+  return X;
+}
+
+// The pairs' promise: wherever the proxy moves within the margin, the
+// model made from the pairs gathered before is the one a fresh search
+// there makes, plane for plane and bit for bit (the same tests on the same
+// numbers). A turned cube over a floor and beside a faceted ball, random
+// gather poses and moves, with and without a cap on the planes.
+TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
+  const auto floor = Floor();
+  const auto ball = MakeBody(MakeIcosphere(0.03, 2), At(0.035, 0, 0.03));
+  const auto tool = Tool();
+  const std::vector<PosedObject> posed{floor->posed(), ball->posed()};
+  const std::vector<ObjectId> ids{1, 2};
+  std::mt19937 rng(23);
+  int planes = 0;
+  for (const int max_planes : {16, 64}) {
+    const LocalModelOptions options{.radius_m = kRadius, .max_planes = max_planes};
+    for (int k = 0; k < 40; ++k) {
+      Isometry3d X_WP = testing_poses::RandomPose(rng, 0.02);
+      X_WP.translation() += Vector3d(0, 0, 0.018);
+      LocalModelPairs pairs;
+      const double margin = 0.25 * kRadius;
+      GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, options, margin, pairs);
+      for (int j = 0; j < 20; ++j) {
+        const Isometry3d moved = MoveWithin(pairs, rng, margin);
+        ASSERT_LE(pairs.Moved(moved), margin);
+        const Vector3d p_WD = moved.translation() - Vector3d(0, 0, 0.001);
+        LocalModel from_pairs, searched;
+        ModelFromPairs(tool->object, ProxyAt(moved), p_WD, pairs, options, from_pairs);
+        BuildLocalModel(tool->posed(), ProxyAt(moved), p_WD, posed, ids, options, searched);
+        ASSERT_EQ(from_pairs.planes.size(), searched.planes.size()) << k << " " << j;
+        planes += static_cast<int>(searched.planes.size());
+        for (size_t i = 0; i < searched.planes.size(); ++i) {
+          const ConstraintPlane &a = from_pairs.planes[i], &b = searched.planes[i];
+          EXPECT_EQ(a.object, b.object);
+          EXPECT_EQ(a.normal_W, b.normal_W);
+          EXPECT_EQ(a.gap_m, b.gap_m);
+          EXPECT_EQ(a.point_W, b.point_W);
+          EXPECT_EQ(a.tool_point_W, b.tool_point_W);
+          EXPECT_EQ(a.stiffness_n_per_m, b.stiffness_n_per_m);
+        }
+        EXPECT_TRUE(from_pairs.X_WP.isApprox(searched.X_WP, 0.0));
+        EXPECT_EQ(from_pairs.p_WD, searched.p_WD);
+        EXPECT_EQ(from_pairs.validity_radius_m, searched.validity_radius_m);
+      }
+    }
+  }
+  EXPECT_GT(planes, 2000);  // the poses came within the radius of both
+}
+
+// Moved bounds the move of any point the pairs hold: a shift counts its
+// length, a turn its angle times the lever (the tool's reach plus the
+// radius and the margin, times sqrt 3: hand-computed for the 2 cm cube,
+// whose farthest corner is sqrt(3) cm from its centre).
+TEST(LocalModelBuilderTest, MovedIsTheShiftPlusTheTurnTimesTheLever) {
+  const auto floor = Floor();
+  const auto tool = Tool();
+  LocalModelPairs pairs;
+  const Isometry3d X_WP = At(0, 0, 0.02);
+  const std::vector<PosedObject> posed{floor->posed()};
+  const std::vector<ObjectId> ids{0};
+  GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, {.radius_m = kRadius}, 0.002, pairs);
+  EXPECT_NEAR(pairs.lever_m, std::sqrt(3.0) * (std::sqrt(3.0) * 0.01 + kRadius + 0.002), 1e-15);
+  EXPECT_EQ(pairs.Moved(X_WP), 0);
+  Isometry3d moved = X_WP;
+  moved.translation() += Vector3d(0.003, 0, 0.004);
+  moved.linear() = Eigen::AngleAxisd(0.01, Vector3d::UnitY()).toRotationMatrix();
+  EXPECT_NEAR(pairs.Moved(moved), 0.005 + 0.01 * pairs.lever_m, 1e-12);
+  EXPECT_FALSE(pairs.vertex_faces.empty());
+}
+
 }  // namespace
 }  // namespace hs
