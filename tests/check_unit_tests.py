@@ -59,7 +59,6 @@ PENDING = {
     "server/agones/server_activity",
     "server/raw_message",
     "server/recording/recording_folder",
-    "server/snapshot_pool",
     "server/state/durable_file",
 }
 
