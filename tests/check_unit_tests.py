@@ -52,7 +52,6 @@ PENDING = {
     "common/model/coin_reader",
     "common/recording/recorded_step",
     "common/recording/recording_summary",
-    "common/recording/replay",
     "common/recording/session_reader",
     "common/sandbox/import_codec",
     "server/agones/agones_sdk",
