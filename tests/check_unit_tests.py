@@ -40,7 +40,6 @@ PENDING = {
     "client/server_call",
     "common/api/exercise_file",
     "common/collision/faces_in_box",
-    "common/sandbox/import_codec",
     "server/agones/agones_sdk",
     "server/agones/server_activity",
     "server/raw_message",
