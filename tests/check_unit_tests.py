@@ -40,9 +40,6 @@ PENDING = {
     "client/server_call",
     "common/api/exercise_file",
     "common/collision/faces_in_box",
-    "server/raw_message",
-    "server/recording/recording_folder",
-    "server/state/durable_file",
 }
 
 
