@@ -29,14 +29,7 @@ PENDING = {
     "client/training/report",
     "client/training/score_output",
     # Not yet tested on their own.
-    "client/channel",
-    "client/contact_json",
     "client/delete_model_command",
-    "client/device_path",
-    "client/json_text",
-    "client/pose_args",
-    "client/recording_command",
-    "client/server_call",
 }
 
 
