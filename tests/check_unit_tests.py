@@ -29,7 +29,6 @@ PENDING = {
     "client/training/report",
     "client/training/score_output",
     # Not yet tested on their own.
-    "client/delete_model_command",
 }
 
 
