@@ -26,8 +26,6 @@ PENDING = {
     "client/loadtest/echo_baseline",
     "client/remote/hand_operator",
     "client/remote/remote_drive",
-    "client/training/report",
-    "client/training/score_output",
     # Not yet tested on their own.
 }
 
