@@ -24,8 +24,6 @@ PENDING = {
     "client/viewer/view_command",
     "client/viewer/view_server",
     "client/loadtest/echo_baseline",
-    "client/remote/hand_operator",
-    "client/remote/remote_drive",
     # Not yet tested on their own.
 }
 
