@@ -23,7 +23,6 @@ PENDING = {
     "client/viewer/scene_link",
     "client/viewer/view_command",
     "client/viewer/view_server",
-    "client/loadtest/echo_baseline",
     # Not yet tested on their own.
 }
 
