@@ -23,7 +23,6 @@ PENDING = {
     "client/viewer/scene_link",
     "client/viewer/view_command",
     "client/viewer/view_server",
-    # Not yet tested on their own.
 }
 
 
