@@ -1,0 +1,128 @@
+#include "common/api/local_model_convert.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "tests/common/random_poses.h"
+
+namespace hs {
+namespace {
+
+namespace pb = haptics::v1;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A model with `planes` random planes of objects 0..2, every field set.
+LocalModel RandomModel(std::mt19937& rng, int planes) {
+  std::uniform_real_distribution<double> u(0.01, 1);
+  LocalModel model;
+  model.X_WP = testing_poses::RandomPose(rng, 1);
+  model.p_WD = Vector3d(u(rng), u(rng), u(rng));
+  model.validity_radius_m = u(rng);
+  model.force_clamp_n = 10 * u(rng);
+  model.touching = rng() % 2;
+  model.touch_point_W = Vector3d(u(rng), -u(rng), u(rng));
+  model.friction = rng() % 2;
+  for (int i = 0; i < planes; ++i) {
+    ConstraintPlane& p = model.planes.emplace_back();
+    p.object = static_cast<int32_t>(rng() % 3);
+    p.point_W = Vector3d(u(rng), u(rng), -u(rng));
+    p.normal_W = testing_poses::RandomDirection(rng);
+    p.gap_m = u(rng) / 100;
+    p.tool_point_W = p.point_W + p.gap_m * p.normal_W;
+    p.stiffness_n_per_m = 1000 * u(rng);
+    p.damping_ns_per_m = u(rng);
+    p.static_friction = u(rng);
+    p.dynamic_friction = p.static_friction * u(rng);
+  }
+  return model;
+}
+
+const std::vector<std::string> kNames = {"table", "organ", "probe"};
+
+// To the proto and back gives the model again, field for field, but the
+// planes' objects, which come back unknown (-1) and go out by name.
+TEST(LocalModelConvertTest, RoundTrip) {
+  std::mt19937 rng(6);
+  for (int k = 0; k < 50; ++k) {
+    const LocalModel model = RandomModel(rng, k % 5);
+    pb::LocalModel proto;
+    LocalModelToProto(model, kNames, &proto);
+    const absl::StatusOr<LocalModel> back = LocalModelFromProto(proto);
+    ASSERT_TRUE(back.ok()) << back.status();
+    EXPECT_TRUE(back->X_WP.isApprox(model.X_WP, 1e-12));
+    EXPECT_EQ(back->p_WD, model.p_WD);
+    EXPECT_EQ(back->validity_radius_m, model.validity_radius_m);
+    EXPECT_EQ(back->force_clamp_n, model.force_clamp_n);
+    EXPECT_EQ(back->touching, model.touching);
+    EXPECT_EQ(back->touch_point_W, model.touch_point_W);
+    EXPECT_EQ(back->friction, model.friction);
+    ASSERT_EQ(back->planes.size(), model.planes.size());
+    for (size_t i = 0; i < model.planes.size(); ++i) {
+      const ConstraintPlane &got = back->planes[i], &want = model.planes[i];
+      EXPECT_EQ(proto.planes(i).object(), kNames[want.object]);
+      EXPECT_EQ(got.object, -1);
+      EXPECT_EQ(got.point_W, want.point_W);
+      EXPECT_EQ(got.normal_W, want.normal_W);
+      EXPECT_EQ(got.gap_m, want.gap_m);
+      EXPECT_EQ(got.tool_point_W, want.tool_point_W);
+      EXPECT_EQ(got.stiffness_n_per_m, want.stiffness_n_per_m);
+      EXPECT_EQ(got.damping_ns_per_m, want.damping_ns_per_m);
+      EXPECT_EQ(got.static_friction, want.static_friction);
+      EXPECT_EQ(got.dynamic_friction, want.dynamic_friction);
+    }
+  }
+}
+
+// Each field out of its range makes the whole model INVALID_ARGUMENT,
+// naming that field.
+TEST(LocalModelConvertTest, BadFieldsAreNamed) {
+  std::mt19937 rng(7);
+  pb::LocalModel good;
+  LocalModelToProto(RandomModel(rng, 2), kNames, &good);
+  ASSERT_TRUE(LocalModelFromProto(good).ok());
+  struct Case {
+    const char* field;
+    std::function<void(pb::LocalModel&)> spoil;
+  };
+  const Case cases[] = {
+      {"validity_radius_m", [](pb::LocalModel& m) { m.set_validity_radius_m(0); }},
+      {"validity_radius_m", [](pb::LocalModel& m) { m.set_validity_radius_m(kNaN); }},
+      {"force_clamp_n", [](pb::LocalModel& m) { m.set_force_clamp_n(-1); }},
+      {"touch_point_W_m", [](pb::LocalModel& m) { m.mutable_touch_point_w_m()->set_x(kNaN); }},
+      {"device_position_W_m",
+       [](pb::LocalModel& m) { m.mutable_device_position_w_m()->set_z(1e300); }},
+      {"planes[1].normal_W",
+       [](pb::LocalModel& m) { m.mutable_planes(1)->mutable_normal_w()->set_x(2); }},
+      {"planes[0].gap_m", [](pb::LocalModel& m) { m.mutable_planes(0)->set_gap_m(-1e-9); }},
+      {"planes[0].point_W_m",
+       [](pb::LocalModel& m) { m.mutable_planes(0)->mutable_point_w_m()->set_y(kNaN); }},
+      {"planes[1].material.stiffness_n_per_m",
+       [](pb::LocalModel& m) {
+         m.mutable_planes(1)->mutable_material()->set_stiffness_n_per_m(0);
+       }},
+      {"planes[1].material.damping_ns_per_m",
+       [](pb::LocalModel& m) {
+         m.mutable_planes(1)->mutable_material()->set_damping_ns_per_m(-1);
+       }},
+      {"planes[0].material.dynamic_friction",
+       [](pb::LocalModel& m) {
+         pb::Material* material = m.mutable_planes(0)->mutable_material();
+         material->set_dynamic_friction(material->static_friction() * 1.5 + 0.1);
+       }},
+  };
+  for (const Case& c : cases) {
+    pb::LocalModel bad = good;
+    c.spoil(bad);
+    const absl::StatusOr<LocalModel> model = LocalModelFromProto(bad);
+    EXPECT_EQ(model.status().code(), absl::StatusCode::kInvalidArgument) << c.field;
+    EXPECT_NE(model.status().message().find(c.field), std::string::npos) << model.status();
+  }
+}
+
+}  // namespace
+}  // namespace hs
