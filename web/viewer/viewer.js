@@ -12,6 +12,7 @@
 // index.html?snapshot=1 one /geometry + one /frame, drawn once, then
 //                       document.body.dataset.ready = "1" and title "ready"
 
+import * as THREE from 'three';
 import { BridgeSocket, fetchJson } from './connection.js';
 import { DriveControls } from './controls.js';
 import { contactsOf, FrameView } from './frame_view.js';
@@ -44,6 +45,7 @@ const state = {
   arrows: { reversing_vector: false, force: false },
   status: '',             // banner and status line text
   posesSent: 0,
+  // camera: {target: [x, y, z], distance} (metres), read live from the stage
 };
 window.viewerState = state;
 
@@ -60,6 +62,7 @@ try {
   state.status = panel.statusText();
   throw e;
 }
+Object.defineProperty(state, 'camera', { enumerable: true, get: () => stage.view() });
 const objects = new SceneObjects(stage.scene);
 const frameView = new FrameView(stage.scene);
 const chart = new StripChart(document.getElementById('strip-chart'));
@@ -99,6 +102,13 @@ window.viewerTest = {
   release: () => drive.release(),
   moveBy: (offset) => drive.moveBy(offset),
 };
+
+// F: the camera frames the driven tool (else the chosen one) and its
+// contacts, which are millimetres across where the whole table is not.
+window.addEventListener('keydown', (e) => {
+  if (e.ctrlKey || e.metaKey || e.altKey || e.key.toLowerCase() !== 'f') return;
+  if (frameOnTool()) e.preventDefault();
+});
 
 // ---- geometry ----------------------------------------------------------------
 
@@ -240,6 +250,22 @@ function refreshToolNames() {
   for (const entry of objects.all()) if (entry.kind === 'tool') names.add(entry.name);
   for (const tool of latestFrame?.tools ?? []) names.add(tool.name);
   panel.setToolNames([...names]);
+}
+
+/** Aims the camera at the driven (else chosen) tool and its contact points; false without one. */
+function frameOnTool() {
+  const tool = state.heldTool ?? panel.selectedTool();
+  const entry = tool ? objects.get(tool) : null;
+  if (!entry) return false;
+  const box = new THREE.Box3().setFromObject(entry.group);
+  for (const contact of state.contacts) {
+    if (contact.tool !== tool) continue;
+    for (const p of contact.points) {
+      if (isFiniteArray(p, 3)) box.expandByPoint(new THREE.Vector3(p[0], p[1], p[2]));
+    }
+  }
+  stage.aimAt(box);
+  return true;
 }
 
 // ---- status ------------------------------------------------------------------
