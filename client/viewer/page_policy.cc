@@ -2,8 +2,6 @@
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/escaping.h"
-#include "absl/strings/str_cat.h"
-#include "absl/strings/str_join.h"
 #include "common/hash/sha256.h"
 
 namespace hs::cli {
@@ -16,10 +14,10 @@ std::vector<std::string> InlineScriptHashes(std::string_view html) {
     if (tag_end == std::string_view::npos) break;
     const size_t close = html.find(kClose, tag_end);
     if (close == std::string_view::npos) break;
-    const std::string tag = absl::AsciiStrToLower(html.substr(at, tag_end - at));
+    const std::string tag = absl::AsciiStrToLower(std::string(html.substr(at, tag_end - at)));
     if (tag.find(" src=") == std::string::npos) {
       const std::string_view text = html.substr(tag_end + 1, close - tag_end - 1);
-      hashes.push_back(absl::StrCat("'sha256-", absl::Base64Escape(Sha256Of(text)), "'"));
+      hashes.push_back("'sha256-" + absl::Base64Escape(Sha256Of(text)) + "'");
     }
     at = close + kClose.size();
   }
@@ -28,11 +26,11 @@ std::vector<std::string> InlineScriptHashes(std::string_view html) {
 
 std::string PageContentSecurityPolicy(std::string_view index_html) {
   const std::vector<std::string> hashes = InlineScriptHashes(index_html);
-  return absl::StrCat("default-src 'self'; script-src 'self'", hashes.empty() ? "" : " ",
-                      absl::StrJoin(hashes, " "),
-                      "; connect-src 'self'; img-src 'self' data:; style-src 'self'; "
-                      "object-src 'none'; base-uri 'none'; form-action 'none'; "
-                      "frame-ancestors 'none'");
+  std::string scripts = "'self'";
+  for (const std::string& hash : hashes) scripts += " " + hash;
+  return "default-src 'self'; script-src " + scripts +
+         "; connect-src 'self'; img-src 'self' data:; style-src 'self'; object-src 'none'; "
+         "base-uri 'none'; form-action 'none'; frame-ancestors 'none'";
 }
 
 std::vector<std::pair<std::string, std::string>> PageSecurityHeaders(std::string_view index_html) {

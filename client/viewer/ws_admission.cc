@@ -3,16 +3,21 @@
 #include <openssl/crypto.h>
 #include <openssl/rand.h>
 
-#include "absl/strings/ascii.h"
-#include "absl/strings/escaping.h"
-#include "absl/strings/match.h"
-#include "absl/strings/str_cat.h"
+#include <algorithm>
+#include <cctype>
 
 namespace hs::cli {
 
 namespace {
 
 constexpr int kTokenBytes = 32;
+
+bool SameIgnoringCase(std::string_view a, std::string_view b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](char x, char y) {
+    return std::tolower(static_cast<unsigned char>(x)) ==
+           std::tolower(static_cast<unsigned char>(y));
+  });
+}
 
 }  // namespace
 
@@ -21,8 +26,13 @@ absl::StatusOr<std::string> NewViewToken() {
   if (RAND_bytes(bytes, kTokenBytes) != 1) {
     return absl::InternalError("the system's random generator gave no bytes for the viewer token");
   }
-  return absl::BytesToHexString(
-      std::string_view(reinterpret_cast<const char*>(bytes), kTokenBytes));
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string token;
+  for (const unsigned char byte : bytes) {
+    token += kHex[byte >> 4];
+    token += kHex[byte & 15];
+  }
+  return token;
 }
 
 std::string_view TokenInTarget(std::string_view target) {
@@ -60,9 +70,10 @@ absl::Status WsAdmission::Admit(std::string_view origin, std::string_view host,
   if (origin.empty()) return absl::PermissionDeniedError("no Origin");
   if (host.empty()) return absl::PermissionDeniedError("no Host");
   // Browsers send the origin in lowercase; a Host is as the user typed it.
-  if (!absl::EqualsIgnoreCase(origin, absl::StrCat(scheme_, "://", host))) {
-    return absl::PermissionDeniedError(
-        absl::StrCat("Origin ", origin, " is not the page's (", scheme_, "://", host, ")"));
+  const std::string own = scheme_ + "://" + std::string(host);
+  if (!SameIgnoringCase(origin, own)) {
+    return absl::PermissionDeniedError("Origin " + std::string(origin) + " is not the page's (" +
+                                       own + ")");
   }
   return CheckToken(target);
 }
