@@ -1,6 +1,10 @@
 #include "tests/client/viewer/bridge_client.h"
 
+// <utility> before Boost: Boost 1.74's Asio uses std::exchange without it.
+#include <utility>
+
 #include <boost/asio.hpp>
+#include <boost/asio/ssl/host_name_verification.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/ssl.hpp>

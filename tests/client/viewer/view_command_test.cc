@@ -19,14 +19,14 @@
 namespace hs::cli {
 namespace {
 
-struct Run {
+struct ViewRun {
   int code = -1;
   std::string out, err;
 };
 
-Run View(ViewArgs args) {
+ViewRun View(ViewArgs args) {
   std::ostringstream out, err;
-  Run run;
+  ViewRun run;
   run.code = RunView(args, out, err);
   run.out = out.str();
   run.err = err.str();
@@ -52,7 +52,7 @@ class ViewCommandTest : public ::testing::Test {
 // On loopback it announces http://HOST:PORT/?token= and 64 hex digits, and
 // the secret appears nowhere else in its output.
 TEST_F(ViewCommandTest, AnnouncesTheAddressWithItsToken) {
-  const Run run = View(Args("127.0.0.1:0"));
+  const ViewRun run = View(Args("127.0.0.1:0"));
   ASSERT_EQ(run.code, kExitOk) << run.err;
   std::smatch match;
   ASSERT_TRUE(std::regex_search(
@@ -60,7 +60,7 @@ TEST_F(ViewCommandTest, AnnouncesTheAddressWithItsToken) {
       std::regex(R"(^viewer on http://127\.0\.0\.1:\d+/\?token=([0-9a-f]{64})\n$)")))
       << run.out;
   EXPECT_FALSE(absl::StrContains(run.err, match[1].str())) << run.err;
-  const Run again = View(Args("127.0.0.1:0"));
+  const ViewRun again = View(Args("127.0.0.1:0"));
   EXPECT_FALSE(absl::StrContains(again.out, match[1].str())) << "the secret is new at each start";
 }
 
@@ -68,7 +68,7 @@ TEST_F(ViewCommandTest, AnnouncesTheAddressWithItsToken) {
 // that names both ways out; nothing is announced.
 TEST_F(ViewCommandTest, NonLoopbackNeedsTlsOrInsecureHttp) {
   for (const char* http : {"0.0.0.0:0", "[::]:0", "192.0.2.10:0"}) {
-    const Run run = View(Args(http));
+    const ViewRun run = View(Args(http));
     EXPECT_EQ(run.code, kExitUsage) << http;
     EXPECT_TRUE(absl::StrContains(run.err, "--http-tls-cert")) << run.err;
     EXPECT_TRUE(absl::StrContains(run.err, "--insecure-http")) << run.err;
@@ -82,12 +82,12 @@ TEST_F(ViewCommandTest, BadTlsFilesAreUsageErrors) {
   const TestCertificates& c = MakeTestCertificates();
   ViewArgs half = Args("127.0.0.1:0");
   half.http_tls_cert = c.server_cert.string();
-  const Run half_run = View(half);
+  const ViewRun half_run = View(half);
   EXPECT_EQ(half_run.code, kExitUsage);
   EXPECT_TRUE(absl::StrContains(half_run.err, "--http-tls-key")) << half_run.err;
   ViewArgs wrong = half;
   wrong.http_tls_key = c.server_cert.string();
-  const Run wrong_run = View(wrong);
+  const ViewRun wrong_run = View(wrong);
   EXPECT_EQ(wrong_run.code, kExitUsage);
   EXPECT_TRUE(absl::StrContains(wrong_run.err, c.server_cert.string())) << wrong_run.err;
   EXPECT_EQ(wrong_run.out, "");
@@ -99,7 +99,7 @@ TEST_F(ViewCommandTest, TlsAnnouncesHttps) {
   ViewArgs args = Args("127.0.0.1:0");
   args.http_tls_cert = c.server_cert.string();
   args.http_tls_key = c.server_key.string();
-  const Run run = View(args);
+  const ViewRun run = View(args);
   ASSERT_EQ(run.code, kExitOk) << run.err;
   EXPECT_TRUE(run.out.starts_with("viewer on https://127.0.0.1:")) << run.out;
 }

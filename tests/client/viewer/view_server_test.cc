@@ -91,7 +91,7 @@ TEST_F(ViewServerTest, DataNeedsTheTokenAndAnswersCarryThePolicy) {
     EXPECT_NE(Get(port, std::string(target) + "?token=" + view->token()).status, 403) << target;
   }
   for (const char* target : {"/", "/viewer.js", "/geometry", "/nothing"}) {
-    const testing::HttpReply reply = Get(port, target);
+    testing::HttpReply reply = Get(port, target);
     ASSERT_NE(reply.status, 0) << target;
     EXPECT_TRUE(absl::StrContains(reply.headers["content-security-policy"], "default-src 'self'"))
         << target;
@@ -140,7 +140,7 @@ TEST_F(ViewServerTest, ServesOverTls) {
   ASSERT_NE(view, nullptr);
   const uint16_t port = view->port();
   EXPECT_TRUE(view->url().starts_with("https://127.0.0.1:")) << view->url();
-  const testing::HttpReply page = Get(port, "/", c.ca);
+  testing::HttpReply page = Get(port, "/", c.ca);
   EXPECT_EQ(page.status, 200);
   EXPECT_TRUE(absl::StrContains(page.headers["content-security-policy"], "default-src 'self'"));
   const std::string own = "https://127.0.0.1:" + std::to_string(port);

@@ -52,8 +52,8 @@ TEST(WsAdmissionTest, OnlyTheExactTokenPasses) {
   std::string changed = token;
   changed.back() = changed.back() == '0' ? '1' : '0';
   for (const std::string& target :
-       {"/frame", "/frame?token=", "/frame?token=" + token.substr(0, 63),
-        "/frame?token=" + token + "0", "/frame?token=" + changed}) {
+       std::vector<std::string>{"/frame", "/frame?token=", "/frame?token=" + token.substr(0, 63),
+                                "/frame?token=" + token + "0", "/frame?token=" + changed}) {
     const absl::Status status = admission.CheckToken(target);
     EXPECT_EQ(status.code(), absl::StatusCode::kPermissionDenied) << target;
     EXPECT_FALSE(absl::StrContains(status.message(), token.substr(0, 8))) << status;
