@@ -19,10 +19,6 @@ UNIT_ROOTS = ("common", "server", "client")
 # Units still without a test file of their own. Remove a line when its test lands.
 PENDING = {
     # Being reworked: their tests come with the rework.
-    "client/viewer/page_device",
-    "client/viewer/scene_link",
-    "client/viewer/view_command",
-    "client/viewer/view_server",
     "client/loadtest/echo_baseline",
     "client/remote/hand_operator",
     "client/remote/remote_drive",
