@@ -97,9 +97,13 @@ struct PageClient::Socket {
     w.set_option(websocket::stream_base::decorator([origin](websocket::request_type& request) {
       if (!origin.empty()) request.set(http::field::origin, origin);
     }));
+    // Boost 1.74's blocking handshake drops a refusal's response; the
+    // asynchronous one hands it over. No answer at all leaves status 0.
     websocket::response_type response;
-    beast::error_code ec;
-    w.handshake(response, HostOf(port), target, ec);
+    response.result(0);
+    w.async_handshake(response, HostOf(port), target, [](beast::error_code) {});
+    io.run();
+    io.restart();
     status = response.result_int();
   }
 };
