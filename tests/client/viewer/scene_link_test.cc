@@ -31,7 +31,9 @@ bool WaitUntil(const std::function<bool()>& done) {
 
 std::vector<std::string> ObjectNames(const std::string& geometry_json) {
   std::vector<std::string> names;
-  for (const auto& object : nlohmann::json::parse(geometry_json)["objects"]) {
+  // Named: a range-for over a member of a temporary would outlive it.
+  const nlohmann::json geometry = nlohmann::json::parse(geometry_json);
+  for (const auto& object : geometry.at("objects")) {
     names.push_back(object["name"]);
   }
   return names;
