@@ -40,7 +40,9 @@
 //      a tool a device (hapticctl drive) holds shows that device's name as
 //      its holder in the pages' tools table;
 //      a socket's malformed and unheld messages are counted and move nothing;
-//      hapticctl snapshot writes DIR/snapshot.png; a bridge for an unknown
+//      hapticctl snapshot writes DIR/snapshot.png; a free cube added on
+//      the table is drawn where the frames' bodies put it when page A's
+//      probe pushes it; a bridge for an unknown
 //      scene says so in its page, also after a reload, and runs on; when the server goes away,
 //      page A shows it and the bridge runs on;
 //   7. saves DIR/viewer-a.png and DIR/viewer-b.png (also when failing), and
@@ -50,7 +52,8 @@
 // frames, posesSent, heldTool, contacts: [...], highlighted: { tool_vertices,
 // tool_edges, tool_faces, object_vertices, object_edges, object_faces },
 // arrows: { force, reversing_vector }, tools: { probe: { device_p: [x,y,z],
-// force_magnitude_n, holder } } } and window.viewerTest = { take(tool),
+// force_magnitude_n, holder } }, bodies: { pebble: { mesh_p: [x,y,z], held,
+// touching_tools } } } and window.viewerTest = { take(tool),
 // moveBy([dx,dy,dz]) } (metres, world frame, z up).
 //
 // The demo scene (scenes/probe_on_torus.textproto): the probe, a 2 cm cube,
@@ -586,6 +589,59 @@ async function main() {
   check(magic.equals(Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a])),
         `${png} is not a PNG`);
   log(`snapshot: ${png}, ${fs.statSync(png).size} bytes`);
+
+  step = 'the probe pushes a free body';
+  // A 2 cm free cube joins the scene resting on the table, clear of the
+  // organ; page A lifts the probe over to it, lowers it 1 cm beside it and
+  // pushes it about 9 mm along +x. Page B draws the cube where the frames' bodies
+  // put it: pushed along x (its geometry, fetched once, had it at 0.3),
+  // still on the table. Motions over the organ happen 13 cm up, above it
+  // and below the stylus.
+  fs.mkdirSync(args.artifacts, { recursive: true });
+  const pebbleFile = path.join(args.artifacts, 'pebble.textproto');
+  fs.writeFileSync(pebbleFile, 'name: "pebble" kind: OBJECT_KIND_FREE ' +
+    'model { procedural { box { size_m { x: 0.02 y: 0.02 z: 0.02 } } } } ' +
+    'pose { position_m { x: 0.3 y: 0.3 z: 0.01 } orientation { w: 1 } }\n');
+  const addPebble = startChild('hapticctl objects add (free body)', args.hapticctl,
+    ['objects', 'add', '--server', `127.0.0.1:${port}`, 'probe on torus', 'pebble',
+     '--from', pebbleFile]);
+  const pebbleStatus = await new Promise((resolve) => addPebble.proc.on('exit', resolve));
+  check(pebbleStatus === 0, `hapticctl objects add --from ${pebbleFile} exited with ${pebbleStatus}`);
+  const pebbleOn = async (page) => vec3((await state(page)).bodies?.pebble?.mesh_p);
+  const within = (p, q, tolerance) => p && p.every((v, i) => Math.abs(v - q[i]) <= tolerance);
+  let pebble = null;
+  for (const end4 = Date.now() + 5000; Date.now() < end4; await sleep(100)) {
+    pebble = await pebbleOn(b);
+    if (within(pebble, [0.3, 0.3, 0.01], 1e-3)) break;
+  }
+  check(within(pebble, [0.3, 0.3, 0.01], 1e-3),
+        `page B does not draw the pebble resting where it was added: ${JSON.stringify(pebble)}`);
+  const heldCell = () => b.evaluate(() => [...document.querySelectorAll('#bodies-body tr')]
+    .find((r) => r.cells[0]?.textContent === 'pebble')?.cells[2]?.textContent ?? null);
+  let held = null;
+  for (const end5 = Date.now() + 2000; Date.now() < end5 && held === null; await sleep(100)) {
+    held = await heldCell();
+  }
+  check(held === 'no', `page B's free bodies table shows ${JSON.stringify(held)} as the resting ` +
+        'pebble\'s Held');
+  const moveProbe = (d) => a.evaluate((offset) => window.viewerTest.moveBy(offset), d);
+  const from = await settledDeviceP(a, 2000);
+  await moveProbe([0, 0, 0.13 - from[2]]);
+  await moveProbe([0.27 - from[0], 0.3 - from[1], 0]);
+  await moveProbe([0, 0, 0.011 - 0.13]);
+  // To 1 mm short of it, then 9 mm on in 0.1 mm moves: each pose is taken
+  // at one step, and a 2 mm move in one step would hit it at 2 m/s.
+  await moveProbe([0.009, 0, 0]);
+  for (let i = 0; i < 9; i++) await moveProbe([0.001, 0, 0]);
+  await settledDeviceP(a, 3000);
+  for (const end6 = Date.now() + 5000; Date.now() < end6; await sleep(100)) {
+    pebble = await pebbleOn(b);
+    if (pebble && pebble[0] > 0.305) break;
+  }
+  check(pebble && pebble[0] > 0.305 && within(pebble.slice(1), [0.3, 0.01], 2e-3),
+        `page B does not draw the pebble pushed along the table: ${JSON.stringify(pebble)}, ` +
+        `probe at ${JSON.stringify(devicePOf(await state(a)))}`);
+  log(`a free body: the probe pushed the pebble to ${JSON.stringify(pebble)} on page B`);
 
   step = 'an unknown scene';
   // A bridge for a scene the server lacks: its page says so; the bridge runs on.

@@ -38,6 +38,7 @@ const state = {
   driveState: 'none',     // last drive answer: held | released | refused (or taking / releasing)
   tools: {},              // name -> {device_p, proxy_p, force_n, force_magnitude_n, holder, force_clamped}
   contacts: [],
+  bodies: {},             // free body name -> {mesh_p (where drawn), held, touching_tools}
   highlighted: {
     tool_vertices: 0, tool_edges: 0, tool_faces: 0,
     object_vertices: 0, object_edges: 0, object_faces: 0,
@@ -221,6 +222,21 @@ function recordFrameState(frame) {
   }
 }
 
+/** Where each free body's mesh is drawn, and who holds it by the frame. */
+function recordBodies(frame) {
+  const inFrame = new Map((Array.isArray(frame?.bodies) ? frame.bodies : []).map((b) => [b.name, b]));
+  state.bodies = {};
+  for (const entry of objects.all()) {
+    if (entry.kind !== 'free') continue;
+    const body = inFrame.get(entry.name);
+    state.bodies[entry.name] = {
+      mesh_p: entry.group.position.toArray(),
+      held: Boolean(body?.held),
+      touching_tools: Array.isArray(body?.touching_tools) ? body.touching_tools.map(String) : [],
+    };
+  }
+}
+
 function featureIds(side) {
   const list = (a) => (Array.isArray(a) ? a : []);
   return { vertices: list(side?.vertices), edges: list(side?.edges), faces: list(side?.faces) };
@@ -300,6 +316,7 @@ function drawFrame() {
   const drawn = frameView.apply(latestFrame, objects);
   state.highlighted = drawn.highlighted;
   state.arrows = drawn.arrows;
+  recordBodies(latestFrame);
   if (latestFrame && state.revision >= 0 && !cameraFramedWithFrame) {
     stage.frameOn(objects.boundingBox());
     cameraFramedWithFrame = true;
@@ -310,6 +327,7 @@ function updatePanel() {
   panelDirty = false;
   lastPanelUpdate = performance.now();
   panel.showTools(state.tools);
+  panel.showBodies(state.bodies);
   panel.showContacts(state.contacts);
 }
 
