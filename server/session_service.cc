@@ -202,7 +202,11 @@ class InteractReactor
       }
       taken = absl::AbortedError("tool '" + open.tool() + "' was taken over by " + admin->name);
     }
-    if (!Configure({.frame_rate_hz = open.frame_rate_hz()}, "Interact")) return false;
+    FrameParts parts;
+    parts.bodies = needs->Has(Effect::kFreeBodyMotion);
+    if (!Configure({.parts = parts, .frame_rate_hz = open.frame_rate_hz()}, "Interact")) {
+      return false;
+    }
     if (absl::Status s = runner_->AttachDevice(this, {open.tool(), *needs, holder_},
                                                open.take_over() ? &taken : nullptr);
         !s.ok()) {
@@ -237,7 +241,7 @@ class InteractReactor
 // What a viewer's parts need the scene to compute.
 absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequest& request) {
   if (request.parts().empty()) return std::pair{FrameParts{}, EffectSet::Default()};
-  FrameParts parts{false, false, false, false};
+  FrameParts parts{false, false, false, false, false};
   EffectSet needs;
   for (int i = 0; i < request.parts_size(); ++i) {
     switch (request.parts(i)) {
@@ -255,6 +259,10 @@ absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequ
       case pb::WATCH_PART_LOCAL_MODEL:
         parts.local_model = true;
         needs = needs | EffectSet{Effect::kLocalModel, Effect::kFriction};
+        break;
+      case pb::WATCH_PART_BODIES:
+        parts.bodies = true;
+        needs = needs.With(Effect::kFreeBodyMotion);
         break;
       default:
         return absl::InvalidArgumentError(absl::StrCat("parts[", i, "]: unknown part"));

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "absl/cleanup/cleanup.h"
@@ -27,13 +28,6 @@ namespace hs::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-struct ViewArgs {
-  ConnectionOptions server;
-  std::string scene;
-  std::string http = "127.0.0.1:8080";
-  double duration_s = 0;
-};
 
 struct SnapshotArgs {
   ConnectionOptions server;
@@ -64,32 +58,6 @@ absl::StatusOr<Bridge> StartBridge(const ConnectionOptions& connection, const st
   if (!server.ok()) return server.status();
   bridge.server = std::move(*server);
   return bridge;
-}
-
-int RunView(const ViewArgs& args, std::ostream& out, std::ostream& err) {
-  const std::optional<HostPort> http = SplitHostPort(args.http);
-  if (!http) {
-    err << "view: --http must be HOST:PORT, not '" << args.http << "'\n";
-    return kExitUsage;
-  }
-  const ViewServerOptions web{.host = http->host, .port = http->port};
-  absl::StatusOr<Bridge> bridge = StartBridge(args.server, args.scene, web);
-  if (!bridge.ok()) return ReportError("view", bridge.status(), err);
-  const std::string host =
-      web.host.find(':') == std::string::npos ? web.host : "[" + web.host + "]";
-  out << "viewer on http://" << host << ":" << bridge->server->port() << "/" << std::endl;
-  signal(SIGINT, OnSignal);
-  signal(SIGTERM, OnSignal);
-  const Clock::time_point start = Clock::now();
-  while (!g_interrupted &&
-         (args.duration_s <= 0 ||
-          Clock::now() - start < std::chrono::duration<double>(args.duration_s))) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  const ViewServer::Counters c = bridge->server->counters();
-  err << "view: " << c.poses_forwarded << " poses forwarded, " << c.rejected_messages
-      << " page messages rejected\n";
-  return kExitOk;
 }
 
 // Runs `argv` with its output to `log` and waits up to `timeout_s`; -1 when
@@ -156,8 +124,7 @@ int RunSnapshot(const SnapshotArgs& args, std::ostream& out, std::ostream& err) 
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     state = bridge->link->state();
   }
-  const std::string url =
-      "http://127.0.0.1:" + std::to_string(bridge->server->port()) + "/?snapshot=1";
+  const std::string url = bridge->server->url() + "&snapshot=1";
   // A profile of its own: with the user's, a Chromium already running
   // would take the request and this one would end at once, drawing nothing.
   std::string scratch =
@@ -170,9 +137,11 @@ int RunSnapshot(const SnapshotArgs& args, std::ostream& out, std::ostream& err) 
   };
   const std::string log = scratch + "/chromium.log";
   // --no-sandbox: Chromium's sandbox cannot start as root (CI); the page
-  // is our own, from loopback. --enable-unsafe-swiftshader: WebGL on the
-  // CPU, where there is no GPU. The virtual time budget lets the page's
-  // two fetches and its first render finish before the screenshot.
+  // is our own, from loopback. The URL's token is on Chromium's command
+  // line while it runs: local users may read it there, for these seconds.
+  // --enable-unsafe-swiftshader: WebGL on the CPU, where there is no GPU.
+  // The virtual time budget lets the page's two fetches and its first
+  // render finish before the screenshot.
   const std::vector<std::string> argv = {
       args.browser,
       "--headless=new",
@@ -206,6 +175,55 @@ int RunSnapshot(const SnapshotArgs& args, std::ostream& out, std::ostream& err) 
 
 }  // namespace
 
+int RunView(const ViewArgs& args, std::ostream& out, std::ostream& err) {
+  const std::optional<HostPort> http = SplitHostPort(args.http);
+  if (!http) {
+    err << "view: --http must be HOST:PORT, not '" << args.http << "'\n";
+    return kExitUsage;
+  }
+  ViewServerOptions web{.host = http->host, .port = http->port};
+  web.tls_cert_file = args.http_tls_cert;
+  web.tls_key_file = args.http_tls_key;
+  const bool tls = !web.tls_cert_file.empty() || !web.tls_key_file.empty();
+  if (tls && (web.tls_cert_file.empty() || web.tls_key_file.empty())) {
+    err << "view: TLS needs both --http-tls-cert and --http-tls-key\n";
+    return kExitUsage;
+  }
+  // Other machines would read the frames, and the token that lets a
+  // page drive a tool, off the wire.
+  if (!tls && !IsLoopbackAddress(args.http)) {
+    if (!args.insecure_http) {
+      err << "view: " << args.http
+          << " is reachable from other machines: serve the page with TLS (--http-tls-cert, "
+             "--http-tls-key), or give --insecure-http to serve it in the clear\n";
+      return kExitUsage;
+    }
+    err << "view: warning: serving " << args.http
+        << " in the clear (--insecure-http): anyone on the network path reads the scene and the "
+           "page's token\n";
+  }
+  absl::StatusOr<Bridge> bridge = StartBridge(args.server, args.scene, web);
+  if (!bridge.ok() && bridge.status().code() == absl::StatusCode::kInvalidArgument) {
+    // A bad address or TLS file: the command line's fault.
+    err << "view: " << bridge.status().message() << "\n";
+    return kExitUsage;
+  }
+  if (!bridge.ok()) return ReportError("view", bridge.status(), err);
+  out << "viewer on " << bridge->server->url() << std::endl;
+  signal(SIGINT, OnSignal);
+  signal(SIGTERM, OnSignal);
+  const Clock::time_point start = Clock::now();
+  while (!g_interrupted &&
+         (args.duration_s <= 0 ||
+          Clock::now() - start < std::chrono::duration<double>(args.duration_s))) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const ViewServer::Counters c = bridge->server->counters();
+  err << "view: " << c.poses_forwarded << " poses forwarded, " << c.rejected_messages
+      << " page messages rejected\n";
+  return kExitOk;
+}
+
 void AddViewCommands(CLI::App& app, int& exit_code) {
   auto view = std::make_shared<ViewArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -214,6 +232,11 @@ void AddViewCommands(CLI::App& app, int& exit_code) {
   cmd->add_option("--scene", view->scene, "Scene name")->required();
   cmd->add_option("--http", view->http,
                   "HOST:PORT to serve the page on (loopback unless told otherwise; port 0: any)");
+  cmd->add_option("--http-tls-cert", view->http_tls_cert,
+                  "PEM certificate (chain) to serve the page over https and wss");
+  cmd->add_option("--http-tls-key", view->http_tls_key, "PEM private key of --http-tls-cert");
+  cmd->add_flag("--insecure-http", view->insecure_http,
+                "Serve a non-loopback --http address without TLS (the traffic is readable)");
   cmd->add_option("--duration", view->duration_s, "Stop after this many seconds (0: never)")
       ->check(CLI::Range(0.0, 1e7));
   cmd->callback([view, &exit_code] { exit_code = RunView(*view, std::cout, std::cerr); });

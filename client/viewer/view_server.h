@@ -8,6 +8,12 @@
 // a slow page never slows the scene or the other pages. A page's poses
 // (page_message.h) drive a tool through its own Interact stream
 // (page_device.h). One thread runs it all.
+//
+// Its edge (docs/security.md): it makes a secret at start and announces it
+// in its URL; /geometry, /frame and the WebSocket need it, the WebSocket
+// also the page's own Origin (ws_admission.h), and everything goes out
+// with a policy that allows the bridge alone (page_policy.h). With a
+// certificate and key it serves https:// and wss:// (OpenSSL).
 
 #include <cstdint>
 #include <memory>
@@ -24,19 +30,28 @@ struct ViewServerOptions {
   uint16_t port = 0;
   /// Frames sent to each page per second, at most.
   double send_hz = 60;
+  /// PEM certificate (chain) and private key: serve over TLS. Both or
+  /// neither.
+  std::string tls_cert_file;
+  std::string tls_key_file;
 };
 
 class ViewServer {
  public:
   /// Listens on options' address and serves `link`'s scene (which outlives
-  /// the server). INVALID_ARGUMENT for a bad host, UNAVAILABLE when the
-  /// address cannot be bound.
+  /// the server). INVALID_ARGUMENT for a bad host, or TLS files that are
+  /// missing, hold no PEM certificate or key, or do not match (naming the
+  /// file); UNAVAILABLE when the address cannot be bound.
   static absl::StatusOr<std::unique_ptr<ViewServer>> Start(SceneLink& link,
                                                            const ViewServerOptions& options);
   ~ViewServer();
 
   /// The port it listens on.
   uint16_t port() const;
+  /// The secret pages bring (64 hex digits, new at every start).
+  const std::string& token() const;
+  /// The page's address, secret included: http[s]://HOST:PORT/?token=...
+  std::string url() const;
 
   struct Counters {
     int64_t pages = 0;              // WebSocket pages open now

@@ -73,6 +73,13 @@ json FrameJson(const pb::Frame& frame, const FrameExtras& extras) {
                      {"force_clamped", t.force_clamped()},
                      {"contacts", contacts}});
   }
+  json bodies = json::array();
+  for (const pb::BodyState& b : frame.bodies()) {
+    bodies.push_back({{"name", b.name()},
+                      {"pose", PoseJson(b.pose())},
+                      {"touching_tools", b.touching_tools()},
+                      {"held", b.held()}});
+  }
   return {{"type", "frame"},
           {"step", frame.step()},
           {"time_s", frame.time_s()},
@@ -81,7 +88,8 @@ json FrameJson(const pb::Frame& frame, const FrameExtras& extras) {
           {"step_rate_hz", extras.step_rate_hz},
           {"dropped_frames", extras.dropped_frames},
           {"missed_steps", frame.missed_steps()},
-          {"tools", tools}};
+          {"tools", tools},
+          {"bodies", bodies}};
 }
 
 json GeometryJson(const pb::SceneGeometry& geometry) {

@@ -28,7 +28,9 @@ struct FrameExtras {
 };
 
 /// {"type":"frame", "step", "time_s", "revision", "age_ms", "step_rate_hz",
-/// "dropped_frames", "missed_steps", "tools":[...]}.
+/// "dropped_frames", "missed_steps", "tools":[...], "bodies":[{"name",
+/// "pose", "touching_tools", "held"}]} (bodies as the frame has them:
+/// none at a step that did not move them).
 nlohmann::json FrameJson(const haptics::v1::Frame& frame, const FrameExtras& extras);
 
 /// {"scene", "revision", "objects":[{"name", "kind", "pose", "vertices",

@@ -1,5 +1,6 @@
 #include "common/api/proto_convert.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
@@ -120,6 +121,28 @@ void EffectsToProto(EffectSet effects, google::protobuf::RepeatedField<int>* out
   }
 }
 
+namespace {
+
+bool IsTool(const StepFrame& frame, ObjectId id) {
+  return std::any_of(frame.tools.begin(), frame.tools.end(),
+                     [id](const ToolFrame& t) { return t.tool == id; });
+}
+
+void BodiesToProto(const StepFrame& frame, const std::vector<std::string>& names, pb::Frame* out) {
+  for (const BodyFrame& b : frame.bodies) {
+    pb::BodyState* body = out->add_bodies();
+    body->set_name(names[b.body]);
+    PoseToProto(b.X_WO, body->mutable_pose());
+    for (const ObjectId other : b.touching) {
+      if (IsTool(frame, other)) body->add_touching_tools(names[other]);
+    }
+    body->set_held(!b.touching.empty() &&
+                   body->touching_tools_size() == static_cast<int>(b.touching.size()));
+  }
+}
+
+}  // namespace
+
 void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& names,
                       const FrameParts& parts, pb::Frame* out) {
   out->clear_tools();
@@ -143,6 +166,10 @@ void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& na
     if (parts.local_model && frame.stages_run.Has(Effect::kLocalModel)) {
       LocalModelToProto(t.local_model, names, tool->mutable_local_model());
     }
+  }
+  out->clear_bodies();
+  if (parts.bodies && frame.stages_run.Has(Effect::kFreeBodyMotion)) {
+    BodiesToProto(frame, names, out);
   }
   out->clear_clashes();
   if (!parts.contacts) return;

@@ -54,10 +54,13 @@ struct FrameParts {
   bool contacts = true;
   bool forces = true;
   bool local_model = true;
+  /// The free bodies (the stream needs free-body motion).
+  bool bodies = true;
 };
 
-/// Fills `out`'s tools and stages from `frame`, keeping the `parts` asked
-/// for; `names` gives object names by ObjectId.
+/// Fills `out`'s tools, stages, clashes and bodies from `frame`, keeping
+/// the `parts` asked for; `names` gives object names by ObjectId. Bodies
+/// go out only at steps whose free-body stage ran.
 void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& names,
                       const FrameParts& parts, haptics::v1::Frame* out);
 

@@ -40,6 +40,7 @@ void FreeBodies::Step(const ToolStage& tools, std::vector<BodyFrame>& frames) {
 void FreeBodies::Move(Body& body, const ToolStage& tools, BodyFrame& frame) {
   frame.body = body.id;
   frame.contacts = 0;
+  frame.touching.clear();
   // Keep each sub-step's travel under the shortest box edge of any object
   // (paper s.4): the travel is estimated from the velocity after gravity.
   const double dt = options_.step_s;
@@ -51,7 +52,10 @@ void FreeBodies::Move(Body& body, const ToolStage& tools, BodyFrame& frame) {
     IntegrateFreeBody(body.mass, options_.gravity_W, h, body.state);
     int touching = 0;
     for (ObjectId other = 0; other < objects_.size(); ++other) {
-      if (other != body.id) touching += ResolveContact(body, X_WO_from, h, other, tools);
+      if (other == body.id || !ResolveContact(body, X_WO_from, h, other, tools)) continue;
+      ++touching;
+      const auto at = std::lower_bound(frame.touching.begin(), frame.touching.end(), other);
+      if (at == frame.touching.end() || *at != other) frame.touching.insert(at, other);
     }
     if (touching > 0) body.state.w_W *= std::exp(-options_.contact_angular_damping_per_s * h);
     frame.contacts += touching;

@@ -69,6 +69,9 @@ struct BodyFrame {
   Vector3d w_W = Vector3d::Zero();
   /// Contacts resolved this step (one per object per sub-step).
   int contacts = 0;
+  /// The objects it touched this step (in any sub-step), ascending, each
+  /// once: tools among them hold it when nothing else touches it.
+  std::vector<ObjectId> touching;
   /// Sub-steps the body's motion was split into (1: not split).
   int substeps = 1;
 };

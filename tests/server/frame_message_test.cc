@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/common/sim/pinch_rig.h"
+
 namespace hs {
 namespace {
 
@@ -99,6 +101,81 @@ TEST(FrameMessageTest, EachModelRevisionGoesOutOnce) {
   auto rebuilt = std::make_shared<const std::vector<std::string>>(*names);
   EXPECT_EQ(models(*Snapshot(&device, 2, 2, rebuilt), &device, device_sent),
             (std::vector<uint64_t>{2, 0}));
+}
+
+// A snapshot of `scene`'s last step, `frame`, with no device holding a tool.
+StepSnapshot SnapshotOf(const Scene& scene, const StepFrame& frame) {
+  StepSnapshot s;
+  s.frame = frame;
+  auto names = std::make_shared<std::vector<std::string>>();
+  for (ObjectId id = 0; id < scene.num_objects(); ++id) {
+    names->push_back(scene.object(id).object.name());
+  }
+  s.names = std::move(names);
+  s.applied.resize(frame.tools.size());
+  return s;
+}
+
+// The frame's one body, the cube, after `frame`: its pose is the scene's
+// own pose of the cube (to the quaternion's rounding), and it names the
+// tools that touched it.
+haptics::v1::BodyState CubeIn(const PinchRig& pinch, const StepFrame& frame) {
+  NoSink viewer;
+  ModelsSent sent;
+  haptics::v1::Frame message;
+  FillFrameMessage(SnapshotOf(*pinch.rig.scene, frame), FrameParts{}, &viewer, 0, 0, sent, message);
+  EXPECT_EQ(message.bodies_size(), 1);
+  if (message.bodies_size() != 1) return {};
+  const haptics::v1::BodyState& cube = message.bodies(0);
+  EXPECT_EQ(cube.name(), "cube");
+  const absl::StatusOr<Isometry3d> X_WO = PoseFromProto(cube.pose(), "pose");
+  EXPECT_TRUE(X_WO.ok());
+  if (X_WO.ok()) EXPECT_TRUE(X_WO->isApprox(pinch.rig.scene->object(pinch.cube).X_WO, 1e-12));
+  return cube;
+}
+
+// A free body's frame entry follows the scene: resting on the floor it is
+// held by no tool; pinched and lifted 1 cm by two jaws it is held, by
+// both, and its pose is the scene's own as it rises.
+TEST(FrameMessageTest, FreeBodyPoseAndHolders) {
+  PinchRig pinch = MakePinchRig(0.5);
+  const haptics::v1::BodyState resting = CubeIn(pinch, *pinch.frame);
+  EXPECT_FALSE(resting.held());
+  EXPECT_EQ(resting.touching_tools_size(), 0);
+  const double z0 = resting.pose().position_m().z();
+  const haptics::v1::BodyState lifted = CubeIn(pinch, pinch.PinchAndLift());
+  EXPECT_TRUE(lifted.held());
+  EXPECT_EQ(
+      std::vector<std::string>(lifted.touching_tools().begin(), lifted.touching_tools().end()),
+      (std::vector<std::string>{"left", "right"}));
+  EXPECT_GT(lifted.pose().position_m().z(), z0 + 0.0075);  // most of the 1 cm
+}
+
+// Jaws closed on a body that still rests on the floor touch it but do not
+// hold it: the floor bears it too.
+TEST(FrameMessageTest, PinchedOnTheFloorIsNotHeld) {
+  PinchRig pinch = MakePinchRig(0.5);
+  for (int i = 1; i <= 12; ++i) pinch.Drive(0.001 * i, 0);  // closing, not lifting
+  const haptics::v1::BodyState pinched = CubeIn(pinch, *pinch.frame);
+  EXPECT_FALSE(pinched.held());
+  EXPECT_EQ(pinched.touching_tools_size(), 2);
+}
+
+// No bodies for a stream that does not need free-body motion, nor at a
+// step whose free-body stage did not run (the bodies did not move).
+TEST(FrameMessageTest, BodiesOnlyWhereNeededAndMoved) {
+  PinchRig pinch = MakePinchRig(0.5);
+  StepSnapshot s = SnapshotOf(*pinch.rig.scene, *pinch.frame);
+  NoSink viewer;
+  ModelsSent sent;
+  haptics::v1::Frame message;
+  FrameParts no_bodies;
+  no_bodies.bodies = false;
+  FillFrameMessage(s, no_bodies, &viewer, 0, 0, sent, message);
+  EXPECT_EQ(message.bodies_size(), 0);
+  s.frame.stages_run = s.frame.stages_run.Without(Effect::kFreeBodyMotion);
+  FillFrameMessage(s, FrameParts{}, &viewer, 0, 0, sent, message);
+  EXPECT_EQ(message.bodies_size(), 0);
 }
 
 }  // namespace

@@ -371,6 +371,63 @@ TEST(SessionServiceTest, StagesAreTheUnionOfStreamNeeds) {
   device.Finish();
 }
 
+// Only streams that need free-body motion get the bodies: a viewer of
+// WATCH_PART_BODIES sees the free cube dropped 1 cm come to rest on the
+// table (its centre half its side above the table's top); a device whose
+// needs lack free_body_motion, and a poses-only viewer, get frames of the
+// same scene, whose free-body stage runs, without bodies.
+TEST(SessionServiceTest, BodiesGoToStreamsThatNeedThem) {
+  TestServer server;
+  pb::SceneSpec spec = SmallScene("bodies");
+  pb::SceneObject* pebble = spec.add_objects();
+  pebble->set_name("pebble");
+  pebble->set_kind(pb::OBJECT_KIND_FREE);
+  pb::Vector3* size =
+      pebble->mutable_model()->mutable_procedural()->mutable_box()->mutable_size_m();
+  size->set_x(0.02);
+  size->set_y(0.02);
+  size->set_z(0.02);
+  *pebble->mutable_pose() = PoseAt(0.05, 0.05, 0.03);  // the table's top is at 0.01
+  server.Create(spec);
+  auto watch_context = ContextWithin(30);
+  pb::WatchRequest watch;
+  watch.set_scene("bodies");
+  watch.add_parts(pb::WATCH_PART_BODIES);
+  auto bodies_viewer = server.sessions().Watch(watch_context.get(), watch);
+  auto poses_context = ContextWithin(30);
+  watch.set_parts(0, pb::WATCH_PART_POSES);
+  auto poses_viewer = server.sessions().Watch(poses_context.get(), watch);
+  Device device(server, "bodies", "probe", {pb::EFFECT_COLLISION});
+
+  pb::Frame frame;
+  ASSERT_TRUE(bodies_viewer->Read(&frame));
+  const int64_t first = frame.step();
+  while (frame.step() < first + 300 && bodies_viewer->Read(&frame)) {
+  }
+  ASSERT_EQ(frame.bodies_size(), 1);
+  EXPECT_EQ(frame.bodies(0).name(), "pebble");
+  EXPECT_NEAR(frame.bodies(0).pose().position_m().z(), 0.02, 1e-4);
+  EXPECT_FALSE(frame.bodies(0).held());
+
+  auto moved_bodies = [](const pb::Frame& f) {
+    return std::find(f.stages_run().begin(), f.stages_run().end(), pb::EFFECT_FREE_BODY_MOTION) !=
+           f.stages_run().end();
+  };
+  device.Send(1, PoseAt(0, 0, 0.05));
+  ASSERT_TRUE(device.ReadUntil(1, frame));
+  EXPECT_TRUE(moved_bodies(frame));
+  EXPECT_EQ(frame.bodies_size(), 0);
+  ASSERT_TRUE(poses_viewer->Read(&frame));
+  EXPECT_TRUE(moved_bodies(frame));
+  EXPECT_EQ(frame.bodies_size(), 0);
+
+  watch_context->TryCancel();
+  poses_context->TryCancel();
+  bodies_viewer->Finish();
+  poses_viewer->Finish();
+  device.Finish();
+}
+
 // Bad session input gets its specific code and leaves the scene as it was:
 // unknown scene or tool NOT_FOUND, a NaN or non-unit pose or a missing
 // 'open' INVALID_ARGUMENT, an unknown watch part INVALID_ARGUMENT.

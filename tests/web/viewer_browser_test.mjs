@@ -22,18 +22,28 @@
 //   3. starts `hapticctl view --server 127.0.0.1:N --scene NAME --http 127.0.0.1:0`
 //      and reads "viewer on http://127.0.0.1:M/" from its stdout;
 //   4. opens two pages (A, B) there; waits for viewerState.connected and frames > 0;
+//      the page has taken the ?token= out of its address and came with the
+//      security headers (Content-Security-Policy, nosniff);
+//   4b. the edge: a page of another origin (a port this test serves)
+//      cannot open the bridge's WebSocket even with the token; the page's
+//      own origin cannot without it or with a wrong one, and can with it;
 //   5. A takes the probe (viewerTest.take), does one real mouse drag on the
 //      canvas (posesSent must grow), puts the probe back above its start with
 //      viewerTest.moveBy, then lowers it 1 cm at a time until there is a contact,
-//      and presses 5 mm further;
+//      and presses 5 mm further; F frames the camera on the probe and its
+//      contact, a few centimetres away instead of the whole scene;
 //   6. asserts on A: a contact, highlighted features on both sides, the force
 //      and reversing-vector arrows, probe force > 0; on B: the same probe
 //      device_p as A (within 1e-6) and a holder for the probe;
 //   6b. adds a second tool (hapticctl objects add): page B drives it while
 //      A drives the probe, and both pages see both tools where they were put;
+//      a tool a device (hapticctl drive) holds shows that device's name as
+//      its holder in the pages' tools table;
 //      a socket's malformed and unheld messages are counted and move nothing;
-//      hapticctl snapshot writes DIR/snapshot.png; a bridge for an unknown
-//      scene says so in its page and runs on; when the server goes away,
+//      hapticctl snapshot writes DIR/snapshot.png; a free cube added on
+//      the table is drawn where the frames' bodies put it when page A's
+//      probe pushes it; a bridge for an unknown
+//      scene says so in its page, also after a reload, and runs on; when the server goes away,
 //      page A shows it and the bridge runs on;
 //   7. saves DIR/viewer-a.png and DIR/viewer-b.png (also when failing), and
 //      always stops the server and the bridge.
@@ -42,7 +52,8 @@
 // frames, posesSent, heldTool, contacts: [...], highlighted: { tool_vertices,
 // tool_edges, tool_faces, object_vertices, object_edges, object_faces },
 // arrows: { force, reversing_vector }, tools: { probe: { device_p: [x,y,z],
-// force_magnitude_n, holder } } } and window.viewerTest = { take(tool),
+// force_magnitude_n, holder } }, bodies: { pebble: { mesh_p: [x,y,z], held,
+// touching_tools } } } and window.viewerTest = { take(tool),
 // moveBy([dx,dy,dz]) } (metres, world frame, z up).
 //
 // The demo scene (scenes/probe_on_torus.textproto): the probe, a 2 cm cube,
@@ -53,6 +64,7 @@
 
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
+import http from 'node:http';
 import path from 'node:path';
 import { parseArgs } from 'node:util';
 
@@ -323,6 +335,9 @@ async function main() {
   const url = (await waitForLine(bridge, /viewer on (http:\/\/127\.0\.0\.1:\d+\/\S*)/, 15_000))[1];
   log(`viewer on ${url}`);
 
+  const token = new URL(url).searchParams.get('token');
+  check(/^[0-9a-f]{64}$/.test(token ?? ''), `the announced address carries no token: ${url}`);
+
   step = 'opening two pages';
   const context = await browser.newContext({ viewport: { width: 1000, height: 700 } });
   for (const key of ['a', 'b']) {
@@ -330,7 +345,12 @@ async function main() {
     page.on('console', (m) => { if (m.type() === 'error') consoleLines.push(`${key}: ${m.text()}`); });
     page.on('pageerror', (e) => consoleLines.push(`${key}: page error: ${e.message}`));
     pages[key] = page;
-    await page.goto(url, { timeout: 10_000 });
+    const response = await page.goto(url, { timeout: 10_000 });
+    const headers = response.headers();
+    check(/default-src 'self'/.test(headers['content-security-policy'] ?? '') &&
+          /frame-ancestors 'none'/.test(headers['content-security-policy']) &&
+          headers['x-content-type-options'] === 'nosniff',
+          `page ${key} came without its security headers: ${JSON.stringify(headers)}`);
   }
   const { a, b } = pages;
   for (const [key, page] of Object.entries(pages)) {
@@ -343,6 +363,41 @@ async function main() {
                         `viewerState = ${brief(await state(page))}`);
     }
   }
+
+  check(!a.url().includes('token='), `page A still shows its token: ${a.url()}`);
+  const policyErrors = consoleLines.filter((line) => /Content Security Policy/i.test(line));
+  check(policyErrors.length === 0, `the page broke its own policy: ${policyErrors.join(' | ')}`);
+
+  step = 'the edge: origins and the token';
+  // Whether a WebSocket to the bridge opens from `page` (true) or is refused.
+  const opens = (page, wsUrl) => page.evaluate((u) => new Promise((resolve) => {
+    const ws = new WebSocket(u);
+    ws.onopen = () => { ws.close(); resolve(true); };
+    ws.onclose = () => resolve(false);
+  }), wsUrl);
+  const wsBase = `ws://${new URL(url).host}/ws`;
+  // Another site: a page this test serves from a port of its own.
+  const site = http.createServer((request, response) => {
+    response.writeHead(200, { 'content-type': 'text/html' });
+    response.end('<!doctype html><title>another site</title>');
+  });
+  await new Promise((resolve) => site.listen(0, '127.0.0.1', resolve));
+  try {
+    const other = await context.newPage();
+    await other.goto(`http://127.0.0.1:${site.address().port}/`, { timeout: 10_000 });
+    check(!(await opens(other, `${wsBase}?token=${token}`)),
+          'a page of another origin opened the bridge\'s WebSocket with the token');
+    await other.close();
+  } finally {
+    site.close();
+  }
+  const wrong = token.replace(/^./, (c) => (c === 'a' ? 'b' : 'a'));
+  check(!(await opens(b, wsBase)), 'the page\'s own origin opened the WebSocket without the token');
+  check(!(await opens(b, `${wsBase}?token=${wrong}`)),
+        'the page\'s own origin opened the WebSocket with a wrong token');
+  check(await opens(b, `${wsBase}?token=${token}`),
+        'the page\'s own origin could not open the WebSocket with the token');
+  log('the edge: another origin and a missing or wrong token are refused');
 
   step = 'page A takes the probe';
   await a.evaluate(() => window.viewerTest.take('probe'));
@@ -407,6 +462,17 @@ async function main() {
   log(`page A: ${sa.contacts.length} contact(s), highlighted ${JSON.stringify(sa.highlighted)}, ` +
       `force ${probeOf(sa).force_magnitude_n} N`);
 
+  step = 'F frames the probe';
+  const wide = (await state(a)).camera;
+  await a.keyboard.press('f');
+  const near = (await state(a)).camera;
+  const probeNow = devicePOf(await state(a));
+  const off = Math.hypot(...near.target.map((v, i) => v - probeNow[i]));
+  check(near.distance < 0.15 && near.distance < wide.distance / 3 && off < 0.03,
+        `F did not frame the probe: camera ${JSON.stringify(wide)} -> ${JSON.stringify(near)}, ` +
+        `probe at ${JSON.stringify(probeNow)}`);
+  log(`F: camera ${wide.distance.toFixed(3)} m -> ${near.distance.toFixed(3)} m from its target`);
+
   step = 'checking page B';
   let pa = null, pb = null, sb = null;
   const end = Date.now() + 5000;
@@ -459,12 +525,37 @@ async function main() {
   await sleep(500);
   check((await state(a)).heldTool === 'probe', 'page A lost the probe it took again');
 
+  step = 'a device holds a tool';
+  // Page B lets the stylus go; hapticctl drive takes it: the pages name it
+  // as the frames do (an open server: peer: and the address).
+  await b.evaluate(() => window.viewerTest.release());
+  const device = startChild('hapticctl drive', args.hapticctl,
+    ['drive', '--server', `127.0.0.1:${port}`, '--scene', 'probe on torus', '--tool', 'stylus',
+     '--motion', 'sweep', '--amplitude', '0.001', '--duration', '3', '--rate', '100']);
+  const deviceEnded = new Promise((resolve) => device.proc.on('exit', resolve));
+  // The holder cell of the stylus's row in page B's tools table.
+  const stylusHolderCell = () => b.evaluate(() => {
+    const row = [...document.querySelectorAll('#tools-body tr')]
+      .find((r) => r.cells[0]?.textContent === 'stylus');
+    return row?.cells[1]?.textContent ?? null;
+  });
+  let cellText = null;
+  for (const end3 = Date.now() + 5000; Date.now() < end3; await sleep(100)) {
+    cellText = await stylusHolderCell();
+    if (/^peer:/.test(cellText ?? '')) break;
+  }
+  check(/^peer:/.test(cellText ?? ''),
+        `page B shows ${JSON.stringify(cellText)} as the stylus's holder, not the device ` +
+        `the frames name: ${brief((await state(b)).tools)}`);
+  log(`a device holds the stylus: page B shows ${JSON.stringify(cellText)}`);
+  check(await deviceEnded === 0, 'hapticctl drive did not end well');
+
   step = 'bad page messages';
   // From page B, a socket of its own sends what no page sends: each is
   // dropped and counted (the frames' rejected_messages), none moves the probe.
   const before = devicePOf(await state(a));
-  const rejected = await b.evaluate(() => new Promise((resolve, reject) => {
-    const ws = new WebSocket(`ws://${location.host}/ws`);
+  const rejected = await b.evaluate((secret) => new Promise((resolve, reject) => {
+    const ws = new WebSocket(`ws://${location.host}/ws?token=${secret}`);
     let sent = false;
     ws.onopen = () => {
       for (const bad of ['garbage', '{"type":"pose","tool":"probe","p":[0,0,1e999],"q":[1,0,0,0]}',
@@ -480,7 +571,7 @@ async function main() {
       }
     };
     setTimeout(() => reject(new Error('no frame counted the rejected messages')), 5000);
-  }));
+  }), token);
   const after = devicePOf(await state(a));
   check(before && after && before.every((v, i) => Math.abs(v - after[i]) <= 1e-9),
         `a refused message moved the probe: ${JSON.stringify(before)} -> ${JSON.stringify(after)}`);
@@ -499,6 +590,59 @@ async function main() {
         `${png} is not a PNG`);
   log(`snapshot: ${png}, ${fs.statSync(png).size} bytes`);
 
+  step = 'the probe pushes a free body';
+  // A 2 cm free cube joins the scene resting on the table, clear of the
+  // organ; page A lifts the probe over to it, lowers it 1 cm beside it and
+  // pushes it about 9 mm along +x. Page B draws the cube where the frames' bodies
+  // put it: pushed along x (its geometry, fetched once, had it at 0.3),
+  // still on the table. Motions over the organ happen 13 cm up, above it
+  // and below the stylus.
+  fs.mkdirSync(args.artifacts, { recursive: true });
+  const pebbleFile = path.join(args.artifacts, 'pebble.textproto');
+  fs.writeFileSync(pebbleFile, 'name: "pebble" kind: OBJECT_KIND_FREE ' +
+    'model { procedural { box { size_m { x: 0.02 y: 0.02 z: 0.02 } } } } ' +
+    'pose { position_m { x: 0.3 y: 0.3 z: 0.01 } orientation { w: 1 } }\n');
+  const addPebble = startChild('hapticctl objects add (free body)', args.hapticctl,
+    ['objects', 'add', '--server', `127.0.0.1:${port}`, 'probe on torus', 'pebble',
+     '--from', pebbleFile]);
+  const pebbleStatus = await new Promise((resolve) => addPebble.proc.on('exit', resolve));
+  check(pebbleStatus === 0, `hapticctl objects add --from ${pebbleFile} exited with ${pebbleStatus}`);
+  const pebbleOn = async (page) => vec3((await state(page)).bodies?.pebble?.mesh_p);
+  const within = (p, q, tolerance) => p && p.every((v, i) => Math.abs(v - q[i]) <= tolerance);
+  let pebble = null;
+  for (const end4 = Date.now() + 5000; Date.now() < end4; await sleep(100)) {
+    pebble = await pebbleOn(b);
+    if (within(pebble, [0.3, 0.3, 0.01], 1e-3)) break;
+  }
+  check(within(pebble, [0.3, 0.3, 0.01], 1e-3),
+        `page B does not draw the pebble resting where it was added: ${JSON.stringify(pebble)}`);
+  const heldCell = () => b.evaluate(() => [...document.querySelectorAll('#bodies-body tr')]
+    .find((r) => r.cells[0]?.textContent === 'pebble')?.cells[2]?.textContent ?? null);
+  let held = null;
+  for (const end5 = Date.now() + 2000; Date.now() < end5 && held === null; await sleep(100)) {
+    held = await heldCell();
+  }
+  check(held === 'no', `page B's free bodies table shows ${JSON.stringify(held)} as the resting ` +
+        'pebble\'s Held');
+  const moveProbe = (d) => a.evaluate((offset) => window.viewerTest.moveBy(offset), d);
+  const from = await settledDeviceP(a, 2000);
+  await moveProbe([0, 0, 0.13 - from[2]]);
+  await moveProbe([0.27 - from[0], 0.3 - from[1], 0]);
+  await moveProbe([0, 0, 0.011 - 0.13]);
+  // To 1 mm short of it, then 9 mm on in 0.1 mm moves: each pose is taken
+  // at one step, and a 2 mm move in one step would hit it at 2 m/s.
+  await moveProbe([0.009, 0, 0]);
+  for (let i = 0; i < 9; i++) await moveProbe([0.001, 0, 0]);
+  await settledDeviceP(a, 3000);
+  for (const end6 = Date.now() + 5000; Date.now() < end6; await sleep(100)) {
+    pebble = await pebbleOn(b);
+    if (pebble && pebble[0] > 0.305) break;
+  }
+  check(pebble && pebble[0] > 0.305 && within(pebble.slice(1), [0.3, 0.01], 2e-3),
+        `page B does not draw the pebble pushed along the table: ${JSON.stringify(pebble)}, ` +
+        `probe at ${JSON.stringify(devicePOf(await state(a)))}`);
+  log(`a free body: the probe pushed the pebble to ${JSON.stringify(pebble)} on page B`);
+
   step = 'an unknown scene';
   // A bridge for a scene the server lacks: its page says so; the bridge runs on.
   const lost = startChild('hapticctl view (unknown scene)', args.hapticctl,
@@ -510,6 +654,12 @@ async function main() {
     { timeout: 5000 }).catch(() => {});
   check(/no scene 'no such scene'/.test(await c.evaluate(() => document.body.innerText)),
         `the page of an unknown scene does not say so: ${brief(await state(c))}`);
+  // A reload finds the token the page kept (its address no longer has it).
+  await c.reload({ timeout: 10_000 });
+  await c.waitForFunction(() => /no scene 'no such scene'/.test(document.body.innerText), null,
+    { timeout: 5000 }).catch(() => {});
+  check(/no scene 'no such scene'/.test(await c.evaluate(() => document.body.innerText)),
+        `after a reload the page of an unknown scene does not say so: ${brief(await state(c))}`);
   check(alive(lost.proc), 'the bridge of an unknown scene ended');
 
   step = 'the server goes away';

@@ -1,7 +1,42 @@
 // Talking to the bridge: JSON over HTTP (/geometry, /frame) and the /ws
 // WebSocket, which reconnects by itself every second after it closes.
+// Each carries the bridge's secret (docs/security.md), which the page
+// reads from the ?token= of its address.
 
 const RECONNECT_MS = 1000;
+const TOKEN_KEY = 'hapticctl-view-token';
+
+/**
+ * The bridge's secret. It comes in the page's address; the page keeps it
+ * in this tab's sessionStorage (a reload finds it there) and takes it out
+ * of the address bar, so that it is not shown, bookmarked or shared.
+ */
+const TOKEN = takeToken();
+
+function takeToken() {
+  const url = new URL(location.href);
+  const given = url.searchParams.get('token');
+  if (!given) {
+    try {
+      return sessionStorage.getItem(TOKEN_KEY) ?? '';
+    } catch {
+      return ''; // storage disabled: the address must carry it
+    }
+  }
+  try {
+    sessionStorage.setItem(TOKEN_KEY, given);
+  } catch {
+    // Kept in memory only: a reload needs the address again.
+  }
+  url.searchParams.delete('token');
+  history.replaceState(history.state, '', url);
+  return given;
+}
+
+/** `path` with the secret in its query. */
+function withToken(path) {
+  return `${path}?token=${encodeURIComponent(TOKEN)}`;
+}
 
 /**
  * GETs `path` and returns its JSON. Throws an Error whose message is the
@@ -11,7 +46,7 @@ const RECONNECT_MS = 1000;
 export async function fetchJson(path) {
   let response;
   try {
-    response = await fetch(path, { cache: 'no-store' });
+    response = await fetch(withToken(path), { cache: 'no-store' });
   } catch (e) {
     throw httpError(`${path}: ${e.message}`, 0);
   }
@@ -49,7 +84,7 @@ export class BridgeSocket {
     const scheme = location.protocol === 'https:' ? 'wss' : 'ws';
     let ws;
     try {
-      ws = new WebSocket(`${scheme}://${location.host}/ws`);
+      ws = new WebSocket(`${scheme}://${location.host}${withToken('/ws')}`);
     } catch {
       this.retry();
       return;

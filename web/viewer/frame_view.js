@@ -1,5 +1,6 @@
 // Draws one frame into the 3D scene: tool poses (device solid, proxy ghost),
-// the contact features of both sides, and the force / reversing-vector arrows.
+// free bodies' poses, the contact features of both sides, and the force /
+// reversing-vector arrows.
 
 import * as THREE from 'three';
 import { FEATURE_COLORS, FORCE_ARROW, REVERSING_ARROW } from './colors.js';
@@ -38,6 +39,7 @@ export class FrameView {
   apply(frame, objects) {
     const tools = Array.isArray(frame?.tools) ? frame.tools : [];
     poseTools(tools, objects);
+    poseBodies(Array.isArray(frame?.bodies) ? frame.bodies : [], objects);
     return {
       highlighted: this.drawFeatures(tools, objects),
       arrows: {
@@ -84,6 +86,18 @@ function poseTools(tools, objects) {
     applyJsonPose(entry.group, tool.device);
     entry.group.updateMatrixWorld(true);
     if (entry.proxy) entry.proxy.visible = applyJsonPose(entry.proxy, tool.proxy);
+  }
+}
+
+/**
+ * Moves each free body's mesh to its pose in the frame; a body the frame
+ * does not list stays where it was drawn last.
+ */
+function poseBodies(bodies, objects) {
+  for (const body of bodies) {
+    const entry = objects.get(body?.name);
+    if (!entry || entry.kind !== 'free') continue;
+    if (applyJsonPose(entry.group, body.pose)) entry.group.updateMatrixWorld(true);
   }
 }
 

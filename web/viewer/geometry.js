@@ -9,7 +9,8 @@ import { applyJsonPose } from './pose.js';
  * One object of /geometry, as drawn:
  *   name, kind          as in /geometry ("fixed" | "tool" | "free")
  *   group               the solid mesh, placed at the object's pose
- *                       (tools: moved to their device pose by each frame)
+ *                       (tools: moved to their device pose by each frame,
+ *                       free bodies to the pose each frame gives them)
  *   proxy               tools only: a translucent copy at the proxy pose,
  *                       hidden until a frame gives one; null otherwise
  *   vertices            flat [x0,y0,z0, ...] in the object frame (metres)

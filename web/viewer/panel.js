@@ -1,5 +1,6 @@
 // The HTML around the 3D view: error banner, status line, legend, the drive
-// section (tool selector, take / release), and the tools and contacts tables.
+// section (tool selector, take / release), and the tools, free bodies and
+// contacts tables.
 // All text from the bridge goes in through textContent, never as HTML.
 
 import { FEATURE_COLORS, FORCE_ARROW, PROXY_GHOST, REVERSING_ARROW } from './colors.js';
@@ -16,6 +17,8 @@ export class Panel {
     this.toolSelect = byId('tool-select');
     this.driveText = byId('drive-state');
     this.toolsBody = byId('tools-body');
+    this.bodiesSection = byId('bodies-section');
+    this.bodiesBody = byId('bodies-body');
     this.contactsBody = byId('contacts-body');
     this.noContacts = byId('no-contacts');
     this.bannerMessages = new Map(); // source -> message, in arrival order
@@ -73,6 +76,17 @@ export class Panel {
       tool.holder || '—',
       formatVector(tool.force_n, 1, 2),
       tool.force_magnitude_n.toFixed(2) + (tool.force_clamped ? ' (clamped)' : ''),
+    ])));
+  }
+
+  /** bodies: viewerState.bodies; the section shows only when the scene has some. */
+  showBodies(bodies) {
+    const entries = Object.entries(bodies);
+    this.bodiesSection.hidden = entries.length === 0;
+    this.bodiesBody.replaceChildren(...entries.map(([name, body]) => tableRow([
+      name,
+      body.touching_tools.join(', ') || '—',
+      body.held ? 'yes' : 'no',
     ])));
   }
 

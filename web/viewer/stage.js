@@ -10,6 +10,7 @@ import { BACKGROUND, GRID_MAJOR, GRID_MINOR } from './colors.js';
 
 const VIEW_DIRECTION = new THREE.Vector3(0.8, -1.2, 0.7).normalize(); // from the target
 const GRID_DIVISIONS = 20;
+const MIN_FRAMED_RADIUS_M = 0.01;
 
 export class Stage {
   /**
@@ -73,14 +74,27 @@ export class Stage {
     canvas.replaceWith(image);
   }
 
-  /** Points the camera at a world box (an empty box: 10 cm around the origin). */
+  /**
+   * Points the camera at a world box (an empty box: 10 cm around the origin)
+   * and lays the floor grid under it.
+   */
   frameOn(box) {
+    const sphere = this.aimAt(box);
+    this.placeGrid(sphere.center, sphere.radius, box.isEmpty() ? 0 : box.min.z);
+  }
+
+  /**
+   * Points the camera at a world box from the usual direction, near enough
+   * that the box fills the view; the grid stays where it is. Returns the
+   * sphere framed.
+   */
+  aimAt(box) {
     const sphere = box.isEmpty()
       ? new THREE.Sphere(new THREE.Vector3(), 0.1)
       : box.getBoundingSphere(new THREE.Sphere());
-    const radius = Math.max(sphere.radius, 0.01);
+    sphere.radius = Math.max(sphere.radius, MIN_FRAMED_RADIUS_M);
     const halfFov = THREE.MathUtils.degToRad(this.camera.fov / 2);
-    const distance = (1.15 * radius) / Math.sin(halfFov);
+    const distance = (1.15 * sphere.radius) / Math.sin(halfFov);
 
     this.camera.position.copy(sphere.center).addScaledVector(VIEW_DIRECTION, distance);
     this.camera.near = distance / 1000;
@@ -88,7 +102,15 @@ export class Stage {
     this.camera.updateProjectionMatrix();
     this.orbit.target.copy(sphere.center);
     this.orbit.update();
-    this.placeGrid(sphere.center, radius, box.isEmpty() ? 0 : box.min.z);
+    return sphere;
+  }
+
+  /** Where the camera looks and from how far (metres), for viewerState. */
+  view() {
+    return {
+      target: this.orbit.target.toArray(),
+      distance: this.camera.position.distanceTo(this.orbit.target),
+    };
   }
 
   /** A floor grid under the scene; its spacing is the power of ten nearest radius / 5. */

@@ -12,6 +12,7 @@
 // index.html?snapshot=1 one /geometry + one /frame, drawn once, then
 //                       document.body.dataset.ready = "1" and title "ready"
 
+import * as THREE from 'three';
 import { BridgeSocket, fetchJson } from './connection.js';
 import { DriveControls } from './controls.js';
 import { contactsOf, FrameView } from './frame_view.js';
@@ -37,6 +38,7 @@ const state = {
   driveState: 'none',     // last drive answer: held | released | refused (or taking / releasing)
   tools: {},              // name -> {device_p, proxy_p, force_n, force_magnitude_n, holder, force_clamped}
   contacts: [],
+  bodies: {},             // free body name -> {mesh_p (where drawn), held, touching_tools}
   highlighted: {
     tool_vertices: 0, tool_edges: 0, tool_faces: 0,
     object_vertices: 0, object_edges: 0, object_faces: 0,
@@ -44,6 +46,7 @@ const state = {
   arrows: { reversing_vector: false, force: false },
   status: '',             // banner and status line text
   posesSent: 0,
+  // camera: {target: [x, y, z], distance} (metres), read live from the stage
 };
 window.viewerState = state;
 
@@ -60,6 +63,7 @@ try {
   state.status = panel.statusText();
   throw e;
 }
+Object.defineProperty(state, 'camera', { enumerable: true, get: () => stage.view() });
 const objects = new SceneObjects(stage.scene);
 const frameView = new FrameView(stage.scene);
 const chart = new StripChart(document.getElementById('strip-chart'));
@@ -99,6 +103,13 @@ window.viewerTest = {
   release: () => drive.release(),
   moveBy: (offset) => drive.moveBy(offset),
 };
+
+// F: the camera frames the driven tool (else the chosen one) and its
+// contacts, which are millimetres across where the whole table is not.
+window.addEventListener('keydown', (e) => {
+  if (e.ctrlKey || e.metaKey || e.altKey || e.key.toLowerCase() !== 'f') return;
+  if (frameOnTool()) e.preventDefault();
+});
 
 // ---- geometry ----------------------------------------------------------------
 
@@ -211,6 +222,21 @@ function recordFrameState(frame) {
   }
 }
 
+/** Where each free body's mesh is drawn, and who holds it by the frame. */
+function recordBodies(frame) {
+  const inFrame = new Map((Array.isArray(frame?.bodies) ? frame.bodies : []).map((b) => [b.name, b]));
+  state.bodies = {};
+  for (const entry of objects.all()) {
+    if (entry.kind !== 'free') continue;
+    const body = inFrame.get(entry.name);
+    state.bodies[entry.name] = {
+      mesh_p: entry.group.position.toArray(),
+      held: Boolean(body?.held),
+      touching_tools: Array.isArray(body?.touching_tools) ? body.touching_tools.map(String) : [],
+    };
+  }
+}
+
 function featureIds(side) {
   const list = (a) => (Array.isArray(a) ? a : []);
   return { vertices: list(side?.vertices), edges: list(side?.edges), faces: list(side?.faces) };
@@ -240,6 +266,22 @@ function refreshToolNames() {
   for (const entry of objects.all()) if (entry.kind === 'tool') names.add(entry.name);
   for (const tool of latestFrame?.tools ?? []) names.add(tool.name);
   panel.setToolNames([...names]);
+}
+
+/** Aims the camera at the driven (else chosen) tool and its contact points; false without one. */
+function frameOnTool() {
+  const tool = state.heldTool ?? panel.selectedTool();
+  const entry = tool ? objects.get(tool) : null;
+  if (!entry) return false;
+  const box = new THREE.Box3().setFromObject(entry.group);
+  for (const contact of state.contacts) {
+    if (contact.tool !== tool) continue;
+    for (const p of contact.points) {
+      if (isFiniteArray(p, 3)) box.expandByPoint(new THREE.Vector3(p[0], p[1], p[2]));
+    }
+  }
+  stage.aimAt(box);
+  return true;
 }
 
 // ---- status ------------------------------------------------------------------
@@ -274,6 +316,7 @@ function drawFrame() {
   const drawn = frameView.apply(latestFrame, objects);
   state.highlighted = drawn.highlighted;
   state.arrows = drawn.arrows;
+  recordBodies(latestFrame);
   if (latestFrame && state.revision >= 0 && !cameraFramedWithFrame) {
     stage.frameOn(objects.boundingBox());
     cameraFramedWithFrame = true;
@@ -284,6 +327,7 @@ function updatePanel() {
   panelDirty = false;
   lastPanelUpdate = performance.now();
   panel.showTools(state.tools);
+  panel.showBodies(state.bodies);
   panel.showContacts(state.contacts);
 }
 

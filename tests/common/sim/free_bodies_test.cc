@@ -11,6 +11,7 @@
 #include "common/model/procedural.h"
 #include "common/sim/scene.h"
 #include "tests/common/sim/at_pose.h"
+#include "tests/common/sim/pinch_rig.h"
 #include "tests/common/sim/scene_rig.h"
 
 namespace hs {
@@ -64,29 +65,11 @@ TEST(FreeBodiesTest, FreeBodyRestsOnFixedBox) {
 // steps). Returns the cube's last frame; `forces` gets the two devices'
 // last forces.
 BodyFrame PinchAndLift(double tool_friction, Vector3d forces[2]) {
-  Rig rig = MakeRig();
-  AddCube(*rig.scene, 0);
-  // Jaws 2 cm thick, 3 cm wide and tall: no face of theirs is coplanar
-  // with one of the cube's.
-  MeshInput jaw_mesh = MakeBox(Vector3d(0.02, 0.03, 0.03));
-  for (Material& m : jaw_mesh.materials) m.static_friction = m.dynamic_friction = tool_friction;
-  // The rig's probe stays home; two jaws pinch.
-  const ObjectId left = *rig.scene->AddObject(*HapticObject::Create("left", jaw_mesh),
-                                              ObjectKind::kTool, At(0.27, 0.05, 0.016));
-  const ObjectId right = *rig.scene->AddObject(*HapticObject::Create("right", jaw_mesh),
-                                               ObjectKind::kTool, At(0.33, 0.05, 0.016));
-  for (int i = 0; i < 50; ++i) rig.scene->Step();  // the cube settles
-  const StepFrame* frame = nullptr;
-  auto drive = [&](double in, double up) {
-    EXPECT_TRUE(rig.scene->SetDevicePose(left, At(0.27 + in, 0.05, 0.016 + up)).ok());
-    EXPECT_TRUE(rig.scene->SetDevicePose(right, At(0.33 - in, 0.05, 0.016 + up)).ok());
-    frame = &rig.scene->Step();
-  };
-  for (int i = 1; i <= 12; ++i) drive(0.001 * i, 0);         // faces 2 mm in
-  for (int i = 1; i <= 200; ++i) drive(0.012, 0.00005 * i);  // 1 cm up
-  forces[0] = frame->tools[1].force_W;
-  forces[1] = frame->tools[2].force_W;
-  return frame->bodies[0];
+  PinchRig pinch = MakePinchRig(tool_friction);
+  const StepFrame& frame = pinch.PinchAndLift();
+  forces[0] = frame.tools[1].force_W;
+  forces[1] = frame.tools[2].force_W;
+  return frame.bodies[0];
 }
 
 // With friction (0.5), the pinched cube rises with the tools and stays
@@ -111,6 +94,15 @@ TEST(FreeBodiesTest, TwoToolsPinchAndLiftABox) {
   EXPECT_NEAR(slipped.X_WO.translation().z(), 0.01, 1e-4);
   EXPECT_NEAR(forces[0].z(), -0.02, 0.002);
   EXPECT_NEAR(forces[1].z(), -0.02, 0.002);
+}
+
+// A body names what it touched in its step: the floor while it rests;
+// both jaws, and not the floor, while they lift it.
+TEST(FreeBodiesTest, BodyNamesWhatItTouches) {
+  PinchRig pinch = MakePinchRig(0.5);
+  EXPECT_EQ(pinch.frame->bodies[0].touching, std::vector<ObjectId>{pinch.rig.floor});
+  const BodyFrame& lifted = pinch.PinchAndLift().bodies[0];
+  EXPECT_EQ(lifted.touching, (std::vector<ObjectId>{pinch.left, pinch.right}));
 }
 
 // The probe pushes a resting free cube sideways: the cube moves along with
