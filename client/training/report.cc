@@ -1,5 +1,7 @@
 #include "client/training/report.h"
 
+#include <pthread.h>
+#include <signal.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -25,11 +27,26 @@ constexpr size_t kMaxPlotPoints = 4000;
 
 // Runs `script` through gnuplot. Written by hand: gnuplot is the plotting
 // tool the project uses (docs' plots), and a pipe to it is all it takes.
+// A gnuplot that is missing or stops early closes the pipe before the
+// script is written: SIGPIPE is blocked on this thread meanwhile (and a
+// pending one taken), so that the write fails instead of killing the
+// process.
 absl::Status Gnuplot(const std::string& script) {
+  sigset_t pipe_signal, old_mask;
+  sigemptyset(&pipe_signal);
+  sigaddset(&pipe_signal, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &pipe_signal, &old_mask);
   FILE* pipe = popen("gnuplot", "w");
+  int status = -1;
+  if (pipe) {
+    fwrite(script.data(), 1, script.size(), pipe);
+    status = pclose(pipe);
+  }
+  const timespec now{};
+  while (sigtimedwait(&pipe_signal, nullptr, &now) == SIGPIPE) {
+  }
+  pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
   if (!pipe) return absl::InternalError("cannot run gnuplot");
-  fwrite(script.data(), 1, script.size(), pipe);
-  const int status = pclose(pipe);
   if (status != 0) return absl::InternalError("gnuplot failed on the report's plots");
   return absl::OkStatus();
 }

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -142,16 +141,14 @@ TEST(ReportTest, EarlierFolderWithoutReportIsRefused) {
 }
 
 // Without gnuplot the report is INTERNAL and report.html is not written.
-// PATH is pointed at an empty folder for the call; SIGPIPE is ignored as
-// the shell that found no gnuplot may close the pipe before the script is
-// written.
+// PATH is pointed at an empty folder for the call; the shell that found no
+// gnuplot may close the pipe before the script is written, which must not
+// kill the process (SIGPIPE keeps its default action here).
 TEST(ReportTest, NoGnuplotIsInternal) {
   const fs::path root = ScratchDir("report_no_gnuplot");
   const std::string path = std::getenv("PATH");
   ASSERT_EQ(setenv("PATH", root.c_str(), 1), 0);
-  const auto old_pipe = std::signal(SIGPIPE, SIG_IGN);
   const absl::Status status = WriteReport((root / "out").string(), ReportedRun(50).Input());
-  std::signal(SIGPIPE, old_pipe);
   ASSERT_EQ(setenv("PATH", path.c_str(), 1), 0);
   EXPECT_EQ(status.code(), absl::StatusCode::kInternal) << status;
   EXPECT_FALSE(fs::exists(root / "out" / "report.html"));
