@@ -1,0 +1,19 @@
+#include "client/sdk/grpc_error.h"
+
+#include <gtest/gtest.h>
+
+namespace hs::sdk {
+namespace {
+
+TEST(GrpcErrorTest, KeepsCodeAndMessage) {
+  // A gRPC or Abseil status becomes the Error of the same code and message.
+  const haptics::Error from_grpc =
+      FromGrpc(grpc::Status(grpc::StatusCode::NOT_FOUND, "no scene 'x'"));
+  EXPECT_EQ(from_grpc.ToString(), "NOT_FOUND: no scene 'x'");
+  const haptics::Error from_absl = FromAbsl(absl::PermissionDeniedError("read only"));
+  EXPECT_EQ(from_absl.ToString(), "PERMISSION_DENIED: read only");
+  EXPECT_TRUE(FromGrpc(grpc::Status::OK).ok());
+}
+
+}  // namespace
+}  // namespace hs::sdk
