@@ -151,6 +151,9 @@ grpc::Status DeviceLink::RunStream(uint64_t stream) {
       break;
     }
     if (!SendPose(*rw, sequence)) break;
+    // Behind (a slow write): the next pose goes a period from now, not in
+    // a burst.
+    next = std::max(next, Clock::now());
     std::unique_lock lock(mutex_);
     changed_.wait_until(lock, next, [&] { return stopping_ || !reading; });
     if (stopping_) break;

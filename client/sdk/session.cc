@@ -22,6 +22,17 @@ namespace {
 
 namespace pb = haptics::v1;
 
+// One SceneService request within the session's deadline.
+template <typename Request, typename Response>
+grpc::Status Call(const Session::Impl& impl,
+                  grpc::Status (pb::SceneService::Stub::*method)(grpc::ClientContext*,
+                                                                 const Request&, Response*),
+                  const Request& request, Response* response) {
+  auto stub = pb::SceneService::NewStub(impl.channel);
+  auto context = hs::cli::ContextWithin(impl.options.call_timeout_s);
+  return ((*stub).*method)(context.get(), request, response);
+}
+
 SceneInfo FromProto(const pb::SceneInfo& info) {
   return {.name = info.spec().name(),
           .step = info.step(),
@@ -86,10 +97,9 @@ Result<std::string> Session::Health(const std::string& service) {
 }
 
 Result<std::vector<SceneInfo>> Session::ListScenes() {
-  auto stub = pb::SceneService::NewStub(impl_->channel);
-  auto context = hs::cli::ContextWithin(impl_->options.call_timeout_s);
   pb::ListScenesResponse response;
-  const grpc::Status status = stub->ListScenes(context.get(), {}, &response);
+  const grpc::Status status =
+      Call(*impl_, &pb::SceneService::Stub::ListScenes, pb::ListScenesRequest(), &response);
   if (!status.ok()) return hs::sdk::FromGrpc(status);
   std::vector<SceneInfo> scenes;
   for (const pb::SceneInfo& info : response.scenes()) scenes.push_back(FromProto(info));
@@ -102,10 +112,9 @@ Result<SceneInfo> Session::CreateScene(const std::string& spec_file, const std::
     return hs::sdk::FromAbsl(read);
   }
   if (!name.empty()) request.mutable_spec()->set_name(name);
-  auto stub = pb::SceneService::NewStub(impl_->channel);
-  auto context = hs::cli::ContextWithin(impl_->options.call_timeout_s);
   pb::SceneInfo response;
-  const grpc::Status status = stub->CreateScene(context.get(), request, &response);
+  const grpc::Status status =
+      Call(*impl_, &pb::SceneService::Stub::CreateScene, request, &response);
   if (!status.ok()) return hs::sdk::FromGrpc(status);
   return FromProto(response);
 }
@@ -121,12 +130,10 @@ Result<SceneInfo> Session::ReplaceScene(const std::string& spec_file, const std:
 }
 
 Error Session::DeleteScene(const std::string& name) {
-  auto stub = pb::SceneService::NewStub(impl_->channel);
-  auto context = hs::cli::ContextWithin(impl_->options.call_timeout_s);
   pb::DeleteSceneRequest request;
   request.set_scene(name);
   pb::DeleteSceneResponse response;
-  return hs::sdk::FromGrpc(stub->DeleteScene(context.get(), request, &response));
+  return hs::sdk::FromGrpc(Call(*impl_, &pb::SceneService::Stub::DeleteScene, request, &response));
 }
 
 Result<ModelInfo> Session::UploadModel(const std::string& file, const std::string& name) {
@@ -142,12 +149,10 @@ Result<ModelInfo> Session::UploadModel(const std::string& file, const std::strin
 }
 
 Error Session::DeleteModel(const std::string& model_id) {
-  auto stub = pb::SceneService::NewStub(impl_->channel);
-  auto context = hs::cli::ContextWithin(impl_->options.call_timeout_s);
   pb::DeleteModelRequest request;
   request.set_model_id(model_id);
   pb::DeleteModelResponse response;
-  return hs::sdk::FromGrpc(stub->DeleteModel(context.get(), request, &response));
+  return hs::sdk::FromGrpc(Call(*impl_, &pb::SceneService::Stub::DeleteModel, request, &response));
 }
 
 Result<std::unique_ptr<Device>> Session::OpenDevice(const std::string& scene,
@@ -162,12 +167,11 @@ Result<std::unique_ptr<Device>> Session::OpenDevice(const std::string& scene,
                  "<= reconnect_max_s"};
   }
   // The scene's own rate bounds the frames a device may ask for.
-  auto stub = pb::SceneService::NewStub(impl_->channel);
-  auto context = hs::cli::ContextWithin(impl_->options.call_timeout_s);
   pb::GetSceneRequest request;
   request.set_scene(scene);
   pb::SceneInfo info;
-  if (grpc::Status status = stub->GetScene(context.get(), request, &info); !status.ok()) {
+  if (grpc::Status status = Call(*impl_, &pb::SceneService::Stub::GetScene, request, &info);
+      !status.ok()) {
     return hs::sdk::FromGrpc(status);
   }
   hs::sdk::LinkConfig config{.scene = scene, .tool = tool, .options = options};

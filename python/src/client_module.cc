@@ -309,7 +309,12 @@ PYBIND11_MODULE(_client, m) {
             if (on_frame) {
               // Called on the Watcher's thread: take the GIL; an exception
               // the callback raises is reported and the stream goes on.
-              auto callback = std::make_shared<py::function>(*std::move(on_frame));
+              // The last copy may go on a thread without the GIL.
+              std::shared_ptr<py::function> callback(
+                  new py::function(*std::move(on_frame)), [](py::function* f) {
+                    py::gil_scoped_acquire gil;
+                    delete f;
+                  });
               options.on_frame = [callback](const haptics::Frame& frame) {
                 py::gil_scoped_acquire gil;
                 try {

@@ -255,8 +255,8 @@ def health_probe_args(server, kind, probe):
     where = f"{server.where}.{kind}.exec.command"
     command = probe.get("exec", {}).get("command")
     assert command, f"{where}: not an exec probe"
-    assert command[:2] == ["/usr/local/bin/hapticctl", "health"], \
-        f"{where}: expected /usr/local/bin/hapticctl health, found {command[:2]}"
+    assert command[:2] == ["/usr/bin/hapticctl", "health"], \
+        f"{where}: expected /usr/bin/hapticctl health, found {command[:2]}"
     return where, parse_args(command[2:], HEALTH_FLAGS, where)
 
 
@@ -278,7 +278,7 @@ class ServerFlags(unittest.TestCase):
     def test_loadtest_flags_are_in_hapticctl_loadtest_help(self):
         svc = compose()["services"]["loadtest"]
         where = "deploy/docker/compose.yaml: services.loadtest.command"
-        self.assertEqual(svc["entrypoint"], ["/usr/local/bin/hapticctl"], where)
+        self.assertEqual(svc["entrypoint"], ["/usr/bin/hapticctl"], where)
         self.assertEqual(svc["command"][0], "loadtest", where)
         parse_args(svc["command"][1:], LOADTEST_FLAGS, where)
 
@@ -520,13 +520,17 @@ class Image(unittest.TestCase):
         self.assertIn("scripts/setup.sh", build, f"{relpath}: the build stage does not run scripts/setup.sh")
         self.assertRegex(build, r"-G Ninja", f"{relpath}: the build stage does not use Ninja")
         self.assertRegex(build, r"CMAKE_BUILD_TYPE=Release", f"{relpath}: the build stage does not build Release")
-        # haptic-server starts haptic-import from its own folder.
+        # The build stage makes the Debian packages; the runtime installs
+        # haptic-server's (haptic-server and haptic-import, which it starts
+        # from its own folder, in /usr/bin) and hapticctl's.
+        self.assertIn("cpack -G DEB", build, f"{relpath}: the build stage makes no Debian packages")
+        self.assertIn("-DCMAKE_INSTALL_PREFIX=/usr", build, f"{relpath}: the packages are not for /usr")
+        runtime = re.split(r"(?im)^FROM\s", joined)[-1]
+        for package in ("haptic-server", "hapticctl"):
+            self.assertRegex(runtime, rf"apt-get install[^&]*/{package}_\S*\.deb",
+                             f"{relpath}: the runtime does not install the {package} package")
         entry = Dockerfile(relpath).exec_form("ENTRYPOINT")[0]
-        bin_dir = os.path.dirname(entry) + "/"
-        copies = [v for n, v in Dockerfile(relpath).instructions if n == "COPY" and v.rstrip().endswith(bin_dir)]
-        self.assertTrue(copies, f"{relpath}: no COPY into {bin_dir}, the ENTRYPOINT's folder")
-        for binary in ("haptic-server", "hapticctl", "haptic-import"):
-            self.assertIn(f"bin/{binary}", build, f"{relpath}: the build stage does not collect {binary}")
+        self.assertEqual(entry, "/usr/bin/haptic-server", f"{relpath}: ENTRYPOINT, where the package puts it")
 
 
 class Agones(unittest.TestCase):

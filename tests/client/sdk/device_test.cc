@@ -77,22 +77,40 @@ TickOutput Press(Device& device) {
   return TickUntil(device, At(kPressedZ), Touching);
 }
 
+// A session on the server at `port` and a device on the probe, pressed
+// into the organ; the device is null (the test failed) when it cannot open.
+struct Pressing {
+  std::unique_ptr<Session> session;
+  std::unique_ptr<Device> device;
+  TickOutput out;
+};
+
+Pressing PressOn(int port) {
+  Pressing p;
+  p.session = Connect(port);
+  if (p.session == nullptr) return p;
+  auto device = p.session->OpenDevice(kScene, "probe");
+  EXPECT_TRUE(device.ok()) << device.error().ToString();
+  if (!device.ok()) return p;
+  p.device = *std::move(device);
+  p.out = Press(*p.device);
+  return p;
+}
+
 TEST(DeviceTest, FeelsTheOrganItPresses) {
   // A device pressed 5 mm into the organ feels its spring: 400 N/m x 5 mm
   // up, within the mesh's faceting (the top face lies up to 0.8 mm under
   // the torus's top).
   hs::testing::ServerProcess server;
   ASSERT_GT(server.port(), 0) << server.startup();
-  auto session = Connect(server.port());
-  ASSERT_NE(session, nullptr);
-  auto device = session->OpenDevice(kScene, "probe");
-  ASSERT_TRUE(device.ok()) << device.error().ToString();
-  const TickOutput out = Press(**device);
+  const Pressing pressing = PressOn(server.port());
+  ASSERT_NE(pressing.device, nullptr);
+  const TickOutput& out = pressing.out;
   EXPECT_TRUE(out.ok());
   EXPECT_NEAR(out.force_n[2], kOrganStiffness * 0.005, kOrganStiffness * 0.0008);
   EXPECT_NEAR(out.force_n[0], 0, 0.05);
   EXPECT_NEAR(out.force_n[1], 0, 0.05);
-  const haptics::DeviceState state = (*device)->State();
+  const haptics::DeviceState state = pressing.device->State();
   EXPECT_TRUE(state.connected);
   EXPECT_GT(state.models, 0);
   EXPECT_GT(state.round_trip_s, 0);
@@ -105,12 +123,11 @@ TEST(DeviceTest, BadPoseIsRefusedAndHoldsTheLastForce) {
   // kInvalidPose with the force of the tick before, unchanged.
   hs::testing::ServerProcess server;
   ASSERT_GT(server.port(), 0) << server.startup();
-  auto session = Connect(server.port());
-  ASSERT_NE(session, nullptr);
-  auto device = session->OpenDevice(kScene, "probe");
-  ASSERT_TRUE(device.ok()) << device.error().ToString();
-  const TickOutput pressed = Press(**device);
+  const Pressing pressing = PressOn(server.port());
+  ASSERT_NE(pressing.device, nullptr);
+  const TickOutput& pressed = pressing.out;
   ASSERT_TRUE(Touching(pressed));
+  Device& device = *pressing.device;
   Pose nan = At(kPressedZ);
   nan.position_m[1] = std::nan("");
   Pose stretched = At(kPressedZ);
@@ -118,11 +135,11 @@ TEST(DeviceTest, BadPoseIsRefusedAndHoldsTheLastForce) {
   Pose infinite = At(kPressedZ);
   infinite.orientation_wxyz[3] = INFINITY;
   for (const Pose& bad : {nan, stretched, infinite}) {
-    const TickOutput out = (*device)->Tick(bad);
+    const TickOutput out = device.Tick(bad);
     EXPECT_EQ(out.status, haptics::TickStatus::kInvalidPose);
     for (int i = 0; i < 3; ++i) EXPECT_EQ(out.force_n[i], pressed.force_n[i]);
   }
-  EXPECT_EQ((*device)->State().rejected_poses, 3);
+  EXPECT_EQ(device.State().rejected_poses, 3);
 }
 
 TEST(DeviceTest, OpenNamesWhatIsWrong) {
@@ -167,27 +184,26 @@ TEST(DeviceTest, OpenNamesWhatIsWrong) {
 TEST(DeviceTest, TickGoesOnWhileTheServerIsStoppedAndFeelsNothingOnceItIsGone) {
   // With the server frozen (SIGSTOP) the device keeps rendering its last
   // model; once the server is gone the link says so and the force is zero.
-  auto server = std::make_unique<hs::testing::ServerProcess>();
-  ASSERT_GT(server->port(), 0) << server->startup();
-  auto session = Connect(server->port());
-  ASSERT_NE(session, nullptr);
-  auto device = session->OpenDevice(kScene, "probe");
-  ASSERT_TRUE(device.ok()) << device.error().ToString();
-  ASSERT_TRUE(Touching(Press(**device)));
-  server->Signal(SIGSTOP);
+  hs::testing::ServerProcess server;
+  ASSERT_GT(server.port(), 0) << server.startup();
+  const Pressing pressing = PressOn(server.port());
+  ASSERT_NE(pressing.device, nullptr);
+  ASSERT_TRUE(Touching(pressing.out));
+  Device& device = *pressing.device;
+  server.Signal(SIGSTOP);
   // 500 ticks while no frame can come: each returns the local model's force.
   for (int k = 0; k < 500; ++k) {
-    const TickOutput out = (*device)->Tick(At(kPressedZ));
+    const TickOutput out = device.Tick(At(kPressedZ));
     ASSERT_TRUE(Touching(out)) << "tick " << k;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  server->StopWith(SIGKILL);
+  server.StopWith(SIGKILL);
   const TickOutput gone =
-      TickUntil(**device, At(kPressedZ), [](const TickOutput& out) { return out.flags == 0; });
+      TickUntil(device, At(kPressedZ), [](const TickOutput& out) { return out.flags == 0; });
   EXPECT_EQ(gone.flags, 0u);
   for (double f : gone.force_n) EXPECT_EQ(f, 0);
-  EXPECT_FALSE((*device)->State().connected);
-  EXPECT_NE((*device)->State().last_error.code, haptics::Code::kOk);
+  EXPECT_FALSE(device.State().connected);
+  EXPECT_NE(device.State().last_error.code, haptics::Code::kOk);
 }
 
 TEST(DeviceTest, ReconnectsWhenTheServerComesBack) {
@@ -196,26 +212,24 @@ TEST(DeviceTest, ReconnectsWhenTheServerComesBack) {
   auto server = std::make_unique<hs::testing::ServerProcess>();
   ASSERT_GT(server->port(), 0) << server->startup();
   const int port = server->port();
-  auto session = Connect(port);
-  ASSERT_NE(session, nullptr);
-  auto device = session->OpenDevice(kScene, "probe");
-  ASSERT_TRUE(device.ok()) << device.error().ToString();
-  ASSERT_TRUE(Touching(Press(**device)));
+  const Pressing pressing = PressOn(port);
+  ASSERT_NE(pressing.device, nullptr);
+  ASSERT_TRUE(Touching(pressing.out));
+  Device& device = *pressing.device;
   server->StopWith(SIGKILL);
   server.reset();
-  TickUntil(**device, At(kPressedZ), [](const TickOutput& out) { return out.flags == 0; });
+  TickUntil(device, At(kPressedZ), [](const TickOutput& out) { return out.flags == 0; });
   server = std::make_unique<hs::testing::ServerProcess>(std::vector<std::string>{},
                                                         std::vector<std::string>{}, Address(port));
   ASSERT_EQ(server->port(), port) << server->startup();
-  // Seated again at the device's pose, inside the organ; back home and
-  // down again.
-  TickUntil(**device, At(0.1),
-            [](const TickOutput& out) { return out.flags & haptics::kHasModel; });
-  const TickOutput again = Press(**device);
+  // The device goes home meanwhile, is seated there on the new stream and
+  // presses again.
+  TickUntil(device, At(0.1), [](const TickOutput& out) { return out.flags & haptics::kHasModel; });
+  const TickOutput again = Press(device);
   EXPECT_TRUE(Touching(again));
   EXPECT_NEAR(again.force_n[2], kOrganStiffness * 0.005, kOrganStiffness * 0.0008);
-  EXPECT_EQ((*device)->State().reconnects, 1);
-  EXPECT_TRUE((*device)->State().connected);
+  EXPECT_EQ(device.State().reconnects, 1);
+  EXPECT_TRUE(device.State().connected);
 }
 
 }  // namespace

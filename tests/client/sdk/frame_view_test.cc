@@ -30,6 +30,7 @@ TEST(FrameViewTest, CopiesEveryPartOfAFrame) {
   contact->mutable_normal_w()->set_z(1);
   contact->add_points()->mutable_p_wc_m()->set_x(0.1);
   contact->set_time_of_impact(0.25);
+  contact->set_has_time_of_impact(true);
   pb::LocalModel* model = tool->mutable_local_model();
   model->set_revision(7);
   model->set_validity_radius_m(0.01);
