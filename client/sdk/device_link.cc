@@ -158,7 +158,9 @@ grpc::Status DeviceLink::RunStream(uint64_t stream) {
     changed_.wait_until(lock, next, [&] { return stopping_ || !reading; });
     if (stopping_) break;
   }
-  context.TryCancel();
+  // A stream the server ended keeps its status for Finish; one this side
+  // gives up on is cancelled.
+  if (reading) context.TryCancel();
   if (reader.joinable()) reader.join();
   grpc::Status status = rw->Finish();
   {

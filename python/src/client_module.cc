@@ -81,6 +81,14 @@ struct PySession {
 
 std::string Or(const std::optional<std::string>& s) { return s.value_or(""); }
 
+// Runs `call` (a request that may wait on the network) without the GIL;
+// its result is turned into Python objects, or an exception, after.
+template <typename F>
+auto WithoutGil(F call) {
+  py::gil_scoped_release release;
+  return call();
+}
+
 // Ends a device, watcher or session without the GIL: their threads may be
 // waiting for it (a Watcher's callback).
 template <typename T>
@@ -230,50 +238,43 @@ PYBIND11_MODULE(_client, m) {
       .def("health",
            [](PySession& self) {
              haptics::Session& session = self.get();
-             py::gil_scoped_release release;
-             return Take(session.Health());
+             return Take(WithoutGil([&] { return session.Health(); }));
            })
       .def("scenes",
            [](PySession& self) {
              haptics::Session& session = self.get();
-             py::gil_scoped_release release;
-             return Take(session.ListScenes());
+             return Take(WithoutGil([&] { return session.ListScenes(); }));
            })
       .def(
           "create_scene",
           [](PySession& self, const std::string& path, const std::optional<std::string>& name) {
             haptics::Session& session = self.get();
-            py::gil_scoped_release release;
-            return Take(session.CreateScene(path, Or(name)));
+            return Take(WithoutGil([&] { return session.CreateScene(path, Or(name)); }));
           },
           py::arg("path"), py::arg("name") = py::none())
       .def(
           "replace_scene",
           [](PySession& self, const std::string& path, const std::optional<std::string>& name) {
             haptics::Session& session = self.get();
-            py::gil_scoped_release release;
-            return Take(session.ReplaceScene(path, Or(name)));
+            return Take(WithoutGil([&] { return session.ReplaceScene(path, Or(name)); }));
           },
           py::arg("path"), py::arg("name") = py::none())
       .def("delete_scene",
            [](PySession& self, const std::string& name) {
              haptics::Session& session = self.get();
-             py::gil_scoped_release release;
-             Check(session.DeleteScene(name));
+             Check(WithoutGil([&] { return session.DeleteScene(name); }));
            })
       .def(
           "upload_model",
           [](PySession& self, const std::string& path, const std::optional<std::string>& name) {
             haptics::Session& session = self.get();
-            py::gil_scoped_release release;
-            return Take(session.UploadModel(path, Or(name)));
+            return Take(WithoutGil([&] { return session.UploadModel(path, Or(name)); }));
           },
           py::arg("path"), py::arg("name") = py::none())
       .def("delete_model",
            [](PySession& self, const std::string& model_id) {
              haptics::Session& session = self.get();
-             py::gil_scoped_release release;
-             Check(session.DeleteModel(model_id));
+             Check(WithoutGil([&] { return session.DeleteModel(model_id); }));
            })
       .def(
           "device",
@@ -285,11 +286,8 @@ PYBIND11_MODULE(_client, m) {
             options.tick_s = tick_s;
             options.take_over = take_over;
             options.open_timeout_s = open_timeout;
-            haptics::Result<std::unique_ptr<haptics::Device>> device = [&] {
-              py::gil_scoped_release release;
-              return session.OpenDevice(scene, tool, options);
-            }();
-            return PyDevice{Take(std::move(device))};
+            return PyDevice{
+                Take(WithoutGil([&] { return session.OpenDevice(scene, tool, options); }))};
           },
           py::arg("scene"), py::arg("tool"), py::kw_only(), py::arg("rate_hz") = 250.0,
           py::arg("tick_s") = 1e-3, py::arg("take_over") = false, py::arg("open_timeout") = 0.0)
@@ -310,11 +308,11 @@ PYBIND11_MODULE(_client, m) {
               // Called on the Watcher's thread: take the GIL; an exception
               // the callback raises is reported and the stream goes on.
               // The last copy may go on a thread without the GIL.
-              std::shared_ptr<py::function> callback(
-                  new py::function(*std::move(on_frame)), [](py::function* f) {
-                    py::gil_scoped_acquire gil;
-                    delete f;
-                  });
+              std::shared_ptr<py::function> callback(new py::function(*std::move(on_frame)),
+                                                     [](py::function* f) {
+                                                       py::gil_scoped_acquire gil;
+                                                       delete f;
+                                                     });
               options.on_frame = [callback](const haptics::Frame& frame) {
                 py::gil_scoped_acquire gil;
                 try {
@@ -324,11 +322,8 @@ PYBIND11_MODULE(_client, m) {
                 }
               };
             }
-            haptics::Result<std::unique_ptr<haptics::Watcher>> watcher = [&] {
-              py::gil_scoped_release release;
-              return session.Watch(scene, std::move(options));
-            }();
-            return PyWatcher{Take(std::move(watcher))};
+            return PyWatcher{
+                Take(WithoutGil([&] { return session.Watch(scene, std::move(options)); }))};
           },
           py::arg("scene"), py::kw_only(), py::arg("poses") = true, py::arg("contacts") = true,
           py::arg("forces") = true, py::arg("local_model") = false, py::arg("frame_rate_hz") = 0.0,
@@ -352,11 +347,8 @@ PYBIND11_MODULE(_client, m) {
         options.token_file = Or(token_file);
         options.connect_timeout_s = connect_timeout;
         options.call_timeout_s = call_timeout;
-        haptics::Result<std::unique_ptr<haptics::Session>> session = [&] {
-          py::gil_scoped_release release;
-          return haptics::Session::Connect(address, options);
-        }();
-        return PySession{Take(std::move(session))};
+        return PySession{
+            Take(WithoutGil([&] { return haptics::Session::Connect(address, options); }))};
       },
       py::arg("address"), py::kw_only(), py::arg("tls_ca") = py::none(),
       py::arg("tls_cert") = py::none(), py::arg("tls_key") = py::none(),

@@ -4,8 +4,12 @@
 // under the probe).
 #include "haptics/client.h"
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -37,6 +41,19 @@ Pose At(double z) {
   pose.position_m[0] = 0.1;
   pose.position_m[2] = z;
   return pose;
+}
+
+// A 127.0.0.1 port that was free a moment ago (bound, then closed).
+int FreePort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t size = sizeof address;
+  EXPECT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&address), size), 0);
+  EXPECT_EQ(getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size), 0);
+  close(fd);
+  return ntohs(address.sin_port);
 }
 
 std::string Address(int port) { return "127.0.0.1:" + std::to_string(port); }
@@ -170,9 +187,8 @@ TEST(DeviceTest, OpenNamesWhatIsWrong) {
   EXPECT_EQ(no_tool.error().code, haptics::Code::kNotFound);
   EXPECT_NE(no_tool.error().message.find("scalpel"), std::string::npos);
 
-  // The port of a server that has ended: nothing listens there.
-  const int port = open_server.port();
-  open_server.StopWith(SIGKILL);
+  // A port nothing listens on: one the kernel gave and took back.
+  const int port = FreePort();
   haptics::SessionOptions quick;
   quick.connect_timeout_s = 0.5;
   auto nobody = Session::Connect(Address(port), quick);

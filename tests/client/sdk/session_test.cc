@@ -36,8 +36,9 @@ constexpr char kSceneJson[] = R"({"name": "bench json", "stepS": 0.001, "objects
   {"name": "probe", "kind": "OBJECT_KIND_TOOL",
    "model": {"procedural": {"sphere": {"radiusM": 0.01}}}}]})";
 
-std::string Write(const std::string& name, const std::string& text) {
-  const std::filesystem::path path = hs::ScratchDir("sdk_session") / name;
+std::string Write(const std::filesystem::path& dir, const std::string& name,
+                  const std::string& text) {
+  const std::filesystem::path path = dir / name;
   std::ofstream(path) << text;
   return path.string();
 }
@@ -77,8 +78,9 @@ TEST_F(SessionTest, ScenesFromFilesAreCreatedReplacedAndDeleted) {
   // Text and JSON SceneSpec files make scenes (under another name when
   // asked); a name taken is ALREADY_EXISTS, replacing is not; deleting
   // twice is NOT_FOUND the second time.
-  const std::string text = Write("bench.textproto", kSceneText);
-  const std::string json = Write("bench.json", kSceneJson);
+  const std::filesystem::path dir = hs::ScratchDir("sdk_session");
+  const std::string text = Write(dir, "bench.textproto", kSceneText);
+  const std::string json = Write(dir, "bench.json", kSceneJson);
   auto created = session_->CreateScene(text);
   ASSERT_TRUE(created.ok()) << created.error().ToString();
   EXPECT_EQ(created->name, "bench");
@@ -107,7 +109,8 @@ TEST_F(SessionTest, UnreadableSceneFilesAreRefusedHere) {
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error().code, Code::kNotFound);
   EXPECT_NE(missing.error().message.find("no/such/scene.textproto"), std::string::npos);
-  const std::string bad = Write("bad.textproto", "name: \"x\" objects { nonsense: 1 }\n");
+  const std::string bad = Write(hs::ScratchDir("sdk_session"), "bad.textproto",
+                                "name: \"x\" objects { nonsense: 1 }\n");
   auto invalid = session_->CreateScene(bad);
   ASSERT_FALSE(invalid.ok());
   EXPECT_EQ(invalid.error().code, Code::kInvalidArgument);
