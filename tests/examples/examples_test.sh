@@ -13,7 +13,8 @@ trap 'rm -rf "$work"' EXIT
 prefix=$work/prefix
 
 cmake --install "$build" --prefix "$prefix" >/dev/null
-libdir=$(ls -d "$prefix"/lib*/pkgconfig | head -1 | xargs dirname)
+# lib, or lib/<multiarch> when the build is for /usr.
+libdir=$(dirname "$(dirname "$(find "$prefix" -name haptics-client.pc)")")
 
 echo "== find_package(HapticsClient)"
 cmake -S examples -B "$work/cmake" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
@@ -40,6 +41,9 @@ felt() {  # NAME COMMAND...: runs it, checks its force_z_n > 0
 }
 
 export PYTHONPATH=$prefix/lib/python3/dist-packages
+# Built for /usr, the extension looks for the library in the system's
+# folders only.
+export LD_LIBRARY_PATH=$libdir
 felt "device_loop (cmake)" "$work/cmake/device_loop" "$HS_SERVER"
 felt "device.c (cmake)" "$work/cmake/device_c" "$HS_SERVER"
 felt "device_loop (pkg-config)" "$work/pc/device_loop" "$HS_SERVER"
