@@ -11,6 +11,7 @@
 #include "client/device_path.h"
 #include "client/exit_codes.h"
 #include "client/frame_format.h"
+#include "client/frame_rate_args.h"
 #include "client/needs_args.h"
 #include "client/remote/remote_drive.h"
 #include "common/api/proto_convert.h"
@@ -47,6 +48,16 @@ grpc::Status ToolStartPose(const DriveArgs& args, std::shared_ptr<grpc::Channel>
 
 int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   if (!(args.rate_hz > 0)) return ReportError("drive", "--rate must be > 0", err);
+  if (args.frame_rate_hz != 0) {
+    if (absl::Status s = CheckFrameRate(args.frame_rate_hz); !s.ok()) {
+      ReportError("drive", s, err);
+      return kExitUsage;
+    }
+  }
+  if (absl::Status link = CheckLinkConditions(args.link); !link.ok()) {
+    ReportError("drive", link, err);
+    return kExitUsage;
+  }
   absl::StatusOr<EffectSet> needs = ParseNeeds(args.needs);
   if (!needs.ok()) return ReportError("drive", needs.status(), err);
   absl::StatusOr<std::shared_ptr<grpc::Channel>> opened = MakeChannel(args.server);
@@ -63,7 +74,8 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
                            .tool = args.tool,
                            .duration_s = args.duration_s,
                            .trace_path = args.trace_path,
-                           .json = args.json};
+                           .json = args.json,
+                           .frame_rate_hz = args.frame_rate_hz};
     remote.run.motion = *motion;
     remote.run.local_model = args.local_model == "on";
     remote.run.link = args.link;
@@ -96,6 +108,7 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
   open.mutable_open()->set_tool(args.tool);
   open.mutable_open()->set_take_over(args.take_over);
   SetNeeds(*needs, *open.mutable_open());
+  SetFrameRate(*open.mutable_open(), args.frame_rate_hz);
   stream->Write(open);
 
   const uint64_t last = path.size();
@@ -161,6 +174,7 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--rate", args->rate_hz, "Poses per second")
       ->check(CLI::Range(1e-3, 1e5))
       ->capture_default_str();
+  AddFrameRateOption(*cmd, args->frame_rate_hz);
   cmd->add_flag("--json", args->json, "One JSON object (haptics.v1.Frame) per line");
   cmd->add_flag("--take-over", args->take_over,
                 "Take the tool from the device holding it, which is ended (needs the admin "
@@ -185,8 +199,16 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
                   "With --operator: up to this much more each way, milliseconds (uniform)")
       ->check(CLI::Range(0.0, 1000.0));
   cmd->add_option("--loss", args->link.loss,
-                  "With --operator: probability each message is lost, each way")
+                  "With --operator: probability each message is lost, each way (as an "
+                  "unreliable transport would lose it)")
       ->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--stall-prob", args->link.stall_prob,
+                  "With --operator: probability a message is held --stall-ms longer, with "
+                  "everything behind it, each way (as a reliable stream holds a lost segment)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--stall-ms", args->link.stall_ms,
+                  "With --operator: how long a stalled message is held, milliseconds")
+      ->check(CLI::Range(0.0, kMaxLinkMs));
   cmd->add_option("--seed", args->link.seed, "With --operator: the link's random seed")
       ->capture_default_str();
   cmd->add_option("--trace", args->trace_path,

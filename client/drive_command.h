@@ -1,11 +1,11 @@
 #pragma once
 // `hapticctl drive --scene NAME --tool OBJECT (--path FILE | --motion
-// press|sweep [--duration S]) [--rate HZ] [--json]`: acts as a haptic input
+// press|sweep [--duration S]) [--rate HZ] [--frame-rate-hz HZ] [--json]`: acts as a haptic input
 // device. Plays a device path into a scene's tool over
 // SessionService.Interact and prints each frame that applies a new pose:
 // its contacts and force. With `--operator press|slide|tap` instead, a
 // simulated hand drives the tool in a closed loop through a simulated link
-// (--latency-ms, --jitter-ms, --loss, --seed), rendering from the local
+// (--latency-ms, --jitter-ms, --loss, --stall-prob, --stall-ms, --seed), rendering from the local
 // contact model or not (--local-model on|off), and one summary is printed
 // (client/remote/remote_drive.h).
 
@@ -38,6 +38,8 @@ struct DriveArgs {
   double amplitude_m = 0.05;
   /// Poses sent per second (CSV paths and motions).
   double rate_hz = 1000;
+  /// Frames a second asked of the server (frame_rate_args.h); 0: its own.
+  double frame_rate_hz = 0;
   /// One JSON object (haptics.v1.Frame) per line instead of a table.
   bool json = false;
   /// What the device needs (effect names); empty means everything.

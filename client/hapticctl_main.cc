@@ -13,6 +13,7 @@
 #include "client/loadtest/loadtest_command.h"
 #include "client/objects_command.h"
 #include "client/recording_command.h"
+#include "client/relay/relay_command.h"
 #include "client/replay_command.h"
 #include "client/scenes_command.h"
 #include "client/simulate_command.h"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   hs::cli::AddHealthCommand(app, exit_code);
   hs::cli::AddWatchCommand(app, exit_code);
   hs::cli::AddDriveCommand(app, exit_code);
+  hs::cli::AddRelayCommand(app, exit_code);
   hs::cli::AddLoadtestCommand(app, exit_code);
   hs::cli::AddRecordingCommand(app, exit_code);
   hs::cli::AddReplayCommand(app, exit_code);

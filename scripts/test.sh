@@ -3,7 +3,9 @@
 # and the one thing .ci/run calls.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+# shellcheck source=scripts/lib/phase.sh
+. scripts/lib/phase.sh
+phase setup bash scripts/setup.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build build -j2
-ctest --test-dir build --output-on-failure -j2 --timeout 300
+phase build cmake --build build -j2
+phase test ctest --test-dir build --output-on-failure -j2 --timeout 300

@@ -2,16 +2,24 @@
 
 #include <pthread.h>
 
+#include "common/core/check.h"
 #include "server/thread_priority.h"
 
 namespace hs {
+namespace {
 
-FrameFanOut::FrameFanOut(const StreamRegistry& streams, Metrics& metrics, int realtime_priority)
+thread_local bool in_sink_call = false;
+
+}  // namespace
+
+FrameFanOut::FrameFanOut(StreamRegistry& streams, Metrics& metrics, int realtime_priority)
     : streams_(streams), metrics_(metrics) {
   thread_ = std::thread([this, realtime_priority] { Run(realtime_priority); });
 }
 
 FrameFanOut::~FrameFanOut() { Stop(); }
+
+bool FrameFanOut::InSinkCall() { return in_sink_call; }
 
 void FrameFanOut::Push(std::shared_ptr<const StepSnapshot> snapshot) {
   {
@@ -35,7 +43,39 @@ void FrameFanOut::Stop() {
   thread_.join();  // every frame queued is handed over first
 }
 
-void FrameFanOut::WaitForOffers() { std::lock_guard offering(offer_mu_); }
+void FrameFanOut::HandOverEnds() { CallSinks(nullptr); }
+
+void FrameFanOut::WaitForSinkCalls() {
+  HS_CHECK(!in_sink_call && "a stream waited for the calls to streams from inside one");
+  std::unique_lock lock(gate_mu_);
+  const uint64_t round = rounds_;
+  gate_cv_.wait(lock, [&] { return !calling_ || rounds_ != round; });
+}
+
+void FrameFanOut::CallSinks(const std::shared_ptr<const StepSnapshot>& snapshot) {
+  {
+    std::unique_lock lock(gate_mu_);
+    gate_cv_.wait(lock, [this] { return !calling_; });
+    calling_ = true;
+    ++rounds_;
+  }
+  // The gate is up: a stream that leaves the registry from now on waits in
+  // WaitForSinkCalls until this round ends, so the streams listed here
+  // outlive their calls.
+  if (snapshot) streams_.ListSinks(offer_to_);
+  streams_.TakeEnds(ends_);
+  in_sink_call = true;
+  if (snapshot) {
+    for (FrameSink* sink : offer_to_) sink->Offer(snapshot);
+  }
+  for (const SinkEnd& end : ends_) end.sink->Close(end.status);
+  in_sink_call = false;
+  {
+    std::lock_guard lock(gate_mu_);
+    calling_ = false;
+  }
+  gate_cv_.notify_all();
+}
 
 void FrameFanOut::Run(int realtime_priority) {
   pthread_setname_np(pthread_self(), "scene-frames");
@@ -49,11 +89,7 @@ void FrameFanOut::Run(int realtime_priority) {
     std::shared_ptr<const StepSnapshot> snapshot = std::move(queue_.front());
     queue_.pop_front();
     lock.unlock();
-    {
-      std::lock_guard offering(offer_mu_);
-      streams_.ListSinks(offer_to_);
-      for (FrameSink* sink : offer_to_) sink->Offer(snapshot);
-    }
+    CallSinks(snapshot);
     lock.lock();
   }
 }

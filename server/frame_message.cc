@@ -1,22 +1,51 @@
 #include "server/frame_message.h"
 
+#include "common/api/local_model_convert.h"
+
 namespace hs {
 
-void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const std::string& tool,
-                      uint64_t dropped, int64_t sent_unix_ns, haptics::v1::Frame& frame) {
+namespace {
+
+// The holder of the tool of frame entry `i`, none when no device holds it.
+const ToolHolder* HolderOf(const StepSnapshot& s, size_t i) {
+  const ObjectId tool = s.frame.tools[i].tool;
+  if (!s.holders || tool < 0 || static_cast<size_t>(tool) >= s.holders->size()) return nullptr;
+  const ToolHolder& holder = (*s.holders)[tool];
+  return holder.sink != nullptr ? &holder : nullptr;
+}
+
+}  // namespace
+
+void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const FrameSink* stream,
+                      uint64_t dropped, int64_t sent_unix_ns, ModelsSent& sent,
+                      haptics::v1::Frame& frame) {
   frame.Clear();
   frame.set_step(s.step);
   frame.set_time_s(s.time_s);
-  StepFrameToProto(s.frame, *s.names, parts, &frame);
+  FrameParts without_models = parts;
+  without_models.local_model = false;
+  StepFrameToProto(s.frame, *s.names, without_models, &frame);
+  if (sent.scene != s.names.get()) {  // a new scene: its models are new
+    sent.scene = s.names.get();
+    sent.revisions.clear();
+  }
+  sent.revisions.resize(s.frame.tools.size(), 0);
   for (size_t i = 0; i < s.frame.tools.size(); ++i) {
-    const std::string& name = (*s.names)[s.frame.tools[i].tool];
-    if (s.holders) {
-      const auto holder = s.holders->find(name);
-      if (holder != s.holders->end()) frame.mutable_tools(i)->set_holder(holder->second);
+    const ToolHolder* holder = HolderOf(s, i);
+    const bool own = holder != nullptr && holder->sink == stream;
+    if (holder != nullptr) frame.mutable_tools(i)->set_holder(holder->name);
+    frame.mutable_tools(i)->set_last_pose_sequence(s.applied[i].sequence);
+    frame.mutable_tools(i)->set_last_pose_device_time_ns(s.applied[i].device_time_ns);
+    if (own) {
+      frame.set_last_pose_sequence(s.applied[i].sequence);
+      frame.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
     }
-    if (name != tool) continue;
-    frame.set_last_pose_sequence(s.applied[i].sequence);
-    frame.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
+    const LocalModel& model = s.frame.tools[i].local_model;
+    if (parts.local_model && model.revision != 0 && sent.revisions[i] != model.revision &&
+        (own || !sent.own_tool_only)) {
+      LocalModelToProto(model, *s.names, frame.mutable_tools(i)->mutable_local_model());
+      sent.revisions[i] = model.revision;
+    }
   }
   haptics::v1::ServerTimings* timings = frame.mutable_timings();
   timings->set_step_ns(s.step_ns);

@@ -15,11 +15,25 @@
 
 namespace hs {
 
-/// Writes `s` over `frame` (cleared first). `tool` is the device's tool ("" for a
-/// viewer), `dropped` the frames the stream dropped so far, `sent_unix_ns`
-/// the wall clock at sending.
-void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const std::string& tool,
-                      uint64_t dropped, int64_t sent_unix_ns, haptics::v1::Frame& frame);
+/// The local models one stream has been sent: each revision goes out once,
+/// and a frame without a tool's model means its last one still holds.
+struct ModelsSent {
+  /// A device stream gets its own tool's model only; a viewer every tool's.
+  bool own_tool_only = false;
+  /// The scene they were sent for (its StepSnapshot::names), and the
+  /// revision sent for each of its frame's tools (0: none).
+  const void* scene = nullptr;
+  std::vector<uint64_t> revisions;
+};
+
+/// Writes `s` over `frame` (cleared first). `stream` is the stream the
+/// frame goes to: the tool its device holds (StepSnapshot::holders) gets
+/// the last applied pose. Local models (parts.local_model) go out as
+/// `sent` says, which it updates. `dropped` the frames the stream dropped
+/// so far, `sent_unix_ns` the wall clock at sending.
+void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const FrameSink* stream,
+                      uint64_t dropped, int64_t sent_unix_ns, ModelsSent& sent,
+                      haptics::v1::Frame& frame);
 
 /// A stream's message for one step, built on an arena whose first block is
 /// the stream's own and reset each step: building a frame allocates

@@ -8,6 +8,12 @@ FrameOutbox::FrameOutbox(size_t capacity) : capacity_(capacity), waiting_(capaci
   HS_CHECK(capacity >= 1);
 }
 
+void FrameOutbox::Limit(size_t capacity) {
+  std::lock_guard lock(mu_);
+  HS_CHECK(capacity >= 1 && capacity <= waiting_.capacity() && waiting_.empty());
+  capacity_ = capacity;
+}
+
 bool FrameOutbox::Push(std::shared_ptr<const StepSnapshot> snapshot) {
   std::lock_guard lock(mu_);
   if (closed_) return false;

@@ -28,6 +28,9 @@ class FrameOutbox {
 
   /// Keeps at most `capacity` (>= 1) frames waiting.
   explicit FrameOutbox(size_t capacity);
+  /// Keeps at most `capacity` (1 to the constructor's) frames waiting from
+  /// now on; before the first Push.
+  void Limit(size_t capacity);
 
   /// Queues a frame (dropping the oldest waiting one when full); ignored
   /// once closed. True when a frame was dropped.
@@ -50,7 +53,7 @@ class FrameOutbox {
   bool closed() const;
 
  private:
-  const size_t capacity_;
+  size_t capacity_;
   mutable std::mutex mu_;
   // Fixed storage: no allocation per frame.
   boost::circular_buffer<std::shared_ptr<const StepSnapshot>> waiting_;

@@ -3,6 +3,8 @@
 
 #include <pthread.h>
 
+#include "server/lock_order.h"
+
 namespace hs {
 
 /// std::mutex with priority inheritance (POSIX PTHREAD_PRIO_INHERIT): while
@@ -14,10 +16,11 @@ namespace hs {
 /// frame queue's lock at 8 devices x 1 kHz). Written by hand because
 /// neither the standard library, Abseil nor gRPC has one; it only sets the
 /// POSIX attribute. Meets Lockable, for std::lock_guard, std::unique_lock
-/// and std::condition_variable_any.
+/// and std::condition_variable_any. A mutex with a LockLevel checks the
+/// runtime's lock order (server/lock_order.h) on every lock.
 class PriorityInheritingMutex {
  public:
-  PriorityInheritingMutex();
+  explicit PriorityInheritingMutex(LockLevel level = LockLevel::kLeaf);
   ~PriorityInheritingMutex();
   PriorityInheritingMutex(const PriorityInheritingMutex&) = delete;
   PriorityInheritingMutex& operator=(const PriorityInheritingMutex&) = delete;
@@ -28,6 +31,7 @@ class PriorityInheritingMutex {
 
  private:
   pthread_mutex_t mutex_;
+  const LockLevel level_;
 };
 
 }  // namespace hs

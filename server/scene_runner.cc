@@ -38,6 +38,12 @@ Clock::time_point AtNanoseconds(int64_t ns) {
       std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(ns)));
 }
 
+SceneTools ToolsOf(const LoadedScene& scene) {
+  SceneTools tools{.object_count = scene.names.size()};
+  for (const ObjectId id : scene.tools) tools.tools.emplace_back(scene.names[id], id);
+  return tools;
+}
+
 }  // namespace
 
 SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics& metrics,
@@ -51,8 +57,9 @@ SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics
       spec_(std::move(spec)),
       loaded_(std::move(scene)),
       names_(std::make_shared<const std::vector<std::string>>(loaded_.names)),
+      applied_(loaded_.names.size()),
       recorder_(std::move(recorder)),
-      streams_([this](bool fresh) { SetDevicesFresh(fresh); }),
+      streams_(ToolsOf(loaded_)),
       fan_out_(streams_, metrics, options.realtime_priority) {
   loaded_.scene->SetNeeded(EffectSet());
   // Should no thread be had, fan_out_ stops as the members go.
@@ -62,22 +69,30 @@ SceneRunner::SceneRunner(haptics::v1::SceneSpec spec, LoadedScene scene, Metrics
 SceneRunner::~SceneRunner() { Stop(absl::UnavailableError("the scene was deleted")); }
 
 void SceneRunner::Stop(const absl::Status& status) {
+  CheckNotInSinkCall();
   {
-    std::lock_guard lock(stop_mu_);
+    std::lock_guard lock(wake_mu_);
     if (stop_) return;
     stop_ = true;
     stop_status_ = status;
   }
-  stop_cv_.notify_all();
+  wake_cv_.notify_all();
   thread_.join();
 }
 
-void SceneRunner::SetDevicesFresh(bool fresh) {
+void SceneRunner::CheckNotInSinkCall() {
+  // A stream calling back from Offer or Close would wait for its own call
+  // (Detach) or take the runner's locks from inside the frames' round.
+  HS_CHECK(!FrameFanOut::InSinkCall() && "a FrameSink called back into its SceneRunner");
+}
+
+void SceneRunner::WakeIfDevicesFresh(const StreamChange& change) {
+  if (!change.devices_fresh_since) return;
   {
-    std::lock_guard lock(stop_mu_);
-    devices_fresh_ = fresh;
+    std::lock_guard lock(wake_mu_);
+    devices_fresh_since_ = std::max(devices_fresh_since_, *change.devices_fresh_since);
   }
-  if (fresh) stop_cv_.notify_all();
+  wake_cv_.notify_all();
 }
 
 void SceneRunner::Run(int realtime_priority) {
@@ -96,15 +111,16 @@ void SceneRunner::Run(int realtime_priority) {
   while (true) {
     bool devices_clocked = false;
     {
-      std::unique_lock lock(stop_mu_);
-      stop_cv_.wait_until(lock, AtNanoseconds(pacer.earliest_ns()), [this] { return stop_; });
-      stop_cv_.wait_until(lock, AtNanoseconds(pacer.deadline_ns()),
-                          [this] { return stop_ || devices_fresh_; });
+      std::unique_lock lock(wake_mu_);
+      const auto devices_fresh = [this] { return devices_fresh_since_ >= last_take_; };
+      wake_cv_.wait_until(lock, AtNanoseconds(pacer.earliest_ns()), [this] { return stop_; });
+      wake_cv_.wait_until(lock, AtNanoseconds(pacer.deadline_ns()),
+                          [&] { return stop_ || devices_fresh(); });
       if (stop_) {
         status = stop_status_;
         break;
       }
-      devices_clocked = devices_fresh_;
+      devices_clocked = devices_fresh();
     }
     const StepPacer::Start start =
         pacer.StepStarts(NowNanoseconds(), ThreadCpuNanoseconds(), devices_clocked);
@@ -118,32 +134,40 @@ void SceneRunner::Run(int realtime_priority) {
   StepOnce(0);  // the final frame
   fan_out_.Stop();
   streams_.CloseAll(status);
+  fan_out_.HandOverEnds();
 }
 
 void SceneRunner::EndSilentDevices() {
   if (device_timeout_s_ <= 0) return;
   released_.clear();
-  streams_.EndSilentDevices(Clock::now() - std::chrono::duration_cast<Clock::duration>(
-                                               std::chrono::duration<double>(device_timeout_s_)),
-                            device_timeout_status_, released_);
+  WakeIfDevicesFresh(streams_.EndSilentDevices(
+      Clock::now() - std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(device_timeout_s_)),
+      device_timeout_status_, released_));
   for (const std::string& tool : released_) RecordStream(false, tool, EffectSet());
 }
 
 int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
   EndSilentDevices();
-  const EffectSet needs = streams_.TakeFreshPoses(fresh_);
   SnapshotPool::Slot& slot = snapshots_.Take();
   StepSnapshot* snapshot = slot.snapshot.get();
   int64_t step_ns = 0;
   {
     std::lock_guard lock(scene_mu_);
+    // Under scene_mu_: the poses' tool ids are this scene's (Replace
+    // re-maps the registry under it too).
+    const EffectSet needs = streams_.TakeFreshPoses(fresh_);
+    {
+      std::lock_guard wake(wake_mu_);
+      last_take_ = fresh_.generation;
+    }
     Scene& scene = *loaded_.scene;
     snapshot->inputs.clear();
-    for (const auto& [tool, pose] : fresh_.taken()) {
-      const ObjectId id = FindTool(loaded_, tool);
-      // Poses are validated at the edge; a tool removed meanwhile is skipped.
-      if (id < 0 || !ApplyDevicePose(scene, id, pose.X_WD, pose.seat).ok()) continue;
-      applied_[tool] = pose;
+    for (const auto& [id, pose] : fresh_.taken()) {
+      // Poses are validated at the edge.
+      if (!ApplyDevicePose(scene, id, pose.X_WD, pose.seat).ok()) continue;
+      if (pose.model_stale) (void)scene.RequestLocalModel(id);  // `id` is a tool
+      applied_[id] = pose;
       snapshot->inputs.push_back({id, pose.X_WD, pose.stamp, pose.seat});
     }
     snapshot->needs = needs;
@@ -159,8 +183,8 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     snapshot->holders = fresh_.holders;
     snapshot->applied.clear();
     for (const ToolFrame& t : frame.tools) {
-      const auto it = applied_.find(loaded_.names[t.tool]);
-      snapshot->applied.push_back(it == applied_.end() ? AppliedPose{} : it->second.stamp);
+      const std::optional<PendingPose>& applied = applied_[t.tool];
+      snapshot->applied.push_back(applied ? applied->stamp : AppliedPose{});
     }
     StageStatsTable delta;
     for (int i = 0; i < kNumEffects; ++i) {
@@ -190,20 +214,16 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
 
 absl::Status SceneRunner::AttachDevice(FrameSink* sink, const DeviceClaim& claim,
                                        const absl::Status* take_over) {
+  CheckNotInSinkCall();
   bool displaced = false;
-  absl::Status status = streams_.AttachDevice(
-      sink, claim,
-      [this](const std::string& name) {
-        std::lock_guard scene(scene_mu_);
-        return FindTool(loaded_, name) >= 0;
-      },
-      take_over, &displaced);
+  absl::Status status = streams_.AttachDevice(sink, claim, take_over, &displaced);
   if (displaced) RecordStream(false, claim.tool, EffectSet());
   if (status.ok()) RecordStream(true, claim.tool, claim.needs);
   return status;
 }
 
 absl::Status SceneRunner::AttachViewer(FrameSink* sink, EffectSet needs) {
+  CheckNotInSinkCall();
   absl::Status status = streams_.AttachViewer(sink, needs);
   if (status.ok()) RecordStream(true, "", needs);
   return status;
@@ -216,15 +236,18 @@ void SceneRunner::RecordStream(bool attached, const std::string& tool, EffectSet
 }
 
 void SceneRunner::Detach(FrameSink* sink) {
-  if (const std::optional<std::string> tool = streams_.Detach(sink)) {
-    RecordStream(false, *tool, EffectSet());
-  }
-  // An offer to `sink` that started before it left the registry ends first.
-  fan_out_.WaitForOffers();
+  CheckNotInSinkCall();
+  const StreamChange change = streams_.Detach(sink);
+  if (change.tool) RecordStream(false, *change.tool, EffectSet());
+  WakeIfDevicesFresh(change);
+  // A call to `sink` that started before it left the registry ends first.
+  fan_out_.WaitForSinkCalls();
 }
 
-void SceneRunner::SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp) {
-  streams_.SetPose(sink, X_WD, stamp);
+void SceneRunner::SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp,
+                                bool model_stale) {
+  CheckNotInSinkCall();
+  WakeIfDevicesFresh(streams_.SetPose(sink, X_WD, stamp, model_stale));
 }
 
 haptics::v1::SceneSpec SceneRunner::spec() const {
@@ -233,29 +256,29 @@ haptics::v1::SceneSpec SceneRunner::spec() const {
 }
 
 absl::Status SceneRunner::Replace(haptics::v1::SceneSpec spec, LoadedScene scene) {
-  return streams_.WhileToolsHeld(
-      [&](const std::string& tool) { return FindTool(scene, tool) >= 0; },
-      [&] {
-        std::lock_guard lock(scene_mu_);
-        // Tools keep where their devices put them; the proxies start over there.
-        for (auto it = applied_.begin(); it != applied_.end();) {
-          const ObjectId id = FindTool(scene, it->first);
-          if (id < 0 || !scene.scene->SetDevicePose(id, it->second.X_WD).ok()) {
-            it = applied_.erase(it);
-          } else {
-            ++it;
-          }
-        }
-        // The old scene goes with `scene` once the locks are released:
-        // tearing down its meshes and threads must not hold up the steps.
-        std::swap(spec_, spec);
-        std::swap(loaded_, scene);
-        names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
-        clash_counters_.clear();  // the ids are the new scene's
-        last_stats_ = StageStatsTable{};
-        ++revision_;
-        if (recorder_) recorder_->RecordEdit(step_, spec_, revision_);
-      });
+  CheckNotInSinkCall();
+  std::lock_guard lock(scene_mu_);
+  if (absl::Status s = streams_.RemapTools(ToolsOf(scene)); !s.ok()) return s;
+  // Tools keep where their devices put them; the proxies start over there.
+  std::vector<std::optional<PendingPose>> applied(scene.names.size());
+  for (size_t old_id = 0; old_id < applied_.size(); ++old_id) {
+    if (!applied_[old_id]) continue;
+    const ObjectId id = FindTool(scene, loaded_.names[old_id]);
+    if (id >= 0 && scene.scene->SetDevicePose(id, applied_[old_id]->X_WD).ok()) {
+      applied[id] = applied_[old_id];
+    }
+  }
+  applied_ = std::move(applied);
+  // The old scene goes with `scene` once the lock is released: tearing
+  // down its meshes and threads must not hold up the steps.
+  std::swap(spec_, spec);
+  std::swap(loaded_, scene);
+  names_ = std::make_shared<const std::vector<std::string>>(loaded_.names);
+  clash_counters_.clear();  // the ids are the new scene's
+  last_stats_ = StageStatsTable{};
+  ++revision_;
+  if (recorder_) recorder_->RecordEdit(step_, spec_, revision_);
+  return absl::OkStatus();
 }
 
 void SceneRunner::Geometry(haptics::v1::SceneGeometry* out) const {

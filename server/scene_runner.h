@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -86,7 +87,10 @@ class SceneRunner {
 
   /// The device pose of `sink`'s tool for the next step (latest wins). The
   /// pose was validated by the caller.
-  void SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp);
+  /// `model_stale`: the device asks for a fresh local model
+  /// (ToolPose.model_stale).
+  void SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp,
+                     bool model_stale = false);
 
   /// The spec the scene runs now.
   haptics::v1::SceneSpec spec() const;
@@ -112,8 +116,10 @@ class SceneRunner {
   int64_t StepOnce(int64_t start_lag_ns);
   // Records a stream's attach or detach ("" tool: a viewer), if recording.
   void RecordStream(bool attached, const std::string& tool, EffectSet needs);
-  // Told by streams_ whether every device has a fresh pose.
-  void SetDevicesFresh(bool fresh);
+  // Wakes the stepping thread when `change` says every device has sent.
+  void WakeIfDevicesFresh(const StreamChange& change);
+  // Aborts when a stream calls back from its Offer or Close (FrameSink).
+  static void CheckNotInSinkCall();
 
   Metrics& metrics_;
   const double step_s_;
@@ -122,25 +128,28 @@ class SceneRunner {
   const std::string name_;
 
   // The simulation; only the runner's thread steps it, Replace swaps it.
-  // Taken after the registry's lock when both are held.
-  mutable PriorityInheritingMutex scene_mu_;
+  // Held while the registry is asked for the step's poses or re-mapped, so
+  // that tool ids always name the scene's tools (server/lock_order.h).
+  mutable PriorityInheritingMutex scene_mu_{LockLevel::kScene};
   haptics::v1::SceneSpec spec_;
   LoadedScene loaded_;
   std::shared_ptr<const std::vector<std::string>> names_;
   int64_t revision_ = 0;
   int64_t step_ = 0;
   StageStatsTable last_stats_{};
-  std::map<std::string, PendingPose> applied_;  // by tool name
+  std::vector<std::optional<PendingPose>> applied_;  // by ObjectId
   // The /metrics counters of each tool pair that clashed, by (tool_a,
   // tool_b) of the scene running now.
   std::map<std::pair<ObjectId, ObjectId>, Metrics::ToolClashCounters> clash_counters_;
 
-  // Taken after the registry's lock when both are held.
-  PriorityInheritingMutex stop_mu_;
-  std::condition_variable_any stop_cv_;  // stop_ or devices_fresh_ set
+  // What wakes the stepping thread: a stop, or every device having sent a
+  // pose since the last take (StreamChange::devices_fresh_since).
+  PriorityInheritingMutex wake_mu_{LockLevel::kWake};
+  std::condition_variable_any wake_cv_;
   bool stop_ = false;
-  bool devices_fresh_ = false;
   absl::Status stop_status_;
+  uint64_t devices_fresh_since_ = 0;   // the latest take after which every device sent
+  uint64_t last_take_ = 1;             // FreshPoses::generation of the last step's take
   int64_t missed_steps_ = 0;           // runner thread only
   int64_t missed_steps_off_cpu_ = 0;   // runner thread only
   FreshPoses fresh_;                   // runner thread only

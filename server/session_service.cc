@@ -5,8 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/api/proto_convert.h"
-#include "server/frame_message.h"
-#include "server/frame_outbox.h"
+#include "server/frame_pump.h"
 #include "server/grpc_status.h"
 #include "server/raw_message.h"
 
@@ -15,38 +14,22 @@ namespace {
 
 namespace pb = haptics::v1;
 
-int64_t UnixNanoseconds() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 // The frame-writing half shared by both stream kinds: `Base` is a
 // ServerBidiReactor or ServerWriteReactor. Deletes itself when done.
 template <class Base>
-class FrameStream : public Base, public FrameSink {
+class FrameStream : public Base, public FrameSink, private FrameWriter {
  public:
   void Offer(std::shared_ptr<const StepSnapshot> snapshot) override {
-    if (outbox_.Push(std::move(snapshot))) registry_.metrics().AddFramesDropped(1);
-    Pump();
+    pump_.Offer(std::move(snapshot));
   }
-  void Close(const absl::Status& status) override {
-    outbox_.Close(status);
-    Pump();
-  }
+  void Close(const absl::Status& status) override { pump_.Close(status); }
   void OnWriteDone(bool ok) override {
-    if (ok) {
-      registry_.metrics().AddFramesSent(1);
-      outbox_.WriteDone();
-      Pump();
-      return;
-    }
-    outbox_.WriteDone();
-    End(absl::CancelledError("the client is gone"), /*abort=*/true);
+    if (!ok) Detach();  // the client is gone: let go of the tool at once
+    pump_.WriteDone(ok);
   }
   void OnCancel() override { End(absl::CancelledError("cancelled by the client"), true); }
   void OnDone() override {
-    if (runner_) runner_->Detach(this);
+    Detach();
     if (!caller_.empty()) registry_.quotas().Give(caller_, Quota::kStreams);
     if (counted_) {
       registry_.RemoveClient();
@@ -60,26 +43,21 @@ class FrameStream : public Base, public FrameSink {
               const grpc::CallbackServerContext& context, bool device)
       : registry_(registry),
         device_(device),
+        pump_(*this, this, registry.metrics()),
         access_(access),
-        context_(context),
-        outbox_(device ? 1 : kViewerQueueFrames) {}
+        context_(context) {}
 
-  // Ends the stream from this side: lets go of the scene (and the tool) at
-  // once, so that the client seeing the end can claim the tool again; then
-  // sends the frames waiting (none when `abort`) and finishes.
+  // Ends the stream from this side (a gRPC thread, never a FrameSink call):
+  // lets go of the scene (and the tool) at once, so that the client seeing
+  // the end can claim the tool again; then sends the frames waiting (none
+  // when `abort`) and finishes.
   void End(const absl::Status& status, bool abort) {
-    std::shared_ptr<SceneRunner> runner;
-    {
-      std::lock_guard lock(runner_mu_);
-      runner = runner_;
-    }
-    if (runner) runner->Detach(this);
+    Detach();
     if (abort) {
-      outbox_.Abort(status);
+      pump_.Abort(status);
     } else {
-      outbox_.Close(status);
+      pump_.Close(status);
     }
-    Pump();
   }
 
   // The caller, when it may do `access` on `scene`.
@@ -123,12 +101,26 @@ class FrameStream : public Base, public FrameSink {
     return true;
   }
 
+  // Sets what the stream asked for, checking its frame rate against the
+  // scene's; on error the stream is failed.
+  bool Configure(FramePump::Options options, const char* method) {
+    absl::StatusOr<double> rate =
+        CheckFrameRate(options.frame_rate_hz, 1 / runner_->step_s(), "frame_rate_hz");
+    if (!rate.ok()) {
+      Fail(rate.status(), method);
+      return false;
+    }
+    options.queue_frames = device_ ? 1 : kViewerQueueFrames;
+    options.device = device_;
+    pump_.Configure(options);
+    return true;
+  }
+
   // Runs `start_operation` unless the stream is closed, atomically with
   // Finish: no operation starts after Finish.
   template <class F>
   void UnlessClosed(F start_operation) {
-    std::lock_guard lock(finish_mu_);
-    if (!outbox_.closed()) start_operation();
+    pump_.UnlessClosed(start_operation);
   }
 
   SceneRegistry& registry_;
@@ -136,35 +128,27 @@ class FrameStream : public Base, public FrameSink {
   // Set once by Open, on the reading thread; End may read it from others.
   std::mutex runner_mu_;
   std::shared_ptr<SceneRunner> runner_;
-  FrameParts parts_;
-  std::string tool_;    // devices only
   std::string holder_;  // the caller's name (Caller::name), set by Open
 
  private:
-  void Pump() {
-    FrameOutbox::Next next = outbox_.TakeNext();
-    if (next.kind == FrameOutbox::Next::kWrite) {
-      haptics::v1::Frame& frame = frame_.Start();
-      FillFrameMessage(*next.snapshot, parts_, tool_, next.dropped, UnixNanoseconds(), frame);
-      if (absl::Status s = SerializeMessage(frame, bytes_); !s.ok()) {
-        End(s, /*abort=*/true);
-        return;
-      }
-      this->StartWrite(&bytes_);
-    } else if (next.kind == FrameOutbox::Next::kFinish) {
-      std::lock_guard lock(finish_mu_);
-      this->Finish(ToGrpcStatus(next.status));
+  // Leaves the scene, if attached: from a gRPC thread only.
+  void Detach() {
+    std::shared_ptr<SceneRunner> runner;
+    {
+      std::lock_guard lock(runner_mu_);
+      runner = runner_;
     }
+    if (runner) runner->Detach(this);
   }
 
+  void StartWrite(const grpc::ByteBuffer* bytes) override { Base::StartWrite(bytes); }
+  void Finish(const absl::Status& status) override { Base::Finish(ToGrpcStatus(status)); }
+
+  FramePump pump_;
   const AccessPolicy& access_;
   const grpc::CallbackServerContext& context_;
-  FrameOutbox outbox_;
-  std::mutex finish_mu_;
   bool counted_ = false;
-  std::string caller_;       // set once its stream quota is taken
-  FrameMessageArena frame_;  // the frame of the write in flight, until serialized
-  grpc::ByteBuffer bytes_;   // frame_, serialized: the write in flight
+  std::string caller_;  // set once its stream quota is taken
 };
 
 // Reads bytes and parses them here (raw_message.h): a message that is no
@@ -218,8 +202,7 @@ class InteractReactor
       }
       taken = absl::AbortedError("tool '" + open.tool() + "' was taken over by " + admin->name);
     }
-    // Set before attaching: the scene thread reads it as soon as frames come.
-    tool_ = open.tool();
+    if (!Configure({.frame_rate_hz = open.frame_rate_hz()}, "Interact")) return false;
     if (absl::Status s = runner_->AttachDevice(this, {open.tool(), *needs, holder_},
                                                open.take_over() ? &taken : nullptr);
         !s.ok()) {
@@ -241,7 +224,8 @@ class InteractReactor
       Fail(X_WD.status(), "Interact");
       return false;
     }
-    runner_->SetDevicePose(this, *X_WD, AppliedPose{pose.sequence(), pose.device_time_ns()});
+    runner_->SetDevicePose(this, *X_WD, AppliedPose{pose.sequence(), pose.device_time_ns()},
+                           pose.model_stale());
     return true;
   }
 
@@ -295,7 +279,9 @@ class WatchReactor : public FrameStream<grpc::ServerWriteReactor<grpc::ByteBuffe
       Fail(needs.status(), "Watch");
       return;
     }
-    parts_ = needs->first;
+    if (!Configure({.parts = needs->first, .frame_rate_hz = request.frame_rate_hz()}, "Watch")) {
+      return;
+    }
     if (absl::Status s = runner_->AttachViewer(this, needs->second); !s.ok()) Fail(s, "Watch");
   }
 };

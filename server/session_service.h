@@ -10,9 +10,6 @@
 
 namespace hs {
 
-/// Frames a viewer may have waiting before the oldest is dropped.
-inline constexpr size_t kViewerQueueFrames = 64;
-
 // Both methods take their requests as bytes and write frames as bytes
 // (raw_message.h): a message that is no request gets INVALID_ARGUMENT.
 using SessionServiceBase = haptics::v1::SessionService::WithRawCallbackMethod_Interact<

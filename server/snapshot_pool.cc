@@ -1,7 +1,5 @@
 #include "server/snapshot_pool.h"
 
-#include <atomic>
-
 namespace hs {
 
 SnapshotPool::SnapshotPool() {
@@ -15,10 +13,12 @@ SnapshotPool::Slot& SnapshotPool::Take() {
   for (size_t k = 0; k < slots_.size(); ++k) {
     Slot& slot = slots_[(next_ + k) % slots_.size()];
     // Only the pool holds it: no stream can take it again, and every
-    // stream's reads of it happened before its release (the fence pairs
-    // with shared_ptr's releasing decrement).
+    // stream's reads of it happened before its release. A copy's increment
+    // (an acquire-release read-modify-write of the count) pairs with the
+    // last holder's releasing decrement; an acquire fence would too, but
+    // ThreadSanitizer does not see fences.
     if (slot.snapshot.use_count() == 1) {
-      std::atomic_thread_fence(std::memory_order_acquire);
+      { const std::shared_ptr<StepSnapshot> acquire = slot.snapshot; }
       next_ = (next_ + k + 1) % slots_.size();
       return slot;
     }

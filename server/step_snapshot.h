@@ -3,7 +3,6 @@
 // read-only copy of the step's frame with the server-side extras.
 
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,9 +30,18 @@ struct AppliedInput {
   bool seat = false;
 };
 
-/// Tool name -> its holder's name (Caller::name), for the tools devices
-/// hold.
-using ToolHolders = std::map<std::string, std::string>;
+class FrameSink;
+
+/// Who holds one tool: the device's stream, and its holder's name
+/// (Caller::name) as frames name it.
+struct ToolHolder {
+  const FrameSink* sink = nullptr;  // none: no device holds the tool
+  std::string name{};
+  bool operator==(const ToolHolder&) const = default;
+};
+
+/// Who holds each tool, by ObjectId of the scene that stepped.
+using ToolHolders = std::vector<ToolHolder>;
 
 struct StepSnapshot {
   /// The runner's step id: 1 for the first step, +1 per step, across scene
@@ -62,17 +70,21 @@ struct StepSnapshot {
   int64_t missed_steps_off_cpu = 0;
 };
 
-/// A stream's end of a scene: receives every step's snapshot. Offer and
-/// Close run with the runner's locks held: they must not call back into the
-/// SceneRunner (Detach, SetDevicePose, ...), which would deadlock.
+/// A stream's end of a scene: receives every step's snapshot. Only the
+/// scene's FrameFanOut calls it, holding no lock of the runner's
+/// (server/lock_order.h); it must not call back into the SceneRunner, its
+/// StreamRegistry or its FrameFanOut (SceneRunner aborts when it does): a
+/// stream that must end ends its own writes, and detaches when its RPC is
+/// done.
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
   /// Called on the scene's frames thread after each step, in step order;
   /// must not block.
   virtual void Offer(std::shared_ptr<const StepSnapshot> snapshot) = 0;
-  /// The scene ends (deleted, server shutting down): send what is pending,
-  /// then end the stream with `status`. Called at most once; no Offer after.
+  /// The stream is ended (the scene deleted or shutting down, its tool
+  /// taken over, its device silent): send what is pending, then end the
+  /// stream with `status`. Called at most once; no Offer after.
   virtual void Close(const absl::Status& status) = 0;
 };
 

@@ -3,10 +3,16 @@
 // viewers, what each needs the scene to compute, and the devices' latest
 // poses. Thread-safe: gRPC threads attach, detach and send poses; the
 // stepping thread takes the fresh poses; the frames thread lists the
-// streams.
+// streams and takes the ends to hand to them. It calls no stream and no
+// other class while it holds its lock: a stream it ends waits in the list
+// TakeEnds returns, for the frames thread to tell (server/lock_order.h).
+//
+// Tools are named once, when a device attaches; from then on poses and
+// holders are kept by the tool's ObjectId in the scene running now, which
+// RemapTools follows when the scene is replaced.
 
 #include <chrono>
-#include <functional>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -23,6 +29,16 @@
 
 namespace hs {
 
+/// A scene's tools as devices name them.
+struct SceneTools {
+  /// (name, ObjectId) of each tool.
+  std::vector<std::pair<std::string, ObjectId>> tools;
+  /// Objects in the scene: every ObjectId is below it.
+  size_t object_count = 0;
+  /// The tool called `name`, -1 when there is none.
+  ObjectId Find(const std::string& name) const;
+};
+
 /// A device pose waiting for the next step.
 struct PendingPose {
   Isometry3d X_WD = Isometry3d::Identity();
@@ -30,18 +46,23 @@ struct PendingPose {
   bool fresh = false;
   /// The first pose of the device that holds the tool now (Scene::SeatDevice).
   bool seat = false;
+  /// The device asked for a fresh local model with this pose or one it
+  /// replaced (ToolPose.model_stale).
+  bool model_stale = false;
 };
 
-/// The device poses one step takes: (tool, pose) entries [0, count); the
-/// entries past them keep their storage (tool names included) for later
-/// steps, so that taking poses allocates nothing once warm.
+/// The device poses one step takes: (tool, pose) entries [0, count), in
+/// ObjectId order; storage is kept for later steps, so that taking poses
+/// allocates nothing once warm.
 struct FreshPoses {
-  std::vector<std::pair<std::string, PendingPose>> entries;
+  std::vector<std::pair<ObjectId, PendingPose>> entries;
   size_t count = 0;
-  /// Who held each tool then; a new map after every change, so a step
+  /// Who held each tool then; a new table after every change, so a step
   /// keeps the one it took without copying.
   std::shared_ptr<const ToolHolders> holders;
-  std::span<const std::pair<std::string, PendingPose>> taken() const {
+  /// How many takes the registry has made, this one included.
+  uint64_t generation = 0;
+  std::span<const std::pair<ObjectId, PendingPose>> taken() const {
     return {entries.data(), count};
   }
 };
@@ -56,50 +77,66 @@ struct DeviceClaim {
   std::string holder{};
 };
 
+/// A stream to end, and how (FrameSink::Close).
+struct SinkEnd {
+  FrameSink* sink = nullptr;
+  absl::Status status;
+};
+
+/// What Detach and SetPose tell the runner.
+struct StreamChange {
+  /// The detached stream's tool ("" for a viewer); none when the stream was
+  /// not attached. Detach only.
+  std::optional<std::string> tool;
+  /// Set when every attached device now has a pose the last take did not
+  /// take: the generation of that take (FreshPoses::generation).
+  std::optional<uint64_t> devices_fresh_since;
+};
+
 class StreamRegistry {
  public:
-  /// `devices_fresh` is told, with the registry's lock held (so nothing
-  /// can slip between), whether every attached device has sent a pose the
-  /// last TakeFreshPoses did not take: true after a pose or a detach that
-  /// makes it so, false after TakeFreshPoses.
-  explicit StreamRegistry(std::function<void(bool)> devices_fresh)
-      : devices_fresh_(std::move(devices_fresh)) {}
+  /// The scene's tools, which devices may claim.
+  explicit StreamRegistry(SceneTools tools);
 
-  /// Lets `sink` drive the claimed tool. `has_tool` is asked under the lock. NOT_FOUND when it says
-  /// no, FAILED_PRECONDITION when another device holds the tool, UNAVAILABLE once closed. With
-  /// `take_over`, a device holding the tool is ended with that status (FrameSink::Close) and
-  /// forgotten instead, its pose not taken yet dropped, and `*displaced` set.
+  /// Lets `sink` drive the claimed tool. NOT_FOUND when the scene has no
+  /// such tool, FAILED_PRECONDITION when another device holds it,
+  /// UNAVAILABLE once closed. With `take_over`, a device holding the tool
+  /// is forgotten instead, its pose not taken yet dropped, and queued to be
+  /// ended with that status (TakeEnds); `*displaced` is set.
   absl::Status AttachDevice(FrameSink* sink, const DeviceClaim& claim,
-                            const std::function<bool(const std::string&)>& has_tool,
                             const absl::Status* take_over = nullptr, bool* displaced = nullptr);
   /// Lets `sink` receive frames. UNAVAILABLE once closed.
   absl::Status AttachViewer(FrameSink* sink, EffectSet needs);
-  /// Forgets `sink` and frees its tool. Returns its tool ("" for a
-  /// viewer), none when it was not attached.
-  std::optional<std::string> Detach(FrameSink* sink);
+  /// Forgets `sink`, frees its tool, and drops an end queued for it.
+  StreamChange Detach(FrameSink* sink);
 
   /// The pose of `sink`'s tool for the next step (latest wins); ignored
   /// for a viewer or a stream not attached. A device's first pose seats it
-  /// (PendingPose::seat), until a step takes it.
-  void SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp);
-  /// Ends (FrameSink::Close with `status`) and forgets every device not
-  /// heard from (attached or sent a pose) since `silent_since`, as a
-  /// take-over does; appends their tools to `released`.
-  void EndSilentDevices(std::chrono::steady_clock::time_point silent_since,
-                        const absl::Status& status, std::vector<std::string>& released);
+  /// (PendingPose::seat), until a step takes it; so does a request for a
+  /// fresh model (`model_stale`).
+  StreamChange SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp,
+                       bool model_stale = false);
+  /// Forgets every device not heard from (attached or sent a pose) since
+  /// `silent_since`, queuing its end with `status` as a take-over does;
+  /// appends their tools to `released`. Returns what SetPose would, as the
+  /// devices left may all have sent.
+  StreamChange EndSilentDevices(std::chrono::steady_clock::time_point silent_since,
+                                const absl::Status& status, std::vector<std::string>& released);
   /// Moves the poses not taken before into `fresh`, with who holds each
   /// tool, and returns what the streams need, at one instant.
   EffectSet TakeFreshPoses(FreshPoses& fresh);
 
   /// The attached streams, into `out` (cleared first).
   void ListSinks(std::vector<FrameSink*>& out) const;
-  /// FAILED_PRECONDITION naming a tool a device holds that `has_tool`
-  /// says is gone; checked under the lock, so no device attaches meanwhile
-  /// when `then` (run under it on OK) swaps the scene.
-  absl::Status WhileToolsHeld(const std::function<bool(const std::string&)>& has_tool,
-                              const std::function<void()>& then);
-  /// Ends every stream with `status` (FrameSink::Close); later attaches
-  /// are UNAVAILABLE.
+  /// Moves the ends queued (take-overs, silent devices, CloseAll) into
+  /// `out` (cleared first), for the caller to hand to their streams.
+  void TakeEnds(std::vector<SinkEnd>& out);
+  /// Takes the tools of the scene that replaces this one: the held tools
+  /// and their poses move to their ids in `next`. FAILED_PRECONDITION
+  /// naming a held tool that `next` lacks, and no change.
+  absl::Status RemapTools(SceneTools next);
+  /// Queues the end of every stream with `status`; later attaches are
+  /// UNAVAILABLE. The streams stay attached until they detach.
   void CloseAll(const absl::Status& status);
 
   /// Devices and viewers attached, and the tools the devices hold; and
@@ -116,24 +153,33 @@ class StreamRegistry {
 
  private:
   struct Attached {
-    std::string tool{};  // empty for viewers
+    ObjectId tool = -1;  // -1 for viewers
     EffectSet needs;
     std::string holder{};
     bool sent_pose = false;
     std::chrono::steady_clock::time_point heard{};  // attached or sent its last pose
   };
-  // Whether every attached device has a pose not taken yet (and there is one).
-  bool DevicesFreshLocked() const;
-  // Forgets device `it`, ending it with `status`, its pose not taken yet dropped.
-  void EndDeviceLocked(std::map<FrameSink*, Attached>::iterator it, const absl::Status& status);
+  using SinkMap = std::map<FrameSink*, Attached>;
+  // The tool's name in the scene running now.
+  const std::string& ToolName(ObjectId tool) const;
+  // Set when every attached device has a pose not taken yet (and there is one).
+  std::optional<uint64_t> DevicesFreshLocked() const;
+  // Forgets device `it`, queuing its end with `status`; its pose not taken yet dropped.
+  void EndDeviceLocked(SinkMap::iterator it, const absl::Status& status);
+  // Forgets the pose of `tool` not taken yet.
+  void DropPendingLocked(ObjectId tool);
   // Makes holders_ anew from sinks_.
   void UpdateHoldersLocked();
 
-  const std::function<void(bool)> devices_fresh_;
-  mutable PriorityInheritingMutex mu_;
-  std::map<FrameSink*, Attached> sinks_;
-  std::map<std::string, PendingPose> pending_;  // by tool name
-  std::shared_ptr<const ToolHolders> holders_ = std::make_shared<const ToolHolders>();
+  mutable PriorityInheritingMutex mu_{LockLevel::kStreams};
+  SceneTools tools_;
+  SinkMap sinks_;
+  std::vector<PendingPose> pending_;  // by ObjectId
+  int devices_ = 0;
+  int devices_with_fresh_pose_ = 0;
+  uint64_t takes_ = 0;
+  std::shared_ptr<const ToolHolders> holders_;
+  std::vector<SinkEnd> ends_;
   bool closed_ = false;
   int64_t devices_joined_ = 0;
   int64_t viewers_joined_ = 0;

@@ -43,6 +43,13 @@ bool HapticLoop::SetModel(const LocalModel& model) {
     ++rejected_models_;
     return false;
   }
+  // A frame may carry the model the loop has already taken: taking it
+  // again would correct the proxy's drift twice.
+  const LocalModel& newest = has_pending_model_ ? pending_model_ : model_;
+  if (model.revision != 0 && (has_model_ || has_pending_model_) &&
+      model.revision == newest.revision) {
+    return true;
+  }
   pending_model_ = model;
   has_pending_model_ = true;
   return true;

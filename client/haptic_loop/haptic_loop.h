@@ -69,7 +69,8 @@ class HapticLoop {
 
   /// Renders from `model` from the next tick on. A model with a number that
   /// is not finite, a normal that is not unit, or a radius or clamp that is
-  /// not > 0 is rejected (false; the last model stays).
+  /// not > 0 is rejected (false; the last model stays). A model of the
+  /// revision the loop has (LocalModel::revision, not 0) is taken as it.
   bool SetModel(const LocalModel& model);
 
   /// One tick with the device at X_WD (world frame, metres). A non-finite

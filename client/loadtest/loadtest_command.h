@@ -1,13 +1,15 @@
 #pragma once
-// `hapticctl loadtest --clients N --rate HZ --duration S [--scene FILE]
-// [--viewers M] [--json] [--allow-remote] [--server-pid PID] [--no-echo]`:
-// runs the load test of loadtest.h and prints its report.
+// `hapticctl loadtest --clients N --rate HZ --duration S [--frame-rate-hz
+// HZ] [--scene FILE] [--viewers M] [--json] [--allow-remote] [--server-pid
+// PID] [--server-metrics URL] [--no-echo]`: runs the load test of
+// loadtest.h and prints its report (report_text.h, report_json.h).
 
 #include <ostream>
 #include <string>
 
 #include "CLI/CLI.hpp"
 #include "client/loadtest/loadtest.h"
+#include "client/loadtest/report_json.h"
 
 namespace hs::cli {
 
@@ -20,10 +22,6 @@ struct LoadtestArgs {
   /// What each device needs (effect names); empty means everything.
   std::vector<std::string> needs;
 };
-
-/// The report as JSON: settings, round trips (ms) overall, per device and
-/// of the echo, frames, drops, missed steps, step time, CPU.
-std::string LoadReportJson(const LoadReport& report);
 
 /// Runs the test, progress lines on `err`, and prints the report to `out`.
 /// kExitOk; kExitUsage for options past the bounds or a remote server

@@ -10,6 +10,9 @@ namespace hs::cli {
 /// when it cannot be read (no such process, not Linux).
 std::optional<double> ProcessCpuSeconds(int pid);
 
+/// User plus system CPU seconds this process has used (getrusage).
+double OwnCpuSeconds();
+
 /// The process (of those this user may inspect) holding a TCP socket
 /// listening on `port` (/proc/net/tcp and tcp6, then /proc/*/fd);
 /// nullopt when none is found.

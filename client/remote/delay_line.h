@@ -1,51 +1,31 @@
 #pragma once
 // One direction of a simulated network link, in process: each message is
-// held for the one-way latency plus a random jitter, or lost, and comes out
-// in the order it went in (as on one stream). Seeded, so runs repeat.
+// held, lost or stalled as its schedule says (link_schedule.h) and comes
+// out in the order it went in (as on one stream).
 
 #include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <mutex>
-#include <random>
+#include <optional>
 #include <utility>
 
+#include "client/remote/link_schedule.h"
+
 namespace hs::cli {
-
-/// How a link delays and loses messages.
-struct LinkConditions {
-  /// Round trip, milliseconds: each direction holds a message half of it.
-  double latency_ms = 0;
-  /// Each message is held up to this much longer, milliseconds, uniformly.
-  double jitter_ms = 0;
-  /// Each message is lost with this probability, in each direction.
-  double loss = 0;
-  uint64_t seed = 1;
-
-  bool ideal() const { return latency_ms == 0 && jitter_ms == 0 && loss == 0; }
-};
 
 template <typename T>
 class DelayLine {
  public:
   /// `stream` tells the two directions of one link apart in the seed.
-  DelayLine(const LinkConditions& link, uint64_t stream)
-      : one_way_s_(link.latency_ms / 2e3),
-        jitter_s_(link.jitter_ms / 1e3),
-        loss_(link.loss),
-        random_(link.seed * 2 + stream) {}
+  DelayLine(const LinkConditions& link, uint64_t stream) : schedule_(link, stream) {}
 
   /// Sends `item` at `now_s` (seconds on the caller's clock).
   void Push(double now_s, T item) {
     std::lock_guard lock(mutex_);
-    if (loss_ > 0 && std::uniform_real_distribution<double>(0, 1)(random_) < loss_) {
-      ++lost_;
-      return;
-    }
-    double at = now_s + one_way_s_;
-    if (jitter_s_ > 0) at += std::uniform_real_distribution<double>(0, jitter_s_)(random_);
-    at = std::max(at, last_at_);  // in order, as on one stream
-    last_at_ = at;
+    const std::optional<double> release = schedule_.Release(now_s);
+    if (!release) return;
+    const double at = *release;
     delay_sum_s_ += at - now_s;
     delay_max_s_ = std::max(delay_max_s_, at - now_s);
     queue_.emplace_back(at, std::move(item));
@@ -67,7 +47,11 @@ class DelayLine {
 
   int64_t lost() const {
     std::lock_guard lock(mutex_);
-    return lost_;
+    return schedule_.lost();
+  }
+  int64_t stalled() const {
+    std::lock_guard lock(mutex_);
+    return schedule_.stalled();
   }
   /// Mean and largest time a sent message was held, seconds.
   double mean_delay_s() const {
@@ -81,13 +65,11 @@ class DelayLine {
   }
 
  private:
-  const double one_way_s_, jitter_s_, loss_;
   mutable std::mutex mutex_;
-  std::mt19937_64 random_;
+  LinkSchedule schedule_;
   std::deque<std::pair<double, T>> queue_;
-  double last_at_ = 0;
   double delay_sum_s_ = 0, delay_max_s_ = 0;
-  int64_t lost_ = 0, delivered_ = 0;
+  int64_t delivered_ = 0;
 };
 
 }  // namespace hs::cli

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "client/exit_codes.h"
+#include "client/frame_rate_args.h"
 #include "client/needs_args.h"
 #include "client/server_call.h"
 #include "common/api/local_model_convert.h"
@@ -60,6 +61,7 @@ RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
   EffectSet needs{Effect::kForce, Effect::kFriction, Effect::kContactSet, Effect::kReversingVector};
   if (options.local_model) needs = needs.With(Effect::kLocalModel);
   SetNeeds(needs, *open.mutable_open());
+  SetFrameRate(*open.mutable_open(), args.frame_rate_hz);
   stream->Write(open);
   RemoteRun run(options, start);
   const Clock::time_point t0 = Clock::now();
@@ -102,6 +104,8 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"latency_ms", link.latency_ms},
           {"jitter_ms", link.jitter_ms},
           {"loss", link.loss},
+          {"stall_prob", link.stall_prob},
+          {"stall_ms", link.stall_ms},
           {"seed", link.seed},
           {"ticks", s.ticks},
           {"energy_j", s.energy_j},
@@ -116,6 +120,8 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"round_trip_p99_ms", s.round_trip_p99_ms},
           {"poses_lost", s.poses_lost},
           {"frames_lost", s.frames_lost},
+          {"poses_stalled", s.poses_stalled},
+          {"frames_stalled", s.frames_stalled},
           {"models_rejected", s.models_rejected},
           {"models_restarted", s.models_restarted},
           {"beyond_validity_ticks", s.beyond_validity_ticks}};

@@ -1,7 +1,8 @@
 #pragma once
 // `hapticctl drive --operator press|slide|tap`: a closed-loop remote device
 // (remote_run.h) against a scene on a server, over SessionService.Interact,
-// through a simulated link of --latency-ms, --jitter-ms and --loss. When
+// through a simulated link of --latency-ms, --jitter-ms, --loss and
+// --stall-prob/--stall-ms (link_schedule.h). When
 // the link is not ideal, a run over an ideal link comes first: the
 // reference of force_rms_error_n.
 
@@ -24,6 +25,8 @@ struct RemoteDriveArgs {
   /// device position, m) to this file; empty for none.
   std::string trace_path;
   bool json = false;
+  /// Frames a second asked of the server (frame_rate_args.h); 0: its own.
+  double frame_rate_hz = 0;
 };
 
 /// Runs and prints the summary to `out`: one JSON object with --json.

@@ -75,8 +75,9 @@ RemoteSummary RemoteRun::Summary(std::span<const Vector3d> reference) const {
   s.downlink_mean_ms = down_.mean_delay_s() * 1e3;
   s.poses_lost = up_.lost();
   s.frames_lost = down_.lost();
+  s.poses_stalled = up_.stalled();
+  s.frames_stalled = down_.stalled();
   s.models_rejected = models_rejected_;
-  s.models_restarted = loop_.restarted_models();
   s.models_restarted = loop_.restarted_models();
   s.beyond_validity_ticks = loop_.beyond_validity_ticks();
   return s;

@@ -76,6 +76,9 @@ struct RemoteSummary {
   double round_trip_p99_ms = 0;
   int64_t poses_lost = 0;
   int64_t frames_lost = 0;
+  /// Messages the link stalled (and the ones behind them with them).
+  int64_t poses_stalled = 0;
+  int64_t frames_stalled = 0;
   int64_t models_rejected = 0;
   /// Models whose device pose the loop no longer held (the proxy restarted
   /// at the server's).

@@ -9,10 +9,9 @@
 #include <limits>
 #include <sstream>
 
-#include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
 #include "absl/strings/str_replace.h"
+#include "client/training/report_html.h"
 #include "client/training/score_output.h"
 #include "nlohmann/json.hpp"
 
@@ -133,56 +132,6 @@ std::string AttemptsPlot(const std::vector<double>& scores, const std::string& p
   return s.str();
 }
 
-std::string Html(const std::string& text) {
-  return absl::StrReplaceAll(text,
-                             {{"&", "&amp;"}, {"<", "&lt;"}, {">", "&gt;"}, {"\"", "&quot;"}});
-}
-
-std::string InlinePng(const std::string& file, const std::string& alt) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return "<img alt=\"" + Html(alt) + "\" src=\"data:image/png;base64," +
-         absl::Base64Escape(bytes.str()) + "\">";
-}
-
-std::string HtmlReport(const ReportInput& in, const ordered_json& json,
-                       const std::vector<std::string>& pngs) {
-  const ScoreSummary& s = in.summary;
-  std::ostringstream h;
-  h << "<!doctype html><html><head><meta charset=\"utf-8\"><title>" << Html(in.exercise->name)
-    << "</title><style>body{font-family:sans-serif;margin:2em;max-width:1100px}"
-       "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;"
-       "text-align:left}img{max-width:100%;display:block;margin:1em 0}</style></head><body>"
-    << "<h1>" << Html(in.exercise->name) << "</h1><p>Tool <b>" << Html(in.exercise->tool)
-    << "</b> in scene <b>" << Html(in.scene) << "</b>; ended: " << Html(in.ended) << "</p>"
-    << "<h2>Score " << absl::StrFormat("%.1f", s.score) << " / 100"
-    << (s.completed ? "" : " (not completed)") << "</h2><table>";
-  for (const auto& [key, value] : json.items()) {
-    if (value.is_array() || value.is_object()) continue;
-    h << "<tr><th>" << Html(key) << "</th><td>" << Html(value.dump()) << "</td></tr>";
-  }
-  h << "</table><h2>Targets</h2><table><tr><th>target</th><th>reached</th><th>at (s)</th>"
-       "<th>largest force (N)</th></tr>";
-  for (const TargetResult& t : s.target_results) {
-    h << "<tr><td>" << Html(t.name) << "</td><td>" << (t.reached ? "yes" : "no") << "</td><td>"
-      << (t.reached ? absl::StrFormat("%.3f", t.reached_at_s) : "") << "</td><td>"
-      << absl::StrFormat("%.2f", t.max_force_n) << "</td></tr>";
-  }
-  h << "</table><h2>Forbidden contacts</h2>";
-  if (s.forbidden_list.empty()) h << "<p>None.</p>";
-  for (const ForbiddenContact& f : s.forbidden_list) {
-    h << "<p>" << Html(f.object) << " at " << absl::StrFormat("%.3f", f.start_s) << " s for "
-      << absl::StrFormat("%.3f", f.duration_s) << " s, up to "
-      << absl::StrFormat("%.2f", f.max_force_n) << " N</p>";
-  }
-  for (const std::string& png : pngs) {
-    h << InlinePng(png, std::filesystem::path(png).stem().string());
-  }
-  h << "</body></html>\n";
-  return h.str();
-}
-
 }  // namespace
 
 absl::Status WriteReport(const std::string& dir, const ReportInput& in) {
@@ -200,13 +149,14 @@ absl::Status WriteReport(const std::string& dir, const ReportInput& in) {
   std::filesystem::create_directories(dir, made);
   if (made) return absl::InvalidArgumentError(dir + ": " + made.message());
   const std::filesystem::path base(dir);
-  ordered_json json = {{"exercise", in.exercise->name},
-                       {"tool", in.exercise->tool},
-                       {"scene", in.scene},
-                       {"ended", in.ended},
-                       {"written_unix_s", std::chrono::duration_cast<std::chrono::seconds>(
-                                              std::chrono::system_clock::now().time_since_epoch())
-                                              .count()}};
+  const auto written = std::chrono::system_clock::now();
+  ordered_json json = {
+      {"exercise", in.exercise->name},
+      {"tool", in.exercise->tool},
+      {"scene", in.scene},
+      {"ended", in.ended},
+      {"written_unix_s",
+       std::chrono::duration_cast<std::chrono::seconds>(written.time_since_epoch()).count()}};
   json.update(SummaryJson(in.summary));
   json["attempt_scores"] = scores;
   std::ofstream(base / "report.json") << json.dump(2) << "\n";
@@ -217,7 +167,7 @@ absl::Status WriteReport(const std::string& dir, const ReportInput& in) {
     script += AttemptsPlot(scores, pngs.back());
   }
   if (absl::Status plotted = Gnuplot(script); !plotted.ok()) return plotted;
-  std::ofstream(base / "report.html") << HtmlReport(in, json, pngs);
+  std::ofstream(base / "report.html") << ReportHtml(in, written, pngs);
   return absl::OkStatus();
 }
 

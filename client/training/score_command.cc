@@ -1,7 +1,9 @@
 #include "client/training/score_command.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "absl/strings/str_cat.h"
 
@@ -56,7 +58,17 @@ absl::Status ScorePath(const LoadedExercise& exercise, const std::string& file, 
     // The first pose seats the device on the tool, as a server does for a
     // device that takes it.
     if (moved) HS_RETURN_IF_ERROR(ApplyDevicePose(s, tool, path[next - 1].X_WD, seated++ == 0));
-    scorer.Add(ScoringFrameFromStep(s.Step(), tool, scene.names));
+    ScoringFrame scored = ScoringFrameFromStep(s.Step(), tool, scene.names);
+    // The path's times are the device's clock of its poses. After the
+    // last, the device holds still sending it every step, so that its
+    // clock runs on while a hold begun at the end finishes.
+    const double step_time_s = static_cast<double>(k) * step_s;
+    if (step_time_s > path.back().t_s) {
+      scored.pose_time_s = step_time_s;
+    } else if (next > 0) {
+      scored.pose_time_s = path[next - 1].t_s;
+    }
+    scorer.Add(scored);
   }
   return absl::OkStatus();
 }
@@ -73,14 +85,30 @@ absl::Status ScoreRecording(const LoadedExercise& exercise, const std::string& f
                                                    "', the exercise's scene is '",
                                                    exercise.scene.name(), "'"));
   }
+  // The tool's device inputs in order, each with the device's time of its
+  // pose: the replay applies each just before its step.
+  std::vector<const haptics::v1::DeviceInput*> inputs;
+  for (const haptics::v1::Record& record : session.records) {
+    if (record.has_input() && record.input().tool() == exercise.exercise.tool) {
+      inputs.push_back(&record.input());
+    }
+  }
+  const double step_s = session.records.front().start().step_s();
+  size_t next = 0;
+  std::optional<double> pose_time_s;
   ReplayOptions options;
   options.extra_needs = kScoringNeeds;
   options.on_step = [&](double time_s, const StepFrame& frame,
                         const std::vector<std::string>& names) {
+    const int64_t step = std::llround(time_s / step_s);
+    for (; next < inputs.size() && inputs[next]->step() <= step; ++next) {
+      pose_time_s = DevicePoseTime(inputs[next]->device_time_ns());
+    }
     const auto tool = std::find(names.begin(), names.end(), exercise.exercise.tool);
     const ObjectId id = tool == names.end() ? -1 : static_cast<ObjectId>(tool - names.begin());
     ScoringFrame scored = ScoringFrameFromStep(frame, id, names);
     scored.time_s = time_s;
+    scored.pose_time_s = pose_time_s;
     scorer.Add(scored);
   };
   HS_ASSIGN_OR_RETURN(const ReplayReport report, ReplayRecording(file, options));

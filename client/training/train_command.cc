@@ -88,7 +88,7 @@ int RunTrain(const TrainArgs& args, std::ostream& out, std::ostream& err,
   Clock::time_point next_progress = Clock::now() + std::chrono::seconds(1);
   while (!all_done() && stream->Read(&frame)) {
     for (Trainee& t : trainees)
-      t.scorer.Add(ScoringFrameFromProto(frame, t.exercise.exercise.tool));
+      t.scorer.Add(ScoringFrameFromProto(frame, t.exercise.exercise.tool, FrameStream::kWatch));
     if (!args.json && Clock::now() >= next_progress) {
       next_progress += std::chrono::seconds(1);
       for (const Trainee& t : trainees) PrintProgress(t, out);

@@ -19,6 +19,7 @@
 #include "client/server_call.h"
 #include "client/viewer/scene_link.h"
 #include "client/viewer/view_server.h"
+#include "common/net/address.h"
 
 extern char** environ;
 
@@ -48,24 +49,6 @@ std::atomic<bool> g_interrupted{false};
 
 void OnSignal(int) { g_interrupted = true; }
 
-// "HOST:PORT" (IPv6 hosts in brackets).
-bool SplitHostPort(const std::string& text, ViewServerOptions& options) {
-  const size_t colon = text.rfind(':');
-  if (colon == std::string::npos) return false;
-  std::string host = text.substr(0, colon);
-  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
-    host = host.substr(1, host.size() - 2);
-  }
-  const std::string port = text.substr(colon + 1);
-  if (host.empty() || port.empty() || port.size() > 5 ||
-      port.find_first_not_of("0123456789") != std::string::npos || std::stoi(port) > 65535) {
-    return false;
-  }
-  options.host = host;
-  options.port = static_cast<uint16_t>(std::stoi(port));
-  return true;
-}
-
 // Connects to the server and starts the web side on `web`.
 struct Bridge {
   std::unique_ptr<SceneLink> link;
@@ -84,11 +67,12 @@ absl::StatusOr<Bridge> StartBridge(const ConnectionOptions& connection, const st
 }
 
 int RunView(const ViewArgs& args, std::ostream& out, std::ostream& err) {
-  ViewServerOptions web;
-  if (!SplitHostPort(args.http, web)) {
+  const std::optional<HostPort> http = SplitHostPort(args.http);
+  if (!http) {
     err << "view: --http must be HOST:PORT, not '" << args.http << "'\n";
     return kExitUsage;
   }
+  const ViewServerOptions web{.host = http->host, .port = http->port};
   absl::StatusOr<Bridge> bridge = StartBridge(args.server, args.scene, web);
   if (!bridge.ok()) return ReportError("view", bridge.status(), err);
   const std::string host =

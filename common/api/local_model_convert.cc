@@ -55,6 +55,7 @@ void LocalModelToProto(const LocalModel& model, const std::vector<std::string>& 
   out->set_touching(model.touching);
   VectorToProto(model.touch_point_W, out->mutable_touch_point_w_m());
   VectorToProto(model.p_WD, out->mutable_device_position_w_m());
+  out->set_revision(model.revision);
   for (const ConstraintPlane& plane : model.planes) {
     pb::ConstraintPlane* p = out->add_planes();
     p->set_object(names[plane.object]);
@@ -80,6 +81,7 @@ absl::StatusOr<LocalModel> LocalModelFromProto(const pb::LocalModel& model) {
   HS_ASSIGN_OR_RETURN(out.force_clamp_n,
                       NumberIn(model.force_clamp_n(), 0, 1e6, "local_model.force_clamp_n"));
   if (!(out.force_clamp_n > 0)) return InvalidField("local_model.force_clamp_n", "must be > 0");
+  out.revision = model.revision();
   out.friction = model.friction();
   out.touching = model.touching();
   HS_ASSIGN_OR_RETURN(out.touch_point_W,

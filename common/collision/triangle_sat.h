@@ -1,7 +1,7 @@
 #pragma once
 // Triangle-triangle tests by the separating axis theorem (SAT): the lean
 // leaf test of the BVH traversal, and the exact sweep interval of the 3D
-// contact method (shared/ALGORITHM.md).
+// contact method (docs/algorithm.md).
 //
 // Axes: both face normals, the 9 cross products of edge pairs, and the 6
 // in-plane edge normals (face normal x edge), which separate coplanar

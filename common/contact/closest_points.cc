@@ -11,9 +11,42 @@ Vector3d ClosestPointOnSegment(const Vector3d& p, const Vector3d& a, const Vecto
   return a + std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) * ab;
 }
 
+namespace {
+
+// Triangles with twice their area at most this times their longest edge
+// squared are slivers to ClosestPointOnTriangle.
+constexpr double kSliver = 1e-4;
+
+// The point of a sliver closest to `p`: the nearest of its edges' points and
+// of the foot of p on its plane, when that lies in it (with the plane's
+// normal from the corners alone, not from p's distances).
+Vector3d ClosestPointOnSliver(const Vector3d& p, const Vector3d& a, const Vector3d& b,
+                              const Vector3d& c) {
+  Vector3d best = ClosestPointOnSegment(p, a, b);
+  for (const Vector3d& q : {ClosestPointOnSegment(p, b, c), ClosestPointOnSegment(p, c, a)}) {
+    if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+  }
+  const Vector3d n = (b - a).cross(c - a);
+  const double n_sq = n.squaredNorm();
+  if (!(n_sq > 0)) return best;
+  const Vector3d foot = p - n * (n.dot(p - a) / n_sq);
+  const bool inside = n.dot((b - a).cross(foot - a)) >= 0 && n.dot((c - b).cross(foot - b)) >= 0 &&
+                      n.dot((a - c).cross(foot - c)) >= 0;
+  return inside && (foot - p).squaredNorm() < (best - p).squaredNorm() ? foot : best;
+}
+
+}  // namespace
+
 Vector3d ClosestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
                                 const Vector3d& c) {
   const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  // The region tests below decide by the signs of products of p's distances
+  // that cancel, and the face formula divides by their sum (|ab x ac|^2):
+  // on a sliver, or a zero-area triangle, both are rounding noise.
+  const double longest_sq = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
+  if (!(ab.cross(ac).squaredNorm() > kSliver * kSliver * longest_sq * longest_sq)) {
+    return ClosestPointOnSliver(p, a, b, c);
+  }
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return a;
   const Vector3d bp = p - b;
@@ -31,15 +64,6 @@ Vector3d ClosestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vect
     return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
   }
   const double denominator = va + vb + vc;
-  if (!(denominator > 0)) {
-    // Degenerate (zero-area) triangle: the best of its three segments.
-    const Vector3d candidates[3] = {ClosestPointOnSegment(p, a, b), ClosestPointOnSegment(p, b, c),
-                                    ClosestPointOnSegment(p, c, a)};
-    return *std::min_element(std::begin(candidates), std::end(candidates),
-                             [&](const Vector3d& x, const Vector3d& y) {
-                               return (x - p).squaredNorm() < (y - p).squaredNorm();
-                             });
-  }
   return a + ab * (vb / denominator) + ac * (vc / denominator);
 }
 

@@ -9,7 +9,9 @@
 namespace hs {
 
 /// The point of triangle (a, b, c) closest to `p`. Degenerate triangles are
-/// handled (the closest point of their segments).
+/// handled (the closest point of their segments), and so are slivers (twice
+/// the area at most 1e-4 times the longest edge squared), on which the
+/// usual region tests would be decided by rounding.
 Vector3d ClosestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
                                 const Vector3d& c);
 

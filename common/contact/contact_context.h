@@ -1,6 +1,6 @@
 #pragma once
 // Internal to common/contact: what every reconstruction method starts from.
-// Everything is in the fixed object's frame F (shared/ALGORITHM.md).
+// Everything is in the fixed object's frame F (docs/algorithm.md).
 
 #include <vector>
 

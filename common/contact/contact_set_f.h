@@ -1,7 +1,7 @@
 #pragma once
 // Internal to common/contact: a contact as the reconstruction methods find
 // it, every vector and point in the fixed object's frame F
-// (shared/ALGORITHM.md). ComputeContact turns it into a ContactSet, world
+// (docs/algorithm.md). ComputeContact turns it into a ContactSet, world
 // frame, once.
 
 #include <array>

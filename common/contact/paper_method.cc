@@ -8,12 +8,13 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/contact/projection_options.h"
 #include "common/contact/side_contact.h"
 
-// The paper's method (s.4, fig. 5 and 6, appendix), as shared/ALGORITHM.md
+// The paper's method (s.4, fig. 5 and 6, appendix), as docs/algorithm.md
 // reads it, with one reading changed (see PenetrationTest in
 // projection_options.h): for each plane xy, yz, xz of F's frame, project the
 // candidate features, back every penetrating vertex of M along the projected
@@ -225,185 +226,264 @@ struct PassResult {
 // of the deepest so far. Stops once d_max / `norm` (|D_p|: the depth along
 // D) + tol >= `stop_t`, the very expression the choice between planes
 // compares, so that a plane stopped is one that choice would pass over.
-PassResult RunPass(const Candidates& vertex_side, const Candidates& edge_side, int plane,
-                   const Vector2d& u, double tol, const ProjectionOptions& options, double norm,
-                   double stop_t) {
-  std::vector<std::array<Vector2d, 2>> segments;
-  segments.reserve(edge_side.edges.size());
-  for (const CandidateEdge& e : edge_side.edges) {
-    segments.push_back({Project(e.a, plane), Project(e.b, plane)});
+//
+// In steps: project the edge side's segments, place the vertices and the
+// segments across and along the line, then scan, each vertex against every
+// band when the vertices are few, else against the buckets its line falls
+// in.
+class Pass {
+ public:
+  Pass(const Candidates& vertex_side, const Candidates& edge_side, int plane, const Vector2d& u,
+       double tol, const ProjectionOptions& options, double norm, double stop_t)
+      : plane_(plane),
+        u_(u),
+        w_(-u.y(), u.x()),
+        tol_(tol),
+        options_(options),
+        norm_(norm),
+        stop_t_(stop_t) {
+    ProjectEdgeSide(edge_side);
+    PlaceVertices(vertex_side);
+    PlaceSegments();
   }
-  std::vector<std::array<Vector2d, 3>> triangles;
-  if (options.penetration == PenetrationTest::kInsideTriangle) {
-    triangles.reserve(edge_side.triangles.size());
-    for (const Triangle3d& t : edge_side.triangles) {
-      triangles.push_back({Project(t[0], plane), Project(t[1], plane), Project(t[2], plane)});
+
+  PassResult Run() {
+    constexpr int kFewVertices = 16;
+    if (num_vertices_ <= kFewVertices) {
+      ScanEveryBand();
+    } else {
+      BuildBuckets();
+      ScanBuckets();
     }
+    return std::move(result_);
   }
+
+ private:
+  // Each segment's ends across the line (key, along w) and along it (back,
+  // along u), and the slack of its band for the tolerance and rounding.
+  struct Ends {
+    double key_a, key_b, back_a, back_b, slack;
+  };
+  // A segment listed in a bucket, with the least u over its part that the
+  // lines through the bucket's vertices can meet.
+  struct Entry {
+    double behind;
+    int segment;
+  };
+
+  void ProjectEdgeSide(const Candidates& edge_side) {
+    segments_.reserve(edge_side.edges.size());
+    for (const CandidateEdge& e : edge_side.edges) {
+      segments_.push_back({Project(e.a, plane_), Project(e.b, plane_)});
+    }
+    if (options_.penetration == PenetrationTest::kInsideTriangle) {
+      triangles_.reserve(edge_side.triangles.size());
+      for (const Triangle3d& t : edge_side.triangles) {
+        triangles_.push_back({Project(t[0], plane_), Project(t[1], plane_), Project(t[2], plane_)});
+      }
+    }
+    num_segments_ = static_cast<int>(segments_.size());
+  }
+
   // A segment can meet the line through v along u only if its band, its
   // extent across the line along w = u turned by 90 degrees, holds v.w
   // within the tolerance (CrossingDepth's rule; the band is widened for
   // rounding). Buckets over v.w list the segments whose band meets them,
   // so each vertex tests only the segments near its line instead of all;
   // a handful of vertices check every band instead.
-  const Vector2d w(-u.y(), u.x());
-  const int num_vertices = static_cast<int>(vertex_side.vertices.size());
-  const int num_segments = static_cast<int>(segments.size());
-  std::vector<Vector2d> points(num_vertices);
-  std::vector<double> keys(num_vertices), backs(num_vertices);  // v.w, v.u
-  std::vector<double> sizes(num_vertices);                      // |v|, L1
-  double key_lo = kInf, key_hi = -kInf;
-  for (int i = 0; i < num_vertices; ++i) {
-    points[i] = Project(vertex_side.vertices[i].p, plane);
-    keys[i] = points[i].dot(w);
-    backs[i] = points[i].dot(u);
-    sizes[i] = points[i].cwiseAbs().sum();
-    key_lo = std::min(key_lo, keys[i]);
-    key_hi = std::max(key_hi, keys[i]);
-  }
-  // Each segment's ends across the line (key, along w) and along it (back,
-  // along u), and the slack of its band for the tolerance and rounding.
-  struct Ends {
-    double key_a, key_b, back_a, back_b, slack;
-  };
-  std::vector<Ends> ends(num_segments);
-  std::vector<std::array<double, 2>> bands(num_segments);
-  // No point of segment j lies further back along u than its end `ahead[j]`
-  // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
-  std::vector<double> ahead(num_segments), lengths(num_segments);
-  double largest_segment = 0;  // |a| + |b|, L1
-  for (int j = 0; j < num_segments; ++j) {
-    largest_segment = std::max(largest_segment,
-                               segments[j][0].cwiseAbs().sum() + segments[j][1].cwiseAbs().sum());
-    lengths[j] = (segments[j][1] - segments[j][0]).norm();
-    Ends& e = ends[j];
-    e.key_a = segments[j][0].dot(w), e.key_b = segments[j][1].dot(w);
-    e.back_a = segments[j][0].dot(u), e.back_b = segments[j][1].dot(u);
-    e.slack = 2 * tol + 1e-12 * (std::abs(e.key_a) + std::abs(e.key_b));
-    bands[j] = {std::min(e.key_a, e.key_b) - e.slack, std::max(e.key_a, e.key_b) + e.slack};
-    ahead[j] = std::min(e.back_a, e.back_b);
-  }
-  // The deepest vertex first: what can still matter rises at once.
-  std::vector<int> deepest_first(num_vertices);
-  for (int i = 0; i < num_vertices; ++i) deepest_first[i] = i;
-  if (num_vertices > 0) {
-    std::swap(deepest_first[0],
-              deepest_first[std::max_element(backs.begin(), backs.end()) - backs.begin()]);
+  void PlaceVertices(const Candidates& vertex_side) {
+    num_vertices_ = static_cast<int>(vertex_side.vertices.size());
+    points_.resize(num_vertices_);
+    keys_.resize(num_vertices_);
+    backs_.resize(num_vertices_);
+    sizes_.resize(num_vertices_);
+    for (int i = 0; i < num_vertices_; ++i) {
+      points_[i] = Project(vertex_side.vertices[i].p, plane_);
+      keys_[i] = points_[i].dot(w_);
+      backs_[i] = points_[i].dot(u_);
+      sizes_[i] = points_[i].cwiseAbs().sum();
+      key_lo_ = std::min(key_lo_, keys_[i]);
+      key_hi_ = std::max(key_hi_, keys_[i]);
+    }
+    // The deepest vertex first: what can still matter rises at once.
+    deepest_first_.resize(num_vertices_);
+    for (int i = 0; i < num_vertices_; ++i) deepest_first_[i] = i;
+    if (num_vertices_ > 0) {
+      std::swap(deepest_first_[0],
+                deepest_first_[std::max_element(backs_.begin(), backs_.end()) - backs_.begin()]);
+    }
   }
 
-  PassResult result;
+  // No point of segment j lies further back along u than its end `ahead[j]`
+  // = min(a.u, b.u), so v's d_j is at most v.u - ahead[j] (plus rounding).
+  void PlaceSegments() {
+    ends_.resize(num_segments_);
+    bands_.resize(num_segments_);
+    ahead_.resize(num_segments_);
+    lengths_.resize(num_segments_);
+    for (int j = 0; j < num_segments_; ++j) {
+      largest_segment_ = std::max(
+          largest_segment_, segments_[j][0].cwiseAbs().sum() + segments_[j][1].cwiseAbs().sum());
+      lengths_[j] = (segments_[j][1] - segments_[j][0]).norm();
+      Ends& e = ends_[j];
+      e.key_a = segments_[j][0].dot(w_), e.key_b = segments_[j][1].dot(w_);
+      e.back_a = segments_[j][0].dot(u_), e.back_b = segments_[j][1].dot(u_);
+      e.slack = 2 * tol_ + 1e-12 * (std::abs(e.key_a) + std::abs(e.key_b));
+      bands_[j] = {std::min(e.key_a, e.key_b) - e.slack, std::max(e.key_a, e.key_b) + e.slack};
+      ahead_[j] = std::min(e.back_a, e.back_b);
+    }
+  }
+
   // The least d that still matters: -tol, or tol under the deepest d so far
   // (without skip_shallow_crossings, -tol: every crossing is computed).
-  auto matters = [&] {
-    return options.skip_shallow_crossings ? std::max(-tol, result.d_max - tol) : -tol;
-  };
+  double Matters() const {
+    return options_.skip_shallow_crossings ? std::max(-tol_, result_.d_max - tol_) : -tol_;
+  }
+
   // Whether segment j, with no point a line through vertex i meets further
   // back along u than `behind`, cannot give a d that matters; rounding,
   // relative to the coordinates, may lift d a hair over its bound.
-  auto out_of_reach = [&](int i, double behind) {
-    return options.skip_shallow_crossings &&
-           backs[i] - behind + 1e-12 * (sizes[i] + largest_segment) < matters();
-  };
+  bool OutOfReach(int i, double behind) const {
+    return options_.skip_shallow_crossings &&
+           backs_[i] - behind + 1e-12 * (sizes_[i] + largest_segment_) < Matters();
+  }
+
   // Vertex i against segment j: keeps the crossing if it matters.
-  auto cross = [&](int i, int j) {
+  void Cross(int i, int j) {
     const std::optional<Crossing> c =
-        CrossingDepth(points[i], u, segments[j][0], segments[j][1], lengths[j], tol);
-    if (c && c->d >= matters()) {
-      result.hits.push_back({i, j, c->d, c->at_a, c->at_b});
-      result.d_max = std::max(result.d_max, std::max(c->d, 0.0));
-      result.cut_short = result.d_max / norm + tol >= stop_t;
+        CrossingDepth(points_[i], u_, segments_[j][0], segments_[j][1], lengths_[j], tol_);
+    if (c && c->d >= Matters()) {
+      result_.hits.push_back({i, j, c->d, c->at_a, c->at_b});
+      result_.d_max = std::max(result_.d_max, std::max(c->d, 0.0));
+      result_.cut_short = result_.d_max / norm_ + tol_ >= stop_t_;
     }
-  };
-  auto penetration_test_passes = [&](int i) {
-    return options.penetration != PenetrationTest::kInsideTriangle ||
-           std::any_of(triangles.begin(), triangles.end(),
-                       [&](const auto& t) { return InsideTriangle(points[i], t, tol); });
-  };
-  constexpr int kFewVertices = 16;
-  if (num_vertices <= kFewVertices) {
-    for (int i : deepest_first) {
-      if (!penetration_test_passes(i)) continue;
-      for (int j = 0; j < num_segments; ++j) {
-        if (bands[j][0] <= keys[i] && keys[i] <= bands[j][1] && !out_of_reach(i, ahead[j])) {
-          cross(i, j);
-          if (result.cut_short) return result;
+  }
+
+  bool PenetrationTestPasses(int i) const {
+    return options_.penetration != PenetrationTest::kInsideTriangle ||
+           std::any_of(triangles_.begin(), triangles_.end(),
+                       [&](const auto& t) { return InsideTriangle(points_[i], t, tol_); });
+  }
+
+  void ScanEveryBand() {
+    for (int i : deepest_first_) {
+      if (!PenetrationTestPasses(i)) continue;
+      for (int j = 0; j < num_segments_; ++j) {
+        if (bands_[j][0] <= keys_[i] && keys_[i] <= bands_[j][1] && !OutOfReach(i, ahead_[j])) {
+          Cross(i, j);
+          if (result_.cut_short) return;
         }
       }
     }
-    return result;
   }
+
+  // Clamped before the cast, which then floors (the value is >= 0).
+  int BucketOf(double key) const {
+    return static_cast<int>(
+        std::clamp((key - key_lo_) / bucket_width_, 0.0, static_cast<double>(num_buckets_ - 1)));
+  }
+
   // Buckets about as wide as a band: narrower ones list each segment many
   // times over (the listing then costs more than the tests it saves),
-  // wider ones hold more segments that miss the line.
-  double band_sum = 0;
-  for (const auto& band : bands) band_sum += band[1] - band[0];
-  const double bucket_width = std::max({(key_hi - key_lo) / std::max(1, num_segments),
-                                        band_sum / std::max(1, num_segments), 1e-300});
-  const int num_buckets = std::clamp(static_cast<int>((key_hi - key_lo) / bucket_width) + 1, 1,
-                                     std::max(1, num_segments));
-  // Clamped before the cast, which then floors (the value is >= 0).
-  auto bucket_of = [&](double key) {
-    return static_cast<int>(
-        std::clamp((key - key_lo) / bucket_width, 0.0, static_cast<double>(num_buckets - 1)));
-  };
-  // Bucket b lists entries[bucket_start[b] .. bucket_start[b + 1]) (a
-  // counting sort): the segments whose band meets it, each with the least
-  // u over its part that the lines through the bucket's vertices can meet
-  // (with the band's slack), a bound on their d tighter than `ahead`.
-  std::vector<std::array<int, 2>> segment_buckets(num_segments, {0, -1});
-  std::vector<int> bucket_start(num_buckets + 1, 0);
-  for (int j = 0; j < num_segments; ++j) {
-    if (bands[j][1] < key_lo || bands[j][0] > key_hi) continue;
-    segment_buckets[j] = {bucket_of(bands[j][0]), bucket_of(bands[j][1])};
-    for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) ++bucket_start[b + 1];
-  }
-  for (int b = 0; b < num_buckets; ++b) bucket_start[b + 1] += bucket_start[b];
-  struct Entry {
-    double behind;
-    int segment;
-  };
-  std::vector<Entry> entries(bucket_start[num_buckets]);
-  std::vector<int> cursor(bucket_start.begin(), bucket_start.end() - 1);
-  for (int j = 0; j < num_segments; ++j) {
-    const double ka = ends[j].key_a, kb = ends[j].key_b;
-    const double ua = ends[j].back_a, ub = ends[j].back_b;
-    // The band's slack, and the rounding of the bucket's edges.
-    const double slack = ends[j].slack + 1e-12 * (std::abs(key_lo) + std::abs(key_hi));
-    for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) {
-      // The bucket's keys, the lowest and highest buckets open-ended.
-      const double k0 = b == 0 ? -kInf : key_lo + b * bucket_width - slack;
-      const double k1 = b == num_buckets - 1 ? kInf : key_lo + (b + 1) * bucket_width + slack;
-      double behind = std::min(ua, ub);
-      if (kb != ka) {  // u is linear along the segment: least at an end of its part
-        const double t0 = std::clamp((k0 - ka) / (kb - ka), 0.0, 1.0);
-        const double t1 = std::clamp((k1 - ka) / (kb - ka), 0.0, 1.0);
-        behind = std::max(behind, std::min(ua + t0 * (ub - ua), ua + t1 * (ub - ua)));
+  // wider ones hold more segments that miss the line. Bucket b lists
+  // entries_[bucket_start_[b] .. bucket_start_[b + 1]) (a counting sort):
+  // the segments whose band meets it, each with a bound on their d tighter
+  // than `ahead`.
+  void BuildBuckets() {
+    double band_sum = 0;
+    for (const auto& band : bands_) band_sum += band[1] - band[0];
+    bucket_width_ = std::max({(key_hi_ - key_lo_) / std::max(1, num_segments_),
+                              band_sum / std::max(1, num_segments_), 1e-300});
+    num_buckets_ = std::clamp(static_cast<int>((key_hi_ - key_lo_) / bucket_width_) + 1, 1,
+                              std::max(1, num_segments_));
+    std::vector<std::array<int, 2>> segment_buckets(num_segments_, {0, -1});
+    bucket_start_.assign(num_buckets_ + 1, 0);
+    for (int j = 0; j < num_segments_; ++j) {
+      if (bands_[j][1] < key_lo_ || bands_[j][0] > key_hi_) continue;
+      segment_buckets[j] = {BucketOf(bands_[j][0]), BucketOf(bands_[j][1])};
+      for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) ++bucket_start_[b + 1];
+    }
+    for (int b = 0; b < num_buckets_; ++b) bucket_start_[b + 1] += bucket_start_[b];
+    entries_.resize(bucket_start_[num_buckets_]);
+    std::vector<int> cursor(bucket_start_.begin(), bucket_start_.end() - 1);
+    for (int j = 0; j < num_segments_; ++j) {
+      for (int b = segment_buckets[j][0]; b <= segment_buckets[j][1]; ++b) {
+        entries_[cursor[b]++] = {Behind(j, b), j};
       }
-      entries[cursor[b]++] = {behind, j};
+    }
+    // Each bucket by `behind`: a vertex stops at the first segment whose
+    // bound cannot matter, and most vertices of a deep contact stop early.
+    if (options_.skip_shallow_crossings) {
+      for (int b = 0; b < num_buckets_; ++b) {
+        std::sort(entries_.begin() + bucket_start_[b], entries_.begin() + bucket_start_[b + 1],
+                  [](const Entry& x, const Entry& y) { return x.behind < y.behind; });
+      }
     }
   }
-  // Each bucket by `behind`: a vertex stops at the first segment whose
-  // bound cannot matter, and most vertices of a deep contact stop early.
-  if (options.skip_shallow_crossings) {
-    for (int b = 0; b < num_buckets; ++b) {
-      std::sort(entries.begin() + bucket_start[b], entries.begin() + bucket_start[b + 1],
-                [](const Entry& x, const Entry& y) { return x.behind < y.behind; });
+
+  // The least u over the part of segment j that the lines through bucket
+  // b's vertices can meet (with the band's slack).
+  double Behind(int j, int b) const {
+    const double ka = ends_[j].key_a, kb = ends_[j].key_b;
+    const double ua = ends_[j].back_a, ub = ends_[j].back_b;
+    // The band's slack, and the rounding of the bucket's edges.
+    const double slack = ends_[j].slack + 1e-12 * (std::abs(key_lo_) + std::abs(key_hi_));
+    // The bucket's keys, the lowest and highest buckets open-ended.
+    const double k0 = b == 0 ? -kInf : key_lo_ + b * bucket_width_ - slack;
+    const double k1 = b == num_buckets_ - 1 ? kInf : key_lo_ + (b + 1) * bucket_width_ + slack;
+    double behind = std::min(ua, ub);
+    if (kb != ka) {  // u is linear along the segment: least at an end of its part
+      const double t0 = std::clamp((k0 - ka) / (kb - ka), 0.0, 1.0);
+      const double t1 = std::clamp((k1 - ka) / (kb - ka), 0.0, 1.0);
+      behind = std::max(behind, std::min(ua + t0 * (ub - ua), ua + t1 * (ub - ua)));
+    }
+    return behind;
+  }
+
+  void ScanBuckets() {
+    for (int i : deepest_first_) {
+      if (!PenetrationTestPasses(i)) continue;
+      const int b = BucketOf(keys_[i]);
+      for (int k = bucket_start_[b]; k < bucket_start_[b + 1]; ++k) {
+        const Entry& e = entries_[k];
+        if (OutOfReach(i, e.behind)) break;  // and so is the rest of the bucket
+        const std::array<double, 2>& band = bands_[e.segment];
+        if (keys_[i] < band[0] || band[1] < keys_[i]) continue;  // misses the line
+        Cross(i, e.segment);
+        if (result_.cut_short) return;
+      }
     }
   }
-  for (int i : deepest_first) {
-    if (!penetration_test_passes(i)) continue;
-    const int b = bucket_of(keys[i]);
-    for (int k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
-      const Entry& e = entries[k];
-      if (out_of_reach(i, e.behind)) break;  // and so is the rest of the bucket
-      const std::array<double, 2>& band = bands[e.segment];
-      if (keys[i] < band[0] || band[1] < keys[i]) continue;  // misses the line
-      cross(i, e.segment);
-      if (result.cut_short) return result;
-    }
-  }
-  return result;
-}
+
+  const int plane_;
+  const Vector2d u_, w_;
+  const double tol_;
+  const ProjectionOptions& options_;
+  const double norm_, stop_t_;
+
+  // The edge side's segments (and triangles, for kInsideTriangle), projected.
+  std::vector<std::array<Vector2d, 2>> segments_;
+  std::vector<std::array<Vector2d, 3>> triangles_;
+  int num_segments_ = 0;
+  // The vertices: projected, v.w, v.u, |v| (L1), and the scan's order.
+  int num_vertices_ = 0;
+  std::vector<Vector2d> points_;
+  std::vector<double> keys_, backs_, sizes_;
+  std::vector<int> deepest_first_;
+  double key_lo_ = kInf, key_hi_ = -kInf;
+  // The segments, placed.
+  std::vector<Ends> ends_;
+  std::vector<std::array<double, 2>> bands_;
+  std::vector<double> ahead_, lengths_;
+  double largest_segment_ = 0;  // |a| + |b|, L1
+  // The buckets, when the vertices are many.
+  double bucket_width_ = 0;
+  int num_buckets_ = 0;
+  std::vector<int> bucket_start_;
+  std::vector<Entry> entries_;
+
+  PassResult result_;
+};
 
 struct PlaneResult {
   bool found = false;
@@ -516,9 +596,9 @@ ContactSetF ReconstructByProjection(const ContactContext& context,
     const double norm = norms[plane];
     const Vector2d u = Project(D, plane) / norm;
     r = PlaneResult{};
-    r.moving = RunPass(moving, fixed, plane, u, tol, options, norm, stop_t);
+    r.moving = Pass(moving, fixed, plane, u, tol, options, norm, stop_t).Run();
     if (!r.moving.cut_short)
-      r.fixed = RunPass(fixed, moving, plane, -u, tol, options, norm, stop_t);
+      r.fixed = Pass(fixed, moving, plane, -u, tol, options, norm, stop_t).Run();
     r.cut_short = r.moving.cut_short || r.fixed.cut_short;
     r.found = !(r.moving.hits.empty() && r.fixed.hits.empty());
     r.d_plane = std::max(r.moving.d_max, r.fixed.d_max);

@@ -1,7 +1,7 @@
 #pragma once
 // Internal to common/contact: the paper's contact reconstruction by
 // projection onto the xy, yz and xz planes (s.4 and appendix), as
-// shared/ALGORITHM.md reads it.
+// docs/algorithm.md reads it.
 
 #include "common/contact/contact_context.h"
 #include "common/contact/contact_set_f.h"

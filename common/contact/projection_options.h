@@ -16,7 +16,7 @@ enum class PenetrationTest {
   /// Equivalently: the vertex lies in the projection of a paired triangle of
   /// the other object swept along the direction of motion. The default.
   kBackwardCrossing,
-  /// shared/ALGORITHM.md step 1 taken literally: the vertex lies inside the
+  /// The plain reading of "the vertex penetrates": it lies inside the
   /// projection of a paired triangle of the other object. It misses every
   /// face seen edge-on, so a vertex pressed into a face along the face's
   /// normal is never found (paper_method_test shows it on fig. 8 (a)).

@@ -1,5 +1,5 @@
 #pragma once
-// Internal to common/contact: the exact 3D method of shared/ALGORITHM.md,
+// Internal to common/contact: the exact 3D method of docs/algorithm.md,
 // sweep intervals by the separating axis theorem.
 
 #include "common/contact/contact_context.h"

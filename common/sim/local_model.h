@@ -39,6 +39,11 @@ struct ConstraintPlane {
 };
 
 struct LocalModel {
+  /// Which of its tool's models this is: 1 for the first built, +1 per
+  /// model built; 0 for none. A frame may carry a model again (the server
+  /// builds one only when the last one no longer serves): a device's loop
+  /// takes each revision once.
+  uint64_t revision = 0;
   /// The proxy pose the model was taken at, world frame, metres.
   Isometry3d X_WP = Isometry3d::Identity();
   /// The device's origin the proxy was moved toward, world frame, metres:

@@ -287,4 +287,27 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vec
   }
 }
 
+void ReanchorLocalModel(const LocalModel& built, const ProxyState& proxy, const Vector3d& p_WD,
+                        double moved_m, double behind_m, LocalModel& model) {
+  const Vector3d shift = proxy.X_WP.translation() - built.X_WP.translation();
+  model.revision = built.revision;
+  model.X_WP = proxy.X_WP;
+  model.p_WD = p_WD;
+  model.validity_radius_m = std::max(built.validity_radius_m - moved_m, behind_m);
+  model.force_clamp_n = built.force_clamp_n;
+  model.friction = built.friction;
+  model.touching = proxy.touching;
+  model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
+  model.planes.clear();
+  for (const ConstraintPlane& plane : built.planes) {
+    // The tool's point moved with the proxy: its gap in front of the plane
+    // changed by the shift along the normal.
+    const double gap = plane.gap_m + plane.normal_W.dot(shift);
+    if (gap < -behind_m) continue;
+    model.planes.push_back(plane);
+    model.planes.back().gap_m = std::max(gap, 0.0);
+    model.planes.back().tool_point_W = plane.tool_point_W + shift;
+  }
+}
+
 }  // namespace hs

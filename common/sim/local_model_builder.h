@@ -31,4 +31,16 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vec
                      std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                      const LocalModelOptions& options, LocalModel& model);
 
+/// Fills `model` from `built` (a model BuildLocalModel made) for the proxy
+/// at `proxy`, moved toward `p_WD`, without a new face search: each
+/// plane's gap and tool point follow the proxy's shift since `built` was
+/// taken, a plane the proxy has gone more than `behind_m` behind (a face
+/// it has slid past) is left out, and the validity radius shrinks by
+/// `moved_m`, how far any point of the tool has moved since (the model
+/// holds within what is left of the built one's sphere; at least
+/// `behind_m`). Revision, clamp and friction are `built`'s. Allocates
+/// nothing once `model.planes` is as large as `built`'s.
+void ReanchorLocalModel(const LocalModel& built, const ProxyState& proxy, const Vector3d& p_WD,
+                        double moved_m, double behind_m, LocalModel& model);
+
 }  // namespace hs

@@ -73,14 +73,25 @@ absl::Status Scene::SetThreads(int threads, const std::function<void()>& on_work
   return absl::OkStatus();
 }
 
-absl::Status Scene::CheckDevicePose(ObjectId id, const Isometry3d& X_WD) const {
+absl::Status Scene::CheckTool(ObjectId id) const {
   if (id < 0 || id >= objects_.size()) {
     return absl::NotFoundError(absl::StrCat("no object ", id));
   }
   if (objects_[id].kind != ObjectKind::kTool) {
     return absl::FailedPreconditionError(absl::StrCat("object ", id, " is not a tool"));
   }
+  return absl::OkStatus();
+}
+
+absl::Status Scene::CheckDevicePose(ObjectId id, const Isometry3d& X_WD) const {
+  HS_RETURN_IF_ERROR(CheckTool(id));
   return ValidateRigidPose(X_WD, "device");
+}
+
+absl::Status Scene::RequestLocalModel(ObjectId id) {
+  HS_RETURN_IF_ERROR(CheckTool(id));
+  tools_.RequestLocalModel(id);
+  return absl::OkStatus();
 }
 
 absl::Status Scene::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
@@ -100,14 +111,16 @@ const StepFrame& Scene::Step() {
   frame_.time_s = static_cast<double>(frame_.step) * options_.step_s;
   EffectSet stages = StagesToRun(options_.enabled, needed_);
   if (bodies_.empty()) stages = stages.Without(Effect::kFreeBodyMotion);
-  // Nothing moves: the contacts are those of the last step, so no stage
-  // runs; tools that touch go on touching.
-  if (!stages.Has(Effect::kFreeBodyMotion) && !tools_.AnyMoved()) {
+  // No device moved, no model is asked for and the same stages are: no
+  // stage runs, and the frame is the last one (docs/simulation.md, Still
+  // devices); tools that touch go on touching.
+  if (!stages.Has(Effect::kFreeBodyMotion) && stages == last_stages_ && tools_.NothingToStep()) {
     frame_.stages_run = EffectSet();
     CountClashes(frame_.tools, options_.step_s, frame_.clashes);
     return frame_;
   }
   frame_.stages_run = stages;
+  last_stages_ = stages;
   tools_.Step(stages, *workers_, frame_.tools, stats_);
   frame_.bodies.resize(bodies_.size());
   if (stages.Has(Effect::kFreeBodyMotion)) {

@@ -54,6 +54,10 @@ class Scene {
   /// scene placed the tool) instead of from where the last device left it,
   /// stopping at what lies between as a proxy does.
   absl::Status SeatDevice(ObjectId id, const Isometry3d& X_WD);
+  /// Tool `id`'s next step builds a fresh local model (a device went past
+  /// the last one's validity sphere). NOT_FOUND or FAILED_PRECONDITION, as
+  /// SetDevicePose, when `id` is no tool.
+  absl::Status RequestLocalModel(ObjectId id);
 
   /// Steps the tools on up to `threads` threads (the stepping one
   /// included): each tool's contacts apart from its proxy and force, the
@@ -81,12 +85,15 @@ class Scene {
   const SceneOptions& options() const { return options_; }
 
  private:
+  // NOT_FOUND or FAILED_PRECONDITION when `id` is no tool.
+  absl::Status CheckTool(ObjectId id) const;
   // SetDevicePose's errors.
   absl::Status CheckDevicePose(ObjectId id, const Isometry3d& X_WD) const;
   explicit Scene(const SceneOptions& options) : options_(options) {}
 
   SceneOptions options_;
   EffectSet needed_ = EffectSet::Default();
+  EffectSet last_stages_;  // the stages the last step that ran any ran
   SceneObjects objects_;
   ToolStage tools_{options_, objects_};
   FreeBodies bodies_{options_, objects_};

@@ -16,6 +16,20 @@ namespace {
 // than this many shortest box edges in one step may pass through.
 constexpr int kMaxSubsteps = 256;
 
+// A tool's local model is searched for again when its proxy has moved
+// more than this fraction of the validity radius since the last search, or
+// that search is older than the age below; in between, the last search's
+// planes are moved to each step's proxy. A millionth: only a proxy that has
+// not moved but by rounding (a proxy pressed on a surface may swap between
+// two places 1e-13 m apart for ever) keeps its planes, which a search
+// would find the same; the rest search.
+// A quarter, an eighth and a sixteenth of the radius were tried
+// (2026-11-27): the remote slide at 100 ms round trip then changed the
+// force by up to 0.6-0.9 N in a tick against its 0.5 N bound, the loop
+// leaning on faces it has slid past for longer.
+constexpr double kLocalModelMoveFraction = 1e-6;
+constexpr double kLocalModelMaxAgeS = 0.05;
+
 // The contact ProxiesPenetrate reconstructs, kept from step to step.
 struct StartContact {
   ContactSet contact;
@@ -34,12 +48,18 @@ void AddStats(StageStatsTable& to, StageStatsTable& from) {
 void ToolStage::Add(ObjectId id, const Isometry3d& X_WO) {
   if (static_cast<int>(index_.size()) <= id) index_.resize(id + 1, -1);
   index_[id] = static_cast<int>(tools_.size());
+  const AlignedBox3d box = objects_[id].object.bounding_box();
+  double reach_m = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    reach_m = std::max(reach_m, box.corner(static_cast<AlignedBox3d::CornerType>(corner)).norm());
+  }
   tools_.push_back(Tool{.id = id,
                         .X_WD_previous = X_WO,
                         .X_WD = X_WO,
                         .X_WP = X_WO,
                         .X_WP_previous = X_WO,
-                        .X_WO_home = X_WO});
+                        .X_WO_home = X_WO,
+                        .reach_m = reach_m});
   scratch_.emplace_back();
 }
 
@@ -58,8 +78,24 @@ void ToolStage::SeatDevice(ObjectId id, const Isometry3d& X_WD) {
   tool.X_WP = tool.X_WO_home;
 }
 
-bool ToolStage::AnyMoved() const {
-  return std::any_of(tools_.begin(), tools_.end(), [](const Tool& t) { return t.moved; });
+bool ToolStage::NothingToStep() const {
+  for (size_t i = 0; i < tools_.size(); ++i) {
+    if (tools_[i].moved || scratch_[i].model_wanted) return false;
+  }
+  return true;
+}
+
+void ToolStage::RequestLocalModel(ObjectId id) { scratch_[index_[id]].model_wanted = true; }
+
+double ToolStage::ModelMoved(const Tool& tool, const Isometry3d& X_WP, bool friction,
+                             ToolScratch& scratch) const {
+  const LocalModel& built = scratch.built_model;
+  if (built.revision == 0 || scratch.model_wanted || built.friction != friction) return -1;
+  if (++scratch.steps_since_model * options_.step_s > kLocalModelMaxAgeS) return -1;
+  // The origin's shift, and the turn times the tool's reach.
+  const double turn = Eigen::AngleAxisd(built.X_WP.linear().transpose() * X_WP.linear()).angle();
+  const double moved = (X_WP.translation() - built.X_WP.translation()).norm() + tool.reach_m * turn;
+  return moved <= kLocalModelMoveFraction * built.validity_radius_m ? moved : -1;
 }
 
 ToolStage::ProxyMotion ToolStage::ProxyMotionOf(ObjectId id) const {
@@ -414,8 +450,11 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
   frame.force_W.setZero();
   frame.torque_W.setZero();
   frame.force_clamped = false;
-  frame.local_model.planes.clear();
-  frame.local_model.validity_radius_m = 0;
+  if (!stages.Has(Effect::kLocalModel)) {
+    frame.local_model.planes.clear();
+    frame.local_model.validity_radius_m = 0;
+    frame.local_model.revision = 0;
+  }
   // Friction runs inside the proxy stage: its runs are counted here, its
   // time is the proxy's.
   if (stages.Has(Effect::kFriction)) ++stats[static_cast<int>(Effect::kFriction)].runs;
@@ -437,12 +476,32 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
   }
   if (stages.Has(Effect::kLocalModel)) {
     StageTimer timer(stats[static_cast<int>(Effect::kLocalModel)]);
-    BuildLocalModel(objects_.Posed(tool.id, proxy.X_WP), proxy, tool.X_WD.translation(),
-                    objects_.obstacles(), objects_.obstacle_ids(),
-                    {.radius_m = options_.local_model_radius_m,
-                     .force_clamp_n = options_.force_clamp_n,
-                     .friction = stages.Has(Effect::kFriction)},
-                    frame.local_model);
+    const bool friction = stages.Has(Effect::kFriction);
+    // Every change of the model the frames carry is a new revision.
+    const uint64_t revision = scratch.model.revision + 1;
+    const double moved = ModelMoved(tool, proxy.X_WP, friction, scratch);
+    if (moved < 0) {
+      BuildLocalModel(objects_.Posed(tool.id, proxy.X_WP), proxy, tool.X_WD.translation(),
+                      objects_.obstacles(), objects_.obstacle_ids(),
+                      {.radius_m = options_.local_model_radius_m,
+                       .force_clamp_n = options_.force_clamp_n,
+                       .friction = friction},
+                      scratch.built_model);
+      scratch.built_model.revision = revision;
+      scratch.steps_since_model = 0;
+      scratch.model_wanted = false;
+      scratch.model = scratch.built_model;
+    } else if (!proxy.X_WP.isApprox(scratch.model.X_WP, 0.0) ||
+               tool.X_WD.translation() != scratch.model.p_WD) {
+      // The planes of the last search, moved to this step's proxy: a device
+      // corrects its drift against each step's proxy, as with a new model.
+      // A plane the proxy went behind by more than its stand-off (1e-6 of
+      // the tool's size, as the search's) is a face it slid past.
+      ReanchorLocalModel(scratch.built_model, proxy, tool.X_WD.translation(), moved,
+                         1e-6 * tool.reach_m, scratch.model);
+      scratch.model.revision = revision;
+    }
+    frame.local_model = scratch.model;
   }
   if (stages.Has(Effect::kForce) && proxy.touching) {
     StageTimer timer(stats[static_cast<int>(Effect::kForce)]);

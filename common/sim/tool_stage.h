@@ -43,8 +43,13 @@ class ToolStage {
   /// swept from the last device's pose, and the proxy moves to it from the
   /// tool's home pose (where Add put it).
   void SeatDevice(ObjectId id, const Isometry3d& X_WD);
-  /// Some device moved since the last step.
-  bool AnyMoved() const;
+  /// No device moved since the last step and no tool wants a fresh local
+  /// model: the step holds the last frame (docs/simulation.md, Still
+  /// devices).
+  bool NothingToStep() const;
+  /// Tool `id`'s next step builds a fresh local model (its device went past
+  /// the last one's validity sphere); `id` must be a tool.
+  void RequestLocalModel(ObjectId id);
 
   /// Steps every tool through `stages` on `workers`: `frames` takes one
   /// entry per tool (in the order added), `stats` each stage's runs and
@@ -72,6 +77,7 @@ class ToolStage {
     Isometry3d X_WP;           // proxy pose
     Isometry3d X_WP_previous;  // proxy pose of the last step
     Isometry3d X_WO_home;      // where Add put it
+    double reach_m = 0;        // farthest point of its box from its origin, metres
     bool moved = true;
     bool seated = false;  // SeatDevice since the last step
   };
@@ -109,6 +115,14 @@ class ToolStage {
     // so that they stop growing once each half has met its largest contact.
     ScratchSpace contacts_space;
     ScratchSpace proxy_space;
+    // The proxy half, with the local model stage: the tool's last model as
+    // built, which serves until a step builds the next (ModelMoved), the
+    // steps since, whether a device asked for a fresh one, and the model
+    // the frames carry: the built one moved to each step's proxy.
+    LocalModel built_model;
+    int steps_since_model = 0;
+    bool model_wanted = false;
+    LocalModel model;
   };
   // A piece of a step for one worker: the contacts half of tool `index`
   // (into tools_), or the proxy halves of island `index`.
@@ -137,6 +151,12 @@ class ToolStage {
   // `island` holds the tool (indices into tools_).
   void StepProxy(int index, std::span<const int> island, EffectSet stages, ToolFrame& frame,
                  ToolScratch& scratch) const;
+  // How far any point of the tool has moved since `scratch.built_model`
+  // was taken, with its proxy at X_WP, when that model still serves
+  // (docs/simulation.md, Local models only when needed); -1 when a new one
+  // must be built.
+  double ModelMoved(const Tool& tool, const Isometry3d& X_WP, bool friction,
+                    ToolScratch& scratch) const;
   // Fills scratch.candidates with the targets the tool may touch this step.
   void FindCandidates(const Tool& tool, Candidates which, ToolScratch& scratch) const;
   // Fills scratch.proxy_obstacles with the fixed objects and the proxies of

@@ -11,7 +11,24 @@ namespace {
 constexpr double kExcessImpulseScaleNs = 0.1;
 constexpr double kJerkScaleMPerS3 = 10;
 
+// Six times the third divided difference of four samples: the jerk of the
+// cubic through them, exact for a cubic however the samples are spaced.
+Vector3d Jerk(const double t[4], const Vector3d p[4]) {
+  Vector3d d[4] = {p[0], p[1], p[2], p[3]};
+  for (int order = 1; order <= 3; ++order) {
+    for (int i = 3; i >= order; --i) d[i] = (d[i] - d[i - 1]) / (t[i] - t[i - order]);
+  }
+  return 6 * d[3];
+}
+
 }  // namespace
+
+std::optional<double> DevicePoseTime(int64_t device_time_ns) {
+  if (device_time_ns == 0) return std::nullopt;
+  // Divided, not multiplied by 1e-9: a stamp of whole nanoseconds then
+  // reads as the seconds it was made from (0.005 s as 0.005).
+  return static_cast<double>(device_time_ns) / 1e9;
+}
 
 Scorer::Scorer(Exercise exercise)
     : exercise_(std::move(exercise)), open_forbidden_(exercise_.forbidden.size(), -1) {
@@ -39,39 +56,60 @@ void Scorer::Add(const ScoringFrame& frame) {
   if (!started_) {
     if (exercise_.tool_home_W && frame.p_WD == *exercise_.tool_home_W) return;
     started_ = true;
-    start_s_ = last_s_ = frame.time_s;
+    device_clock_ = frame.pose_time_s.has_value();
+    start_s_ = last_s_ = device_clock_ ? *frame.pose_time_s : frame.time_s;
     start_p_ = frame.p_WD;
   }
-  if (frame.time_s - start_s_ > exercise_.time_limit_s) {
+  // On the device's clock a frame is as late as the pose it applies, not
+  // as late as the network brought that pose to a step; a frame that
+  // brings no newer pose adds no time.
+  const double t =
+      device_clock_ ? std::max(last_s_, frame.pose_time_s.value_or(last_s_)) : frame.time_s;
+  if (t - start_s_ > exercise_.time_limit_s) {
     timed_out_ = true;
     return;
   }
-  const double dt = std::max(0.0, frame.time_s - last_s_);
-  last_s_ = frame.time_s;
-  if (has_last_p_) path_m_ += (frame.p_WD - last_p_).norm();
-  last_p_ = frame.p_WD;
-  has_last_p_ = true;
-  SampleJerk(frame);
+  const double dt = std::max(0.0, t - last_s_);
+  last_s_ = t;
+  SampleMotion(t, frame.p_WD);
   const double force = frame.force_W.norm();
   force_now_ = force;
   max_force_ = std::max(max_force_, force);
   ScoreLimits(frame, force, dt);
   ScoreForbidden(frame, force, dt);
   ScoreTargets(frame, force, dt);
-  trace_.push_back({frame.time_s - start_s_, force, limit_now_, frame.p_WD});
+  trace_.push_back({t - start_s_, force, limit_now_, frame.p_WD});
 }
 
-void Scorer::SampleJerk(const ScoringFrame& frame) {
-  // At kJerkPeriodS, not every frame: a device's pose held for a few steps
-  // and then moved would read as an enormous jerk at 1 kHz.
-  if (frame.time_s - start_s_ + 1e-9 < next_jerk_sample_s_) return;
-  next_jerk_sample_s_ += kJerkPeriodS;
-  recent_.push_back(frame.p_WD);
+void Scorer::SampleMotion(double t, const Vector3d& p) {
+  // A time already taken is the same pose again (the device sent none
+  // since), or one that came out of order.
+  if (has_last_p_ && t <= last_pose_t_) return;
+  if (has_last_p_) path_m_ += (p - last_p_).norm();
+  last_p_ = p;
+  last_pose_t_ = t;
+  has_last_p_ = true;
+  SampleJerk(t, p);
+}
+
+void Scorer::SampleJerk(double t, const Vector3d& p) {
+  // On a grid of kJerkPeriodS from the first pose, not every pose: a pose
+  // held for a few steps and then moved would read as an enormous jerk at
+  // 1 kHz. The first pose at or after each grid time is taken, so a pose
+  // the network lost moves one sample only, not every later one.
+  if (recent_.empty()) {
+    jerk_grid_t0_ = t;
+  } else if (t + 1e-9 < next_jerk_t_) {
+    return;
+  }
+  next_jerk_t_ =
+      jerk_grid_t0_ + (std::floor((t - jerk_grid_t0_ + 1e-9) / kJerkPeriodS) + 1) * kJerkPeriodS;
+  recent_.push_back({t, p});
   if (recent_.size() > 4) recent_.erase(recent_.begin());
   if (recent_.size() < 4) return;
-  constexpr double h3 = kJerkPeriodS * kJerkPeriodS * kJerkPeriodS;
-  const Vector3d jerk = (recent_[3] - 3 * recent_[2] + 3 * recent_[1] - recent_[0]) / h3;
-  jerk_sum_sq_ += jerk.squaredNorm();
+  const double ts[4] = {recent_[0].t, recent_[1].t, recent_[2].t, recent_[3].t};
+  const Vector3d ps[4] = {recent_[0].p, recent_[1].p, recent_[2].p, recent_[3].p};
+  jerk_sum_sq_ += Jerk(ts, ps).squaredNorm();
   ++jerk_samples_;
 }
 
@@ -99,7 +137,7 @@ void Scorer::ScoreForbidden(const ScoringFrame& frame, double force, double dt) 
     }
     if (open < 0) {
       open = static_cast<int>(forbidden_.size());
-      forbidden_.push_back({.object = f.object, .start_s = frame.time_s - start_s_});
+      forbidden_.push_back({.object = f.object, .start_s = last_s_ - start_s_});
     } else {
       forbidden_[open].duration_s += dt;
     }
@@ -121,10 +159,10 @@ void Scorer::ScoreTargets(const ScoringFrame& frame, double force, double dt) {
   holding_ = true;
   if (held_s_ + 1e-9 < target.hold_s) return;
   targets_[current_].reached = true;
-  targets_[current_].reached_at_s = frame.time_s - start_s_;
+  targets_[current_].reached_at_s = last_s_ - start_s_;
   holding_ = false;
   ++current_;
-  if (done()) finished_at_s_ = frame.time_s - start_s_;
+  if (done()) finished_at_s_ = last_s_ - start_s_;
 }
 
 ScoreProgress Scorer::progress() const {

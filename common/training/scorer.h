@@ -14,8 +14,15 @@
 // - pressing an object with a limit harder than the limit counts its time
 //   and the impulse beyond the limit;
 // - path length, largest force and jerk are the device's; frames past the
-//   time limit are not scored.
+//   time limit are not scored;
+// - a run's times (its start, holds, durations, the limit, the jerk's
+//   derivatives) are on the device's own clock of the poses applied when
+//   the frames carry it, so that a path scores the same whichever delays
+//   brought its poses to the steps they were applied at; else on the
+//   frames' simulated time.
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +31,8 @@
 
 namespace hs {
 
-/// The device's position is sampled this often for the jerk, seconds.
+/// The grid the device's positions are taken on for the jerk, seconds of
+/// its clock.
 inline constexpr double kJerkPeriodS = 0.02;
 
 /// One contact of the tool with an object, as a frame reports it.
@@ -40,6 +48,10 @@ struct ScoringFrame {
   double time_s = 0;
   /// The device's origin, world frame, metres.
   Vector3d p_WD = Vector3d::Zero();
+  /// The device's clock when it sampled p_WD (any epoch), seconds: the
+  /// same time is the same pose, however many frames repeat it. None when
+  /// the frame does not say (DevicePoseTime).
+  std::optional<double> pose_time_s{};
   /// The force on the device, world frame, newtons.
   Vector3d force_W = Vector3d::Zero();
   std::vector<ScoringContact> contacts{};
@@ -48,7 +60,7 @@ struct ScoringFrame {
 struct TargetResult {
   std::string name;
   bool reached = false;
-  /// Since the first frame, seconds (when reached).
+  /// Since the run's start, seconds on its clock (when reached).
   double reached_at_s = 0;
   /// The largest force while touching it, newtons.
   double max_force_n = 0;
@@ -63,7 +75,7 @@ struct ForbiddenContact {
 
 /// One scored frame, for a report's plots.
 struct TracePoint {
-  double t_s = 0;  // since the first frame
+  double t_s = 0;  // since the run's start, seconds on its clock
   double force_n = 0;
   /// The limit of the object pressed then (0: none).
   double limit_n = 0;
@@ -84,8 +96,10 @@ struct ScoreSummary {
   double force_limit_exceeded_s = 0;
   double excess_impulse_ns = 0;
   int forbidden_contacts = 0;
-  /// RMS of the device's jerk, m/s^3: the third difference of its
-  /// position sampled every kJerkPeriodS.
+  /// RMS of the device's jerk, m/s^3: six times the third divided
+  /// difference of its positions on a grid of kJerkPeriodS (the first pose
+  /// at or after each grid time), over the device's clock (over the
+  /// frames' times when they carry none).
   double jerk_rms = 0;
   std::vector<TargetResult> target_results;
   std::vector<ForbiddenContact> forbidden_list;
@@ -100,6 +114,11 @@ struct ScoreProgress {
   int errors = 0;  // forbidden contacts so far
   double elapsed_s = 0;
 };
+
+/// A pose's time from a device's clock in nanoseconds (ToolPose's
+/// device_time_ns): none for 0, what a device that does not stamp its poses
+/// sends.
+std::optional<double> DevicePoseTime(int64_t device_time_ns);
 
 class Scorer {
  public:
@@ -120,20 +139,34 @@ class Scorer {
   void ScoreTargets(const ScoringFrame& frame, double force, double dt);
   void ScoreForbidden(const ScoringFrame& frame, double force, double dt);
   void ScoreLimits(const ScoringFrame& frame, double force, double dt);
+  void SampleMotion(double t, const Vector3d& p);
+  void SampleJerk(double t, const Vector3d& p);
+
+  // A pose taken for the jerk: its time and the device's origin.
+  struct Sample {
+    double t = 0;
+    Vector3d p = Vector3d::Zero();
+  };
 
   Exercise exercise_;
   bool started_ = false;
   bool timed_out_ = false;
   double start_s_ = 0;
   double last_s_ = 0;
-  void SampleJerk(const ScoringFrame& frame);
 
-  // The device's path, and its last four positions at kJerkPeriodS apart,
-  // newest last, for the jerk.
+  // A run is timed by one clock: the device's when its first scored frame
+  // carries a pose time, else the frames'. start_s_ and last_s_ are on it.
+  bool device_clock_ = false;
+  // The device's last pose and its time, for the path.
   Vector3d last_p_ = Vector3d::Zero();
+  double last_pose_t_ = 0;
   bool has_last_p_ = false;
-  double next_jerk_sample_s_ = 0;
-  std::vector<Vector3d> recent_;
+  // The jerk's grid: from the first pose, kJerkPeriodS apart; the next
+  // grid time a pose is taken at or after.
+  double jerk_grid_t0_ = 0;
+  double next_jerk_t_ = 0;
+  // The last four poses taken for the jerk, newest last.
+  std::vector<Sample> recent_;
   Vector3d start_p_ = Vector3d::Zero();
   double jerk_sum_sq_ = 0;
   int64_t jerk_samples_ = 0;

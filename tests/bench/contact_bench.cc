@@ -45,6 +45,7 @@
 #include "common/core/check.h"
 #include "common/hds/haptic_object.h"
 #include "common/model/procedural.h"
+#include "tests/bench/fcl_query.h"
 #include "tests/common/contact/table1_cases.h"
 
 namespace hs {
@@ -61,16 +62,6 @@ using table1::kSlideMps;
 using table1::kTurnRadPs;
 using table1::Query;
 using table1::ToleranceM;
-
-// Large enough that FCL never stops early: its exhaustive mode.
-constexpr size_t kFclMaxContacts = 1 << 24;
-
-fcl::CollisionRequestd FclRequest(bool enable_contact) {
-  fcl::CollisionRequestd request;
-  request.num_max_contacts = kFclMaxContacts;
-  request.enable_contact = enable_contact;
-  return request;
-}
 
 // ----------------------------------------------------------------------------
 // The census: every count of the summary, computed once per case.
@@ -179,10 +170,8 @@ std::unique_ptr<Census> TakeCensus(const Case& c) {
     census->candidate_vertices += static_cast<int>(candidate_vertices[side].size());
   }
 
-  const fcl::CollisionObjectd fm(m.fcl_bvh, m.X_WO), ff(f.fcl_bvh, f.X_WO);
   {
-    fcl::CollisionResultd result;
-    fcl::collide(&fm, &ff, FclRequest(true), result);
+    const fcl::CollisionResultd result = FclQuery(c, true).Run();
     std::set<std::pair<intptr_t, intptr_t>> distinct;
     for (size_t i = 0; i < result.numContacts(); ++i) {
       const fcl::Contactd& contact = result.getContact(i);
@@ -192,8 +181,7 @@ std::unique_ptr<Census> TakeCensus(const Case& c) {
     census->fcl_contact_pairs = static_cast<int>(distinct.size());
   }
   {
-    fcl::CollisionResultd result;
-    fcl::collide(&fm, &ff, FclRequest(false), result);
+    const fcl::CollisionResultd result = FclQuery(c, false).Run();
     census->fcl_pairs = static_cast<int>(result.numContacts());
     std::set<TrianglePair> theirs, ours(pairs.begin(), pairs.end());
     for (size_t i = 0; i < result.numContacts(); ++i) {
@@ -278,17 +266,10 @@ void BM_Contact(benchmark::State& state, int index, ContactMethod method) {
 // (d), (e) FCL's exhaustive collide on the same triangles at the same poses:
 // with contact points (its contact query) and without (pairs only).
 void BM_Fcl(benchmark::State& state, int index, bool enable_contact) {
-  const Case& c = GetCase(index);
-  const fcl::CollisionObjectd moving(c.moving->fcl_bvh, c.moving->X_WO);
-  const fcl::CollisionObjectd fixed(c.fixed->fcl_bvh, c.fixed->X_WO);
-  const fcl::CollisionRequestd request = FclRequest(enable_contact);
+  const FclQuery query(GetCase(index), enable_contact);
   size_t contacts = 0;
   for (auto _ : state) {
-    // A fresh result each call, as FCL users query; clear() would keep the
-    // vector's capacity and hide its growth, which is part of FCL's cost.
-    fcl::CollisionResultd result;
-    fcl::collide(&moving, &fixed, request, result);
-    contacts = result.numContacts();
+    contacts = query.Run().numContacts();
     benchmark::DoNotOptimize(contacts);
   }
   state.counters["fcl_contacts"] = static_cast<double>(contacts);
@@ -335,19 +316,13 @@ void BM_CoherentContact(benchmark::State& state, int index, ContactMethod method
 
 // FCL's exhaustive collide with contacts on the same poses.
 void BM_CoherentFcl(benchmark::State& state, int index) {
-  const Case& c = GetCase(index);
   const std::vector<Isometry3d>& poses = CoherentPoses(index);
-  fcl::CollisionObjectd moving(c.moving->fcl_bvh, c.moving->X_WO);
-  const fcl::CollisionObjectd fixed(c.fixed->fcl_bvh, c.fixed->X_WO);
-  const fcl::CollisionRequestd request = FclRequest(true);
+  FclQuery query(GetCase(index), true);
   size_t k = 0;
   for (auto _ : state) {
-    moving.setTransform(poses[k]);
-    moving.computeAABB();
+    query.SetMovingPose(poses[k]);
     k = (k + 1) % poses.size();
-    fcl::CollisionResultd result;
-    fcl::collide(&moving, &fixed, request, result);
-    benchmark::DoNotOptimize(result.numContacts());
+    benchmark::DoNotOptimize(query.Run().numContacts());
   }
 }
 

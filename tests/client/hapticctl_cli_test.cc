@@ -38,7 +38,7 @@ TEST(HapticctlCliTest, ServerCommands) {
   for (const char* command :
        {"scenes", "scenes list", "scenes create", "scenes show", "scenes delete", "upload",
         "delete-model", "objects", "objects add", "objects update", "objects remove", "health",
-        "watch", "drive", "loadtest"}) {
+        "watch", "drive", "loadtest", "relay"}) {
     EXPECT_EQ(RunHapticctl(std::string(command) + " --help"), kExitOk) << command;
   }
   EXPECT_EQ(RunHapticctl("scenes"), kExitUsage);
@@ -50,6 +50,9 @@ TEST(HapticctlCliTest, ServerCommands) {
   EXPECT_EQ(RunHapticctl("loadtest --clients 65"), kExitUsage);
   EXPECT_EQ(RunHapticctl("loadtest --duration 61"), kExitUsage);
   EXPECT_EQ(RunHapticctl("loadtest --server 10.1.2.3:50051"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("relay --to 127.0.0.1:9 --stall-prob 2"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("relay --to 127.0.0.1:9 --stall-ms nan --duration-s 1"), kExitUsage);
+  EXPECT_EQ(RunHapticctl("relay --to 10.1.2.3:80 --duration-s 1"), kExitUsage);
   const std::string nowhere = " --server 127.0.0.1:1";
   EXPECT_EQ(RunHapticctl("scenes list" + nowhere), kExitUnavailable);
   EXPECT_EQ(RunHapticctl("health" + nowhere), kExitUnavailable);
@@ -86,6 +89,14 @@ TEST(HapticctlCliTest, MalformedValuesAreUsageErrors) {
       {"drive --scene s --tool t --operator press --latency-ms 5000", "--latency-ms: Value 5000"},
       {"drive --scene s --tool t --operator press --loss 0.9", "--loss: Value 0.9"},
       {"drive --scene s --tool t --operator press --jitter-ms -1", "--jitter-ms: Value -1"},
+      {"drive --scene s --tool t --motion press --frame-rate-hz nan",
+       "--frame-rate-hz must be a finite number from 1 to 100000"},
+      {"loadtest --frame-rate-hz 0", "--frame-rate-hz must be a finite number from 1 to 100000"},
+      {"loadtest --frame-rate-hz inf", "--frame-rate-hz must be a finite number"},
+      {"loadtest --server-metrics 127.0.0.1:9464", "--server-metrics must be http://HOST:PORT"},
+      {"drive --scene s --tool t --operator press --stall-prob 1.5", "--stall-prob: Value 1.5"},
+      {"drive --scene s --tool t --operator press --stall-ms -1", "--stall-ms: Value -1"},
+      {"drive --scene s --tool t --operator press --stall-ms nan", "stall time must be a number"},
       {"--server 1.2.3.4:5 scenes list",
        "options go after the subcommand (hapticctl SUBCOMMAND [OPTIONS]); not expected before "
        "it: --server"},

@@ -4,6 +4,7 @@
 
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 namespace hs {
@@ -19,7 +20,11 @@ class SlowSink : public FrameSink {
     cv_.notify_all();
     cv_.wait(lock, [this] { return !hold_; });
   }
-  void Close(const absl::Status&) override {}
+  void Close(const absl::Status& status) override {
+    std::lock_guard lock(mu_);
+    closed_ = status;
+    in_sink_call_ = FrameFanOut::InSinkCall();
+  }
   void Hold(bool hold) {
     {
       std::lock_guard lock(mu_);
@@ -36,12 +41,23 @@ class SlowSink : public FrameSink {
     std::lock_guard lock(mu_);
     return steps_;
   }
+  std::optional<absl::Status> closed() {
+    std::lock_guard lock(mu_);
+    return closed_;
+  }
+  // Whether Close ran inside the fan-out's round (FrameFanOut::InSinkCall).
+  bool closed_in_sink_call() {
+    std::lock_guard lock(mu_);
+    return in_sink_call_;
+  }
 
  private:
   std::mutex mu_;
   std::condition_variable cv_;
   bool hold_ = false;
   std::vector<int64_t> steps_;
+  std::optional<absl::Status> closed_;
+  bool in_sink_call_ = false;
 };
 
 std::shared_ptr<const StepSnapshot> Step(int64_t step) {
@@ -54,7 +70,7 @@ std::shared_ptr<const StepSnapshot> Step(int64_t step) {
 // over everything queued before it returns.
 TEST(FrameFanOutTest, EveryFrameInOrderAndStopDrains) {
   Metrics metrics;
-  StreamRegistry streams([](bool) {});
+  StreamRegistry streams(SceneTools{});
   SlowSink a, b;
   ASSERT_TRUE(streams.AttachViewer(&a, EffectSet::All()).ok());
   ASSERT_TRUE(streams.AttachViewer(&b, EffectSet::All()).ok());
@@ -74,7 +90,7 @@ TEST(FrameFanOutTest, EveryFrameInOrderAndStopDrains) {
 // rest still arrive in order.
 TEST(FrameFanOutTest, StalledHandOverDropsTheOldest) {
   Metrics metrics;
-  StreamRegistry streams([](bool) {});
+  StreamRegistry streams(SceneTools{});
   SlowSink sink;
   ASSERT_TRUE(streams.AttachViewer(&sink, EffectSet::All()).ok());
   FrameFanOut fan_out(streams, metrics, 0);
@@ -93,12 +109,12 @@ TEST(FrameFanOutTest, StalledHandOverDropsTheOldest) {
   EXPECT_NE(metrics.Text().find("hs_frames_dropped_total 6"), std::string::npos) << metrics.Text();
 }
 
-// WaitForOffers returns only once an offer under way has ended: after a
-// stream leaves the registry and WaitForOffers returns, nothing more is
+// WaitForSinkCalls returns only once an offer under way has ended: after a
+// stream leaves the registry and WaitForSinkCalls returns, nothing more is
 // offered to it.
-TEST(FrameFanOutTest, WaitForOffersOutlastsTheOfferUnderWay) {
+TEST(FrameFanOutTest, WaitForSinkCallsOutlastsTheOfferUnderWay) {
   Metrics metrics;
-  StreamRegistry streams([](bool) {});
+  StreamRegistry streams(SceneTools{});
   SlowSink sink;
   ASSERT_TRUE(streams.AttachViewer(&sink, EffectSet::All()).ok());
   FrameFanOut fan_out(streams, metrics, 0);
@@ -107,11 +123,44 @@ TEST(FrameFanOutTest, WaitForOffersOutlastsTheOfferUnderWay) {
   sink.WaitForSteps(1);
   streams.Detach(&sink);
   std::thread release([&] { sink.Hold(false); });
-  fan_out.WaitForOffers();  // returns after the stuck offer of step 1
+  fan_out.WaitForSinkCalls();  // returns after the stuck offer of step 1
   release.join();
   fan_out.Push(Step(2));
   fan_out.Stop();
   EXPECT_EQ(sink.steps(), std::vector<int64_t>{1});
+}
+
+// The ends the registry queues reach their streams on the frames thread,
+// after the frames of the same round and inside the round
+// (FrameFanOut::InSinkCall); an ended stream gets no frame after; ends
+// queued after Stop are handed over by HandOverEnds.
+TEST(FrameFanOutTest, EndsAreHandedOverAfterTheRoundsFrames) {
+  Metrics metrics;
+  StreamRegistry streams(SceneTools{.tools = {{"probe", 0}}, .object_count = 1});
+  SlowSink trainee, instructor, viewer;
+  ASSERT_TRUE(streams.AttachDevice(&trainee, {"probe", EffectSet::All()}).ok());
+  ASSERT_TRUE(streams.AttachViewer(&viewer, EffectSet::All()).ok());
+  FrameFanOut fan_out(streams, metrics, 0);
+  fan_out.Push(Step(1));
+  trainee.WaitForSteps(1);
+  const absl::Status taken = absl::AbortedError("taken over");
+  ASSERT_TRUE(streams.AttachDevice(&instructor, {"probe", EffectSet::All()}, &taken).ok());
+  EXPECT_FALSE(trainee.closed().has_value());  // the registry calls no stream
+  fan_out.Push(Step(2));
+  instructor.WaitForSteps(1);
+  fan_out.Stop();
+  ASSERT_TRUE(trainee.closed().has_value());
+  EXPECT_EQ(*trainee.closed(), taken);
+  EXPECT_TRUE(trainee.closed_in_sink_call());
+  EXPECT_EQ(trainee.steps(), std::vector<int64_t>{1});
+  EXPECT_FALSE(FrameFanOut::InSinkCall());
+
+  streams.CloseAll(absl::UnavailableError("bye"));
+  fan_out.HandOverEnds();
+  ASSERT_TRUE(viewer.closed().has_value());
+  EXPECT_EQ(viewer.closed()->code(), absl::StatusCode::kUnavailable);
+  ASSERT_TRUE(instructor.closed().has_value());
+  EXPECT_EQ(viewer.steps(), (std::vector<int64_t>{1, 2}));
 }
 
 }  // namespace

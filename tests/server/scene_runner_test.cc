@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <map>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -63,6 +64,29 @@ class RecordingSink : public FrameSink {
   int offers_ = 0;
   int closes_ = 0;
   absl::Status closed_;
+};
+
+// Who holds which tool at the step of `s`, by tool name.
+std::map<std::string, std::string> HolderNames(const StepSnapshot& s) {
+  std::map<std::string, std::string> holders;
+  for (size_t id = 0; id < s.holders->size(); ++id) {
+    if ((*s.holders)[id].sink != nullptr) holders[(*s.names)[id]] = (*s.holders)[id].name;
+  }
+  return holders;
+}
+
+// A stream that breaks FrameSink's contract: it calls its runner back from
+// Offer.
+class CallingBackSink : public FrameSink {
+ public:
+  explicit CallingBackSink(SceneRunner*& runner) : runner_(runner) {}
+  void Offer(std::shared_ptr<const StepSnapshot>) override {
+    runner_->SetDevicePose(this, Isometry3d::Identity(), AppliedPose{});
+  }
+  void Close(const absl::Status&) override {}
+
+ private:
+  SceneRunner*& runner_;
 };
 
 std::unique_ptr<SceneRunner> Runner(Metrics& metrics) {
@@ -147,12 +171,12 @@ TEST(SceneRunnerTest, ASilentDeviceReleasesItsToolWhereItWas) {
     if (held->applied[0].sequence == 1) break;
   }
   ASSERT_NE(held->holders, nullptr);
-  EXPECT_EQ(*held->holders, (ToolHolders{{"probe", "alice"}}));
+  EXPECT_EQ(HolderNames(*held), (std::map<std::string, std::string>{{"probe", "alice"}}));
   const absl::Status ended = device.WaitForClose();
   EXPECT_EQ(ended.code(), absl::StatusCode::kDeadlineExceeded) << ended;
   EXPECT_EQ(runner.Info().devices, 0);
   const std::shared_ptr<const StepSnapshot> released = viewer.WaitForOffers(viewer.offers() + 2);
-  EXPECT_TRUE(released->holders->empty());
+  EXPECT_TRUE(HolderNames(*released).empty());
   EXPECT_TRUE(released->frame.tools[0].X_WD.isApprox(X, 0.0));
   EXPECT_TRUE(released->frame.tools[0].X_WP.isApprox(held->frame.tools[0].X_WP, 0.0));
   EXPECT_FALSE(released->frame.tools[0].contacts.empty());  // still on the table
@@ -316,6 +340,23 @@ TEST(SceneRunnerTest, StepsMissedWaitingForACpuAreOffCpu) {
       viewed.viewer.WaitForOffers(viewed.viewer.offers() + 5);
   EXPECT_GE(s->missed_steps_off_cpu, 30);
   EXPECT_LE(s->missed_steps_off_cpu, s->missed_steps);
+}
+
+// A stream calling back into its runner from Offer aborts with a message
+// (it would otherwise take the runner's locks inside the frames' round).
+TEST(SceneRunnerDeathTest, AStreamCallingBackAborts) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_DEATH(
+      {
+        Metrics metrics;
+        SceneRunner* runner = nullptr;
+        CallingBackSink sink(runner);
+        std::unique_ptr<SceneRunner> owned = Runner(metrics);
+        runner = owned.get();
+        (void)runner->AttachViewer(&sink, EffectSet());
+        for (;;) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      },
+      "a FrameSink called back into its SceneRunner");
 }
 
 }  // namespace

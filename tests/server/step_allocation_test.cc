@@ -26,14 +26,12 @@ namespace {
 // serializing into a reused string.
 class SerializingSink : public FrameSink {
  public:
-  explicit SerializingSink(std::string tool) : tool_(std::move(tool)) {}
-
   void Offer(std::shared_ptr<const StepSnapshot> snapshot) override {
     outbox_.Push(std::move(snapshot));
     FrameOutbox::Next next = outbox_.TakeNext();
     if (next.kind != FrameOutbox::Next::kWrite) return;
     haptics::v1::Frame& message = arena_.Start();
-    FillFrameMessage(*next.snapshot, FrameParts{}, tool_, next.dropped, 0, message);
+    FillFrameMessage(*next.snapshot, FrameParts{}, this, next.dropped, 0, models_sent_, message);
     message.SerializeToString(&bytes_);
     outbox_.WriteDone();
     contacts_ += message.tools_size() > 0 ? message.tools(0).contacts_size() : 0;
@@ -47,9 +45,9 @@ class SerializingSink : public FrameSink {
   int64_t contacts() const { return contacts_; }
 
  private:
-  const std::string tool_;
   FrameOutbox outbox_{8};
   FrameMessageArena arena_;
+  ModelsSent models_sent_;
   std::string bytes_;
   std::atomic<int64_t> last_step_{0};
   int64_t contacts_ = 0;  // scene-frames thread only
@@ -66,7 +64,7 @@ TEST(StepAllocationTest, ThousandDemoStepsWithTwoStreamsAllocateNothing) {
   ASSERT_TRUE(path.ok()) << path.status();
   Metrics metrics;
   SceneRunner runner(*spec, *std::move(loaded), metrics);
-  SerializingSink device("probe"), viewer("");
+  SerializingSink device, viewer;
   // Every effect a stream gets by default (the local model is left out:
   // its planes' copies into the step's snapshot are not yet checked).
   ASSERT_TRUE(runner.AttachDevice(&device, {"probe", EffectSet::Default()}).ok());

@@ -28,6 +28,32 @@ TEST(DelayLineTest, HoldsInOrderAndRepeatsWithTheSeed) {
   EXPECT_TRUE(std::is_sorted(first.begin(), first.end()));
 }
 
+// A message stalled 50 ms holds the ones sent after it: they come out in
+// order, and the one sent 1 ms after a stalled message is held past its
+// own 10 ms. The same seed stalls the same messages.
+TEST(DelayLineTest, StallHoldsTheMessagesBehindIt) {
+  const LinkConditions link{.latency_ms = 20, .stall_prob = 0.01, .stall_ms = 50, .seed = 4};
+  std::vector<std::pair<int, double>> first, second;
+  for (auto* out : {&first, &second}) {
+    DelayLine<int> line(link, 1);
+    for (int i = 0; i < 2000; ++i) {
+      line.Push(i * 1e-3, i);
+      line.PopDue(i * 1e-3, [&](int v) { out->emplace_back(v, i * 1e-3); });
+    }
+    line.PopDue(10, [&](int v) { out->emplace_back(v, 10.0); });
+    EXPECT_GT(line.stalled(), 5);
+    EXPECT_GE(line.max_delay_s(), 0.060 - 1e-9);
+  }
+  EXPECT_EQ(first, second);
+  ASSERT_EQ(first.size(), 2000u);
+  int held = 0;
+  for (int i = 0; i < 2000; ++i) {
+    EXPECT_EQ(first[i].first, i);
+    held += first[i].second > i * 1e-3 + 0.010 + 1e-9;
+  }
+  EXPECT_GT(held, 50);  // more than the stalled ones alone
+}
+
 TEST(DelayLineTest, IdealLinkDeliversAtOnce) {
   DelayLine<int> line(LinkConditions{}, 0);
   line.Push(0.5, 1);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -89,8 +90,9 @@ TEST(ScoreCommandTest, GentleBeatsPressedAndForbidden) {
 
 // A recorded session of the same motion: the server's inputs are the
 // path's poses at the steps the offline run applies them (step k + 1 takes
-// the newest pose due by k * step_s), the first one seating the device, as
-// a server records a device's stream. Scored through the recording (re-run
+// the newest pose due by k * step_s), the first one seating the device,
+// each stamped with its time on the path as the device's clock, as a
+// server records a device's stream. Scored through the recording (re-run
 // by replay), it gives the offline run's summary exactly. A recording of
 // another scene is refused by name.
 std::string RecordPath(const std::string& name, const std::vector<TimedPose>& path,
@@ -123,6 +125,8 @@ std::string RecordPath(const std::string& name, const std::vector<TimedPose>& pa
       input->set_step(k + 1);
       input->set_tool("probe");
       input->set_seat(k == 0);
+      // The device's clock reads the path's times.
+      input->set_device_time_ns(std::llround(path[next - 1].t_s * 1e9));
       ExactPoseToProto(path[next - 1].X_WD, input->mutable_device_pose());
       EXPECT_TRUE(writer->Append(record).ok());
     }

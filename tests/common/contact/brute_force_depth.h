@@ -1,6 +1,6 @@
 #pragma once
 // Test and benchmark oracle: the exact 3D method's depth t* (see
-// shared/ALGORITHM.md and common/contact/sweep_method.cc) by brute force in
+// docs/algorithm.md and common/contact/sweep_method.cc) by brute force in
 // long double. Every triangle pair of the two objects is swept (no
 // hierarchy, no candidate search), so a pair the method's queries never
 // visited still counts. Slow by design: O(faces x faces).

@@ -86,7 +86,7 @@ std::vector<Triangle3d> Triangles(const HapticObject& o, const Isometry3d& X) {
   return out;
 }
 
-// Oracle: the exact t* of shared/ALGORITHM.md by brute force over all face
+// Oracle: the exact t* of docs/algorithm.md by brute force over all face
 // pairs: the end of the union of sweep intervals that covers t = 0 (0 when
 // none does). Surfaces only: it does not see a mesh wholly inside another.
 double ExactDepth(const Body& m, const Isometry3d& X_WM, const Body& f, const Isometry3d& X_WF,
@@ -276,7 +276,7 @@ TEST(PaperMethodTest, Fig8ManyPointsNonConvex) {
 
 // The literal "inside a projected paired triangle" test misses fig. 8 #1 entirely.
 // This is why the default penetration test is the paper's own d_ij >= 0
-// (ALGORITHM.md step 1 read literally is the other option): with D along a
+// (the plain "inside the projection" reading is the other option): with D along a
 // face's normal, that face is seen edge-on in every usable plane, so no
 // vertex is ever inside its projection and nothing is found.
 TEST(PaperMethodTest, InsideTriangleReadingMissesFacesSeenEdgeOn) {

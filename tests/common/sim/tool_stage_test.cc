@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -88,11 +89,11 @@ TEST(ToolStageTest, ProxyStopsOnTheFloorAndReportsItsMove) {
   std::vector<ToolFrame> frames;
   StageStatsTable stats{};
   stage.Step(EffectSet::All(), workers, frames, stats);
-  EXPECT_FALSE(stage.AnyMoved());
+  EXPECT_TRUE(stage.NothingToStep());
   stage.SetDevicePose(id, At(0, 0, 0.005));
-  EXPECT_TRUE(stage.AnyMoved());
+  EXPECT_FALSE(stage.NothingToStep());
   stage.Step(EffectSet::All(), workers, frames, stats);
-  EXPECT_FALSE(stage.AnyMoved());
+  EXPECT_TRUE(stage.NothingToStep());
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_EQ(frames[0].tool, id);
   const ToolStage::ProxyMotion proxy = stage.ProxyMotionOf(id);
@@ -101,6 +102,9 @@ TEST(ToolStageTest, ProxyStopsOnTheFloorAndReportsItsMove) {
   EXPECT_NEAR(proxy.motion_W.z(), 0.01 - 0.02, 1e-6);
   EXPECT_GT(frames[0].force_W.z(), 0);
   EXPECT_EQ(stats[static_cast<int>(Effect::kReversingVector)].runs, 2);
+  // A device asking for a fresh model makes a step.
+  stage.RequestLocalModel(id);
+  EXPECT_FALSE(stage.NothingToStep());
 }
 
 // The thread count is checked: 0 and 65 are refused, and the scene keeps
@@ -111,6 +115,103 @@ TEST(ToolStageTest, RejectsThreadCountOutOfRange) {
   EXPECT_EQ(scene->SetThreads(65).code(), absl::StatusCode::kInvalidArgument);
   ASSERT_TRUE(scene->SetDevicePose(2, DevicePose(0, 20)).ok());
   EXPECT_EQ(scene->Step().tools.size(), static_cast<size_t>(kTools));
+}
+
+}  // namespace
+}  // namespace hs
+
+namespace hs {
+namespace {
+
+// One probe over the organ's crest, a remote device's needs on.
+std::unique_ptr<Scene> RemoteDeviceScene() {
+  std::unique_ptr<Scene> scene = MakeScene(1);
+  scene->SetNeeded(EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel});
+  return scene;
+}
+
+// A tool's local model is searched for only when its proxy moved (or a
+// device asks, or the last search is 50 ms old): a proxy held on the
+// surface while the device presses on keeps the last search's planes, with
+// the step's device position. The oracle: the same poses in a scene asked
+// for a fresh search every step give the same model, field for field, to
+// the distance a held proxy may move and keep its planes (a millionth of
+// the radius: 1e-8 m).
+TEST(ToolStageTest, AModelIsSearchedOnlyWhenItsProxyMoved) {
+  std::unique_ptr<Scene> kept = RemoteDeviceScene();
+  std::unique_ptr<Scene> searched = RemoteDeviceScene();
+  int searches = 0;
+  int pressing = 0;
+  uint64_t last_revision = 0;
+  Vector3d last_proxy = Vector3d::Constant(1);
+  // Down onto the crest and 5 mm into it, then 15 mm along it: the device
+  // moves every step (a still one holds the frame: StillDevicesCostNoQuery).
+  for (int step = 0; step < 60; ++step) {
+    const double z = 0.095 - 0.0005 * std::min(step, 30);
+    const double x = 0.1 - (step > 30 ? 0.0005 * (step - 30) : 0.0);
+    ASSERT_TRUE(step <= 30 || x != 0.1);
+    ASSERT_TRUE(kept->SetDevicePose(2, At(x, 0, z)).ok());
+    ASSERT_TRUE(searched->SetDevicePose(2, At(x, 0, z)).ok());
+    ASSERT_TRUE(searched->RequestLocalModel(2).ok());
+    const ToolFrame& a = kept->Step().tools[0];
+    const ToolFrame& b = searched->Step().tools[0];
+    const LocalModel& model = a.local_model;
+    ASSERT_NE(model.revision, 0u);
+    const double kRounding = 1e-6 * kept->options().local_model_radius_m;
+    EXPECT_TRUE(model.X_WP.isApprox(b.local_model.X_WP, 0.0)) << step;
+    EXPECT_EQ(model.p_WD, b.local_model.p_WD) << step;
+    EXPECT_NEAR(model.validity_radius_m, b.local_model.validity_radius_m, kRounding) << step;
+    EXPECT_EQ(model.touching, b.local_model.touching) << step;
+    ASSERT_EQ(model.planes.size(), b.local_model.planes.size()) << step;
+    // The same planes; planes at equal gaps may come in either order, and
+    // when the model is full (16) the farthest may be others at the same
+    // gap.
+    double farthest = 0;
+    for (const ConstraintPlane& p : b.local_model.planes) farthest = std::max(farthest, p.gap_m);
+    const bool full = b.local_model.planes.size() == 16;
+    for (const ConstraintPlane& plane : model.planes) {
+      if (full && plane.gap_m >= farthest - kRounding) continue;
+      const bool found = std::any_of(b.local_model.planes.begin(), b.local_model.planes.end(),
+                                     [&](const ConstraintPlane& p) {
+                                       return (p.normal_W - plane.normal_W).norm() <= 1e-9 &&
+                                              std::abs(p.gap_m - plane.gap_m) <= kRounding;
+                                     });
+      EXPECT_TRUE(found) << step << ": a plane " << plane.gap_m << " m away";
+    }
+    const bool proxy_moved = (a.X_WP.translation() - last_proxy).norm() > 1e-9;
+    searches += proxy_moved;
+    pressing += !proxy_moved && model.revision != last_revision;
+    last_proxy = a.X_WP.translation();
+    last_revision = model.revision;
+  }
+  EXPECT_GT(pressing, 5) << "the path must press with the proxy held";
+  EXPECT_LT(searches, 60 - 5);
+  EXPECT_EQ(kept->RequestLocalModel(0).code(), absl::StatusCode::kFailedPrecondition);
+}
+
+// A device that sends no changed pose costs no query: the steps run no
+// stage and hold the last frame, until the device moves, a device asks for
+// a fresh model or the needs change.
+TEST(ToolStageTest, StillDevicesCostNoQuery) {
+  std::unique_ptr<Scene> scene = RemoteDeviceScene();
+  for (int step = 0; step < 12; ++step) {
+    ASSERT_TRUE(scene->SetDevicePose(2, At(0.1, 0, 0.09 - 0.001 * step)).ok());
+    scene->Step();
+  }
+  const StepFrame pressed = scene->Step();
+  ASSERT_GT(pressed.tools[0].force_W.norm(), 0);  // pressing into the organ
+  const int64_t runs = scene->stats()[static_cast<int>(Effect::kReversingVector)].runs;
+  for (int step = 0; step < 10; ++step) {
+    ASSERT_TRUE(scene->SetDevicePose(2, At(0.1, 0, 0.09 - 0.011)).ok());  // the same pose
+    const StepFrame& still = scene->Step();
+    EXPECT_EQ(still.stages_run, EffectSet());
+    ExpectSameToolFrames(pressed, still);
+  }
+  EXPECT_EQ(scene->stats()[static_cast<int>(Effect::kReversingVector)].runs, runs);
+  ASSERT_TRUE(scene->RequestLocalModel(2).ok());
+  EXPECT_TRUE(scene->Step().stages_run.Has(Effect::kLocalModel));
+  scene->SetNeeded(EffectSet::All());
+  EXPECT_TRUE(scene->Step().stages_run.Has(Effect::kContactSet));
 }
 
 }  // namespace

@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace hs {
 namespace {
@@ -64,6 +67,47 @@ TEST(ScorerTest, ReachesATargetWithHandComputedMetrics) {
   EXPECT_NEAR(s.score, (50 + 10 * 0.987 + 10 + 15 + 10 + 5 * smooth), 1e-9);
 }
 
+// The run above from a server stepping at half pace, each pose applied
+// two steps late, with the device's clock in its frames: the hold, the
+// duration and the time of the target are the device's (13 ms, the
+// figures above), not the frames' (26 ms apart).
+TEST(ScorerTest, TimesAreTheDevicesClockWhenFramesCarryIt) {
+  Scorer scorer(OneTarget());
+  auto late = [](ScoringFrame f) {
+    f.pose_time_s = f.time_s;
+    f.time_s = 2 * f.time_s + 2 * kDt;
+    return f;
+  };
+  for (int i = 0; i <= 10; ++i) scorer.Add(late(At(i, Vector3d(0, 0, 0.01 - 0.001 * i))));
+  for (int i = 11; i <= 13; ++i) scorer.Add(late(At(i, Vector3d::Zero(), 2, "organ")));
+  ASSERT_TRUE(scorer.done());
+  const ScoreSummary s = scorer.Summary();
+  EXPECT_NEAR(s.duration_s, 0.013, 1e-12);
+  EXPECT_NEAR(s.target_results[0].reached_at_s, 0.013, 1e-12);
+  EXPECT_NEAR(s.path_length_m, 0.01, 1e-12);
+  EXPECT_NEAR(s.score, 50 + 10 * 0.987 + 10 + 15 + 10 + 5, 1e-9);
+}
+
+// Frames that repeat the pose of a device time already scored add no time
+// and no path: the hold of 2 ms needs two more milliseconds of poses.
+TEST(ScorerTest, RepeatedDeviceTimeAddsNoTime) {
+  Scorer scorer(OneTarget());
+  auto stamped = [](ScoringFrame f, double pose_s) {
+    f.pose_time_s = pose_s;
+    return f;
+  };
+  scorer.Add(stamped(At(0, Vector3d(0, 0, 0.001)), 0));
+  for (int i = 1; i <= 5; ++i) scorer.Add(stamped(At(i, Vector3d::Zero(), 2, "organ"), 0.001));
+  EXPECT_FALSE(scorer.done());
+  EXPECT_EQ(scorer.progress().elapsed_s, 0.001);
+  scorer.Add(stamped(At(6, Vector3d::Zero(), 2, "organ"), 0.002));
+  EXPECT_FALSE(scorer.done());
+  scorer.Add(stamped(At(7, Vector3d::Zero(), 2, "organ"), 0.003));
+  ASSERT_TRUE(scorer.done());
+  EXPECT_NEAR(scorer.Summary().duration_s, 0.003, 1e-12);
+  EXPECT_NEAR(scorer.Summary().path_length_m, 0.001, 1e-12);
+}
+
 // The same run after 500 steps resting at the tool's home (z = 0.01): the
 // clock starts at the first frame away from home (step 501, 1 mm down),
 // so the hand-computed figures are those of the run above less the first
@@ -95,6 +139,72 @@ TEST(ScorerTest, JerkOfACubicIsSixTimesItsCoefficient) {
     scorer.Add(At(i, Vector3d(0, 0, 0.05 + a * t * t * t)));
   }
   EXPECT_NEAR(scorer.Summary().jerk_rms, 6 * a, 1e-6);
+}
+
+// A device's samples of p(t) = p0 + c t^3 at irregular times of its own
+// clock (every 5 ms, each moved by up to 2 ms), delivered through frames
+// at 1 ms steps after a delay of 30-40 ms (in order): each frame carries
+// the newest pose come in, so poses repeat over frames, and one that comes
+// in with the next within a step is never seen. Seed 7.
+struct CubicRun {
+  Vector3d p0 = Vector3d(0, 0, 0.05);
+  Vector3d c = Vector3d(1, -2, 0.5);  // m/s^3: the jerk is 6c everywhere
+  std::vector<ScoringFrame> frames;
+  // The poses the frames carry, once each, in order.
+  std::vector<Vector3d> seen;
+};
+
+CubicRun Cubic() {
+  CubicRun run;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> shift(-0.002, 0.002), delay(0.030, 0.040);
+  std::vector<double> made, arrives;
+  for (int i = 0; i < 100; ++i) {
+    made.push_back(0.005 * i + shift(random));
+    arrives.push_back(std::max(made.back() + delay(random), arrives.empty() ? 0 : arrives.back()));
+  }
+  // The last pose comes in by 0.54 s.
+  size_t next = 0;
+  for (int k = 0; k <= 600; ++k) {
+    const double step_s = 0.001 * k;
+    const size_t before = next;
+    while (next < made.size() && arrives[next] <= step_s) ++next;
+    if (next == 0) continue;
+    const double t = made[next - 1];
+    run.frames.push_back({.time_s = step_s, .p_WD = run.p0 + run.c * t * t * t, .pose_time_s = t});
+    if (next != before) run.seen.push_back(run.frames.back().p_WD);
+  }
+  return run;
+}
+
+// Timed by the device's clock, the jerk of a cubic sampled at irregular
+// times and delivered late and unevenly is still 6c (a third divided
+// difference is exact for a cubic), and the path is that of the poses
+// seen, once each; timed by the frames instead, the jerk is far off.
+TEST(ScorerTest, JerkOfACubicOnTheDevicesClockIgnoresDelivery) {
+  Exercise e = OneTarget();
+  e.time_limit_s = 10;
+  const CubicRun run = Cubic();
+  ASSERT_LT(run.seen.size(), 100u) << "some pose must be lost to delivery";
+  Scorer device(e), frames(e);
+  for (const ScoringFrame& f : run.frames) {
+    device.Add(f);
+    ScoringFrame untimed = f;
+    untimed.pose_time_s.reset();
+    frames.Add(untimed);
+  }
+  double path = 0;
+  for (size_t i = 1; i < run.seen.size(); ++i) path += (run.seen[i] - run.seen[i - 1]).norm();
+  const ScoreSummary s = device.Summary();
+  EXPECT_NEAR(s.jerk_rms, 6 * run.c.norm(), 1e-6 * run.c.norm());
+  EXPECT_NEAR(s.path_length_m, path, 1e-12);
+  EXPECT_GT(std::abs(frames.Summary().jerk_rms - 6 * run.c.norm()), 3 * run.c.norm());
+}
+
+// A device clock of 0 is a device that does not stamp its poses: no time.
+TEST(ScorerTest, DevicePoseTimeOfZeroIsNone) {
+  EXPECT_FALSE(DevicePoseTime(0).has_value());
+  EXPECT_EQ(DevicePoseTime(1'500'000'000), 1.5);
 }
 
 // A break in the hold starts it again; force out of range does not hold.

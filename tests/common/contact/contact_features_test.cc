@@ -1,0 +1,298 @@
+#include "common/contact/contact_features.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "common/collision/triangle_pairs.h"
+#include "common/contact/closest_points.h"
+#include "common/model/procedural.h"
+#include "tests/common/contact/contact_test_bodies.h"
+#include "tests/common/contact/expect_same_side.h"
+
+namespace hs {
+namespace {
+
+using testing_bodies::Body;
+using testing_bodies::MakeBody;
+using testing_bodies::Translation;
+
+constexpr double kTolerance = 1e-6;
+const Vector3d kDown(0, 0, -1);
+const Vector3d kUp(0, 0, 1);
+
+Isometry3d Turn(const Eigen::Quaterniond& q) { return Isometry3d(q); }
+
+Isometry3d TurnAbout(const Vector3d& axis, double angle) {
+  return Turn(Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis.normalized())));
+}
+
+// A turn that points the box corner (-1, -1, -1) straight down: vertex 0 of
+// MakeBox becomes the lowest point.
+Isometry3d CornerDown() {
+  return Turn(Eigen::Quaterniond::FromTwoVectors(Vector3d(-1, -1, -1), kDown));
+}
+
+// A turn that points the box corner (1, 1, 1) straight up: vertex 7 of
+// MakeBox becomes the highest point.
+Isometry3d CornerUp() { return Turn(Eigen::Quaterniond::FromTwoVectors(Vector3d(1, 1, 1), kUp)); }
+
+// A moving body M, a fixed body F (its frame is F's frame) and M's pose.
+struct Touch {
+  std::unique_ptr<Body> m, f;
+  Isometry3d X_FM;
+};
+
+// Locates the contacts of `touch` over every face pair within the
+// tolerance, M moving along `direction_F`.
+LocatedContacts Locate(const Touch& touch, const Vector3d& direction_F, LocatedContacts out = {}) {
+  std::vector<TrianglePair> pairs;
+  FindIntersectingTriangles(touch.m->model, touch.X_FM, touch.f->model, Isometry3d::Identity(),
+                            kTolerance, pairs);
+  EXPECT_FALSE(pairs.empty()) << "the bodies do not touch";
+  const ContactContext context{touch.m->object, touch.m->model, touch.f->object, touch.f->model,
+                               touch.X_FM,      direction_F,    kTolerance,      pairs};
+  LocateContacts(context, touch.X_FM, pairs, out);
+  return out;
+}
+
+Triangle3d FaceAt(const HapticObject& object, const Isometry3d& X, FaceId f) {
+  const auto& v = object.face(f).vertices;
+  return {X * object.position(v[0]), X * object.position(v[1]), X * object.position(v[2])};
+}
+
+// Brute force: the distance from p to the nearest face of `object` posed at X.
+double SurfaceDistance(const Vector3d& p, const HapticObject& object, const Isometry3d& X) {
+  double best = std::numeric_limits<double>::infinity();
+  for (FaceId f = 0; f < object.num_faces(); ++f) {
+    const Triangle3d t = FaceAt(object, X, f);
+    best = std::min(best, (ClosestPointOnTriangle(p, t[0], t[1], t[2]) - p).norm());
+  }
+  return best;
+}
+
+// Brute force: the vertices of `object` posed at X within the tolerance of
+// `other` posed at X_other.
+std::set<VertexId> TouchingVertices(const HapticObject& object, const Isometry3d& X,
+                                    const HapticObject& other, const Isometry3d& X_other) {
+  std::set<VertexId> touching;
+  for (VertexId v = 0; v < object.num_vertices(); ++v) {
+    if (SurfaceDistance(X * object.position(v), other, X_other) <= kTolerance) touching.insert(v);
+  }
+  return touching;
+}
+
+// The distance from p to feature `feature` of `object` posed at X.
+double FeatureDistance(const Vector3d& p, const HapticObject& object, const Isometry3d& X,
+                       const Feature& feature) {
+  switch (feature.kind) {
+    case FeatureKind::kVertex:
+      return (X * object.position(feature.id) - p).norm();
+    case FeatureKind::kEdge: {
+      const Edge& e = object.edge(feature.id);
+      const Vector3d a = X * object.position(e.vertices[0]), b = X * object.position(e.vertices[1]);
+      return (ClosestPointOnSegment(p, a, b) - p).norm();
+    }
+    case FeatureKind::kFace: {
+      const Triangle3d t = FaceAt(object, X, feature.id);
+      return (ClosestPointOnTriangle(p, t[0], t[1], t[2]) - p).norm();
+    }
+    default:
+      return std::numeric_limits<double>::infinity();
+  }
+}
+
+// What every located contact must satisfy, whatever the shapes: the vertex
+// contacts are exactly the vertices within the tolerance of the other body
+// (brute force over all faces), each point lies on the features it names,
+// feature pairs do not repeat, and each side lists its contact vertices.
+void ExpectConsistent(const Touch& touch, const LocatedContacts& out) {
+  const HapticObject &m = touch.m->object, &f = touch.f->object;
+  const Isometry3d I = Isometry3d::Identity();
+  std::set<VertexId> m_vertices, f_vertices;
+  std::set<std::pair<Feature, Feature>> pairs;
+  for (const ContactPointF& point : out.points) {
+    EXPECT_TRUE(pairs.insert({point.moving, point.fixed}).second) << "a feature pair repeats";
+    EXPECT_LE(FeatureDistance(point.p_FC, m, touch.X_FM, point.moving), kTolerance);
+    EXPECT_LE(FeatureDistance(point.p_FC, f, I, point.fixed), kTolerance);
+    if (point.moving.kind == FeatureKind::kVertex) m_vertices.insert(point.moving.id);
+    if (point.fixed.kind == FeatureKind::kVertex) f_vertices.insert(point.fixed.id);
+  }
+  EXPECT_EQ(m_vertices, TouchingVertices(m, touch.X_FM, f, I));
+  EXPECT_EQ(f_vertices, TouchingVertices(f, I, m, touch.X_FM));
+  EXPECT_EQ(std::vector<VertexId>(m_vertices.begin(), m_vertices.end()), out.moving.vertices);
+  EXPECT_EQ(std::vector<VertexId>(f_vertices.begin(), f_vertices.end()), out.fixed.vertices);
+  EXPECT_NEAR(out.normal_F.norm(), 1, 1e-12);
+}
+
+// The ids of `object`'s vertices, and of its faces, whose coordinate `axis`
+// is (all corners) within 1e-9 of `value`.
+std::vector<VertexId> VerticesAt(const HapticObject& object, int axis, double value) {
+  std::vector<VertexId> ids;
+  for (VertexId v = 0; v < object.num_vertices(); ++v) {
+    if (std::abs(object.position(v)[axis] - value) < 1e-9) ids.push_back(v);
+  }
+  return ids;
+}
+std::vector<FaceId> FacesAt(const HapticObject& object, int axis, double value) {
+  std::vector<FaceId> ids;
+  for (FaceId f = 0; f < object.num_faces(); ++f) {
+    bool all = true;
+    for (VertexId v : object.face(f).vertices)
+      all &= std::abs(object.position(v)[axis] - value) < 1e-9;
+    if (all) ids.push_back(f);
+  }
+  return ids;
+}
+
+// A unit cube F and a cube M of side 0.4 sitting on its top (z = 0.5),
+// off-centre so that no corner of M lies on F's top diagonal.
+Touch FaceOnFace() {
+  return {MakeBody(MakeBox(Vector3d::Constant(0.4))), MakeBody(MakeBox(Vector3d::Ones())),
+          Translation(0.1, 0.03, 0.7)};
+}
+
+// M's bottom face on F's top face: both sides are face contacts with M's
+// four bottom corners as its contact vertices, and the normal is F's
+// outward one.
+TEST(ContactFeaturesTest, FaceOnFace) {
+  const Touch touch = FaceOnFace();
+  const LocatedContacts out = Locate(touch, kDown);
+  ExpectConsistent(touch, out);
+  EXPECT_EQ(out.moving.kind, FeatureKind::kFace);
+  EXPECT_EQ(out.moving.vertices, VerticesAt(touch.m->object, 2, -0.2));
+  EXPECT_EQ(out.moving.faces, FacesAt(touch.m->object, 2, -0.2));
+  EXPECT_EQ(out.fixed.kind, FeatureKind::kFace);
+  EXPECT_TRUE(out.fixed.vertices.empty());
+  for (FaceId face : out.fixed.faces) EXPECT_EQ(face / 2, 1) << "not F's top quad (faces 2, 3)";
+  EXPECT_TRUE(out.normal_F.isApprox(kUp, 1e-12)) << out.normal_F.transpose();
+}
+
+// M turned 45 degrees about x rests on one edge: an edge contact on M (its
+// two ends are the contact vertices), a face contact on F.
+TEST(ContactFeaturesTest, EdgeOnFace) {
+  const double drop = 0.2 * std::sqrt(2.0);
+  const Touch touch{MakeBody(MakeBox(Vector3d::Constant(0.4))), MakeBody(MakeBox(Vector3d::Ones())),
+                    Translation(0.1, 0.03, 0.5 + drop) * TurnAbout(Vector3d::UnitX(), M_PI / 4)};
+  const LocatedContacts out = Locate(touch, kDown);
+  ExpectConsistent(touch, out);
+  ASSERT_EQ(out.moving.vertices.size(), 2u);
+  EXPECT_EQ(out.moving.kind, FeatureKind::kEdge);
+  EXPECT_EQ(out.moving.edges, std::vector<EdgeId>{touch.m->object.FindEdge(
+                                  out.moving.vertices[0], out.moving.vertices[1])});
+  EXPECT_EQ(out.fixed.kind, FeatureKind::kFace);
+  EXPECT_TRUE(out.normal_F.isApprox(kUp, 1e-12)) << out.normal_F.transpose();
+}
+
+// M's corner on the centre of F's top, which lies on the diagonal that cuts
+// F's top square in two: that diagonal is no edge of the box, so F's feature
+// is a face, never an edge.
+TEST(ContactFeaturesTest, VertexOnAPolygonsDiagonalTouchesTheFace) {
+  const Touch touch{MakeBody(MakeBox(Vector3d::Constant(0.4))), MakeBody(MakeBox(Vector3d::Ones())),
+                    Translation(0, 0, 0.5 + 0.2 * std::sqrt(3.0)) * CornerDown()};
+  const LocatedContacts out = Locate(touch, kDown);
+  ExpectConsistent(touch, out);
+  ASSERT_FALSE(out.points.empty());
+  for (const ContactPointF& point : out.points) {
+    EXPECT_EQ(point.moving, (Feature{FeatureKind::kVertex, 0}));
+    EXPECT_EQ(point.fixed.kind, FeatureKind::kFace);
+    EXPECT_TRUE(point.p_FC.isApprox(Vector3d(0, 0, 0.5), 1e-12));
+  }
+  EXPECT_EQ(out.moving.kind, FeatureKind::kVertex);
+  EXPECT_EQ(out.fixed.kind, FeatureKind::kFace);
+  EXPECT_TRUE(out.fixed.edges.empty());
+  EXPECT_TRUE(out.normal_F.isApprox(kUp, 1e-12)) << out.normal_F.transpose();
+}
+
+// M's corner on F's top rim, an edge between two sides: one contact, on
+// that edge, however many faces around it report it.
+TEST(ContactFeaturesTest, VertexOnAnEdgeOfTheShape) {
+  const Touch touch{MakeBody(MakeBox(Vector3d::Constant(0.4))), MakeBody(MakeBox(Vector3d::Ones())),
+                    Translation(0.5, 0.1, 0.5 + 0.2 * std::sqrt(3.0)) * CornerDown()};
+  const LocatedContacts out = Locate(touch, kDown);
+  ExpectConsistent(touch, out);
+  // The rim edge at x = 0.5, z = 0.5 joins F's vertices 5 and 7.
+  const Feature rim{FeatureKind::kEdge, touch.f->object.FindEdge(5, 7)};
+  ASSERT_EQ(out.points.size(), 1u);
+  EXPECT_EQ(out.points[0].moving, (Feature{FeatureKind::kVertex, 0}));
+  EXPECT_EQ(out.points[0].fixed, rim);
+  EXPECT_EQ(out.fixed.kind, FeatureKind::kEdge);
+  EXPECT_EQ(out.fixed.edges, std::vector<EdgeId>{rim.id});
+}
+
+// Two boxes each turned to put an edge outward, the edges crossed at right
+// angles: one edge-edge contact at the crossing, its normal along the
+// edges' cross product, turned against the motion.
+TEST(ContactFeaturesTest, CrossedEdges) {
+  const double top = 0.5 * std::sqrt(2.0), drop = 0.2 * std::sqrt(2.0);
+  const Touch touch{
+      MakeBody(MakeBox(Vector3d::Constant(0.4))),
+      MakeBody(TransformMesh(MakeBox(Vector3d::Ones()), TurnAbout(Vector3d::UnitY(), M_PI / 4))),
+      Translation(0.05, 0.02, top + drop) * TurnAbout(Vector3d::UnitX(), M_PI / 4)};
+  const LocatedContacts out = Locate(touch, kDown);
+  ExpectConsistent(touch, out);
+  ASSERT_EQ(out.points.size(), 1u);
+  EXPECT_EQ(out.points[0].moving.kind, FeatureKind::kEdge);
+  EXPECT_EQ(out.points[0].fixed.kind, FeatureKind::kEdge);
+  EXPECT_TRUE(out.points[0].p_FC.isApprox(Vector3d(0, 0.02, top), 1e-12))
+      << out.points[0].p_FC.transpose();
+  EXPECT_EQ(out.moving.kind, FeatureKind::kEdge);
+  EXPECT_EQ(out.fixed.kind, FeatureKind::kEdge);
+  EXPECT_TRUE(out.normal_F.isApprox(kUp, 1e-12)) << out.normal_F.transpose();
+}
+
+// F's corner under M's flat bottom: a vertex contact on F, a face contact on
+// M, and the normal is M's bottom normal reversed (F toward M).
+TEST(ContactFeaturesTest, FixedVertexOnMovingFace) {
+  const Touch touch{MakeBody(MakeBox(Vector3d::Constant(0.4))),
+                    MakeBody(TransformMesh(MakeBox(Vector3d::Ones()), CornerUp())),
+                    Translation(0.05, 0.02, 0.5 * std::sqrt(3.0) + 0.2)};
+  const LocatedContacts out = Locate(touch, kDown);
+  ExpectConsistent(touch, out);
+  ASSERT_FALSE(out.points.empty());
+  for (const ContactPointF& point : out.points) {
+    EXPECT_EQ(point.fixed, (Feature{FeatureKind::kVertex, 7}));
+    EXPECT_EQ(point.moving.kind, FeatureKind::kFace);
+  }
+  EXPECT_EQ(out.fixed.kind, FeatureKind::kVertex);
+  EXPECT_EQ(out.moving.kind, FeatureKind::kFace);
+  EXPECT_TRUE(out.normal_F.isApprox(kUp, 1e-12)) << out.normal_F.transpose();
+}
+
+// The normal opposes the motion whichever way the query says M moves: M
+// moving up out of the contact gets the normal turned down.
+TEST(ContactFeaturesTest, NormalOpposesTheMotion) {
+  const Touch touch{MakeBody(MakeBox(Vector3d::Constant(0.4))), MakeBody(MakeBox(Vector3d::Ones())),
+                    Translation(0.5, 0.1, 0.5 + 0.2 * std::sqrt(3.0)) * CornerDown()};
+  const Vector3d slanted = Vector3d(0.3, 0.2, -1).normalized();
+  EXPECT_LT(Locate(touch, slanted).normal_F.dot(slanted), 0);
+  EXPECT_LT(Locate(touch, -slanted).normal_F.dot(-slanted), 0);
+}
+
+// A second call writes its output over the first's: the same result as into
+// a fresh output.
+TEST(ContactFeaturesTest, WritesOutputOver) {
+  const Touch first = FaceOnFace();
+  const Touch second{MakeBody(MakeBox(Vector3d::Constant(0.4))),
+                     MakeBody(MakeBox(Vector3d::Ones())),
+                     Translation(0.5, 0.1, 0.5 + 0.2 * std::sqrt(3.0)) * CornerDown()};
+  const LocatedContacts reused = Locate(second, kDown, Locate(first, kDown));
+  const LocatedContacts fresh = Locate(second, kDown);
+  ASSERT_EQ(reused.points.size(), fresh.points.size());
+  for (size_t i = 0; i < fresh.points.size(); ++i) {
+    EXPECT_EQ(reused.points[i].p_FC, fresh.points[i].p_FC);
+    EXPECT_EQ(reused.points[i].moving, fresh.points[i].moving);
+    EXPECT_EQ(reused.points[i].fixed, fresh.points[i].fixed);
+  }
+
+  testing_contacts::ExpectSameSide(reused.moving, fresh.moving);
+  testing_contacts::ExpectSameSide(reused.fixed, fresh.fixed);
+  EXPECT_EQ(reused.normal_F, fresh.normal_F);
+}
+
+}  // namespace
+}  // namespace hs
