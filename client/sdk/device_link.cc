@@ -41,7 +41,7 @@ DeviceLink::~DeviceLink() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
-    if (context_ != nullptr) context_->TryCancel();
+    if (stream_ != nullptr) stream_->Cancel();
   }
   changed_.notify_all();
   if (thread_.joinable()) thread_.join();
@@ -112,35 +112,30 @@ void DeviceLink::Run() {
 }
 
 grpc::Status DeviceLink::RunStream(uint64_t stream) {
-  auto stub = pb::SessionService::NewStub(channel_);
-  grpc::ClientContext context;
-  {
-    std::lock_guard lock(mutex_);
-    if (stopping_) return grpc::Status(grpc::StatusCode::CANCELLED, "the device was closed");
-    context_ = &context;
-  }
-  auto rw = stub->Interact(&context);
-  pb::InteractRequest open;
-  pb::InteractRequest::Open* o = open.mutable_open();
-  o->set_scene(config_.scene);
-  o->set_tool(config_.tool);
-  o->set_take_over(config_.options.take_over);
-  o->set_frame_rate_hz(config_.options.rate_hz);
+  pb::InteractRequest::Open open;
+  open.set_scene(config_.scene);
+  open.set_tool(config_.tool);
+  open.set_take_over(config_.options.take_over);
+  open.set_frame_rate_hz(config_.options.rate_hz);
   for (pb::Effect effect : {pb::EFFECT_FORCE, pb::EFFECT_FRICTION, pb::EFFECT_LOCAL_MODEL}) {
-    o->add_needs(effect);
+    open.add_needs(effect);
   }
   std::atomic<bool> reading{true};
-  std::thread reader;
-  if (rw->Write(open)) {
-    reader = std::thread([&] {
-      pb::Frame frame;
-      while (rw->Read(&frame)) OnFrame(stream, frame);
-      reading = false;
-      changed_.notify_all();
-    });
-  } else {
-    reading = false;
-  }
+  std::unique_lock lock(mutex_);
+  if (stopping_) return grpc::Status(grpc::StatusCode::CANCELLED, "the device was closed");
+  lock.unlock();
+  InteractStream rw(channel_, open,
+                    {.on_frame = [&](const pb::Frame& frame) { OnFrame(stream, frame); },
+                     .on_end =
+                         [&] {
+                           reading = false;
+                           changed_.notify_all();
+                         }});
+  lock.lock();
+  stream_ = &rw;
+  // Stopped between the check and here: the destructor found no stream.
+  if (stopping_) rw.Cancel();
+  lock.unlock();
   const Clock::time_point opened = Clock::now();
   const Clock::duration period = Seconds(1 / config_.options.rate_hz);
   bool timed_out = false;
@@ -150,23 +145,23 @@ grpc::Status DeviceLink::RunStream(uint64_t stream) {
       timed_out = true;
       break;
     }
-    if (!SendPose(*rw, sequence)) break;
+    if (!SendPose(rw, sequence)) break;
     // Behind (a slow write): the next pose goes a period from now, not in
     // a burst.
     next = std::max(next, Clock::now());
-    std::unique_lock lock(mutex_);
+    lock.lock();
     changed_.wait_until(lock, next, [&] { return stopping_ || !reading; });
-    if (stopping_) break;
+    const bool stop = stopping_;
+    lock.unlock();
+    if (stop) break;
   }
   // A stream the server ended keeps its status for Finish; one this side
   // gives up on is cancelled.
-  if (reading) context.TryCancel();
-  if (reader.joinable()) reader.join();
-  grpc::Status status = rw->Finish();
-  {
-    std::lock_guard lock(mutex_);
-    context_ = nullptr;
-  }
+  if (reading) rw.Cancel();
+  grpc::Status status = rw.Finish();
+  lock.lock();
+  stream_ = nullptr;
+  lock.unlock();
   if (timed_out) {
     return grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
                         absl::StrCat("no frame from scene '", config_.scene, "' within ",
@@ -175,8 +170,7 @@ grpc::Status DeviceLink::RunStream(uint64_t stream) {
   return status;
 }
 
-bool DeviceLink::SendPose(grpc::ClientReaderWriter<pb::InteractRequest, pb::Frame>& writer,
-                          uint64_t& sequence) {
+bool DeviceLink::SendPose(InteractStream& writer, uint64_t& sequence) {
   poses_.Take();
   const PoseSample& sample = poses_.front();
   if (sample.time_ns == 0) return true;  // the device has not ticked yet

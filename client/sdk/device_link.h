@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "client/sdk/device_feed.h"
+#include "client/sdk/interact_stream.h"
 #include "client/sdk/triple_buffer.h"
 #include "haptics/device.h"
 #include "haptics/error.h"
@@ -61,8 +62,7 @@ class DeviceLink {
   void OnFrame(uint64_t stream, const haptics::v1::Frame& frame);
   // Sends the newest pose on `writer` if there is one; false when the
   // stream is closed.
-  bool SendPose(grpc::ClientReaderWriter<haptics::v1::InteractRequest, haptics::v1::Frame>& writer,
-                uint64_t& sequence);
+  bool SendPose(InteractStream& writer, uint64_t& sequence);
   void Publish();
 
   const std::shared_ptr<grpc::Channel> channel_;
@@ -83,8 +83,8 @@ class DeviceLink {
   haptics::Error start_error_;
   haptics::Error last_error_;
   bool closed_ = false;
-  // The running stream's context, to cancel it on Stop.
-  grpc::ClientContext* context_ = nullptr;
+  // The running stream, to cancel it on Stop.
+  InteractStream* stream_ = nullptr;
 
   std::atomic<bool> first_frame_{false};
   std::atomic<bool> connected_{false};

@@ -12,4 +12,9 @@ haptics::Error FromAbsl(const absl::Status& status) {
   return {static_cast<haptics::Code>(status.code()), std::string(status.message())};
 }
 
+grpc::Status ToGrpc(const haptics::Error& error) {
+  if (error.ok()) return grpc::Status::OK;
+  return grpc::Status(static_cast<grpc::StatusCode>(error.code), error.message);
+}
+
 }  // namespace hs::sdk

@@ -11,8 +11,12 @@ namespace haptics {
 
 namespace pb = haptics::v1;
 
-Watcher::Impl::Impl(std::shared_ptr<grpc::Channel> channel, std::string scene, WatchOptions options)
-    : channel_(std::move(channel)), scene_(std::move(scene)), options_(std::move(options)) {}
+Watcher::Impl::Impl(std::shared_ptr<grpc::Channel> channel, std::string scene, WatchOptions options,
+                    Internal internal)
+    : channel_(std::move(channel)),
+      scene_(std::move(scene)),
+      options_(std::move(options)),
+      internal_(std::move(internal)) {}
 
 Watcher::Impl::~Impl() {
   Close();
@@ -45,6 +49,7 @@ void Watcher::Impl::Read() {
   auto reader = stub->Watch(&context_, request);
   pb::Frame message;
   while (reader->Read(&message)) {
+    if (internal_.on_message) internal_.on_message(message);
     Frame frame = hs::sdk::FrameFromProto(message);
     if (options_.on_frame) options_.on_frame(frame);
     std::lock_guard lock(mutex_);
@@ -53,11 +58,16 @@ void Watcher::Impl::Read() {
     changed_.notify_all();
   }
   const grpc::Status status = reader->Finish();
-  std::lock_guard lock(mutex_);
-  ended_ = true;
-  // A stream this side closed ends CANCELLED: that is no error.
-  if (!closed_) status_ = hs::sdk::FromGrpc(status);
-  changed_.notify_all();
+  Error ended;
+  {
+    std::lock_guard lock(mutex_);
+    ended_ = true;
+    // A stream this side closed ends CANCELLED: that is no error.
+    if (!closed_) status_ = hs::sdk::FromGrpc(status);
+    ended = status_;
+    changed_.notify_all();
+  }
+  if (internal_.on_end) internal_.on_end(ended);
 }
 
 bool Watcher::Impl::Latest(Frame* out) const {
@@ -103,10 +113,10 @@ void Watcher::Close() { impl_->Close(); }
 namespace hs::sdk {
 
 haptics::Result<std::unique_ptr<haptics::Watcher>> OpenWatcher(
-    std::shared_ptr<grpc::Channel> channel, const std::string& scene,
-    haptics::WatchOptions options) {
-  auto impl =
-      std::make_unique<haptics::Watcher::Impl>(std::move(channel), scene, std::move(options));
+    std::shared_ptr<grpc::Channel> channel, const std::string& scene, haptics::WatchOptions options,
+    haptics::Watcher::Impl::Internal internal) {
+  auto impl = std::make_unique<haptics::Watcher::Impl>(std::move(channel), scene,
+                                                       std::move(options), std::move(internal));
   if (haptics::Error error = impl->Start(); !error.ok()) return error;
   return std::make_unique<haptics::Watcher>(std::move(impl));
 }

@@ -5,6 +5,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -17,7 +18,16 @@ namespace haptics {
 
 class Watcher::Impl {
  public:
-  Impl(std::shared_ptr<grpc::Channel> channel, std::string scene, WatchOptions options);
+  /// What the SDK's own programs (hapticctl watch) take from the stream
+  /// besides WatchOptions::on_frame, on the Watcher's thread: each frame
+  /// as the message that came, and the stream's end with its status.
+  struct Internal {
+    std::function<void(const haptics::v1::Frame&)> on_message;
+    std::function<void(const Error&)> on_end;
+  };
+
+  Impl(std::shared_ptr<grpc::Channel> channel, std::string scene, WatchOptions options,
+       Internal internal = {});
   ~Impl();
 
   /// Starts the stream and waits for its first frame (or its end, or the
@@ -35,6 +45,7 @@ class Watcher::Impl {
   const std::shared_ptr<grpc::Channel> channel_;
   const std::string scene_;
   const WatchOptions options_;
+  const Internal internal_;
   grpc::ClientContext context_;
   std::thread thread_;
   mutable std::mutex mutex_;
@@ -52,7 +63,7 @@ namespace hs::sdk {
 
 /// A viewer of `scene`, once its first frame came; else why not.
 haptics::Result<std::unique_ptr<haptics::Watcher>> OpenWatcher(
-    std::shared_ptr<grpc::Channel> channel, const std::string& scene,
-    haptics::WatchOptions options);
+    std::shared_ptr<grpc::Channel> channel, const std::string& scene, haptics::WatchOptions options,
+    haptics::Watcher::Impl::Internal internal = {});
 
 }  // namespace hs::sdk

@@ -15,5 +15,15 @@ TEST(GrpcErrorTest, KeepsCodeAndMessage) {
   EXPECT_TRUE(FromGrpc(grpc::Status::OK).ok());
 }
 
+// ToGrpc gives back the status FromGrpc took, for every code.
+TEST(GrpcErrorTest, ToGrpcRoundTrips) {
+  for (int code = 0; code <= 16; ++code) {
+    const grpc::Status status(static_cast<grpc::StatusCode>(code), code == 0 ? "" : "why");
+    const grpc::Status back = ToGrpc(FromGrpc(status));
+    EXPECT_EQ(back.error_code(), status.error_code());
+    EXPECT_EQ(back.error_message(), status.error_message());
+  }
+}
+
 }  // namespace
 }  // namespace hs::sdk
