@@ -16,7 +16,8 @@
 
 namespace haptics {
 
-class Device::Impl {
+// Hidden: the Device class is exported, its state is not.
+class [[gnu::visibility("hidden")]] Device::Impl {
  public:
   Impl(std::shared_ptr<grpc::Channel> channel, hs::sdk::LinkConfig config);
 

@@ -11,7 +11,8 @@
 
 namespace haptics {
 
-class Session::Impl {
+// Hidden: the Session class is exported, its state is not.
+class [[gnu::visibility("hidden")]] Session::Impl {
  public:
   std::string address;
   SessionOptions options;

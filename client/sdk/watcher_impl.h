@@ -16,7 +16,8 @@
 
 namespace haptics {
 
-class Watcher::Impl {
+// Hidden: the Watcher class is exported, its state is not.
+class [[gnu::visibility("hidden")]] Watcher::Impl {
  public:
   /// What the SDK's own programs (hapticctl watch) take from the stream
   /// besides WatchOptions::on_frame, on the Watcher's thread: each frame
