@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_certificates.h"
 #include "tests/server/server_process.h"
 
 namespace {
@@ -136,6 +137,41 @@ TEST_F(SessionTest, CallsAfterTheServerEndsAreUnavailable) {
   auto scenes = session_->ListScenes();
   ASSERT_FALSE(scenes.ok());
   EXPECT_EQ(scenes.error().code, Code::kUnavailable);
+}
+
+// Over TLS with a client certificate the session works; without the
+// certificate, or expecting another server name, it does not connect.
+TEST(SessionTlsTest, ConnectsWithTheRightCertificatesOnly) {
+  const hs::TestCertificates& c = hs::MakeTestCertificates();
+  hs::testing::ServerProcess server({"--tls-cert", c.server_cert.string(), "--tls-key",
+                                     c.server_key.string(), "--tls-client-ca", c.ca.string()});
+  ASSERT_GT(server.port(), 0) << server.startup();
+  const std::string address = "127.0.0.1:" + std::to_string(server.port());
+  haptics::SessionOptions tls;
+  tls.tls = {.ca_file = c.ca.string(),
+             .cert_file = c.client_cert.string(),
+             .key_file = c.client_key.string(),
+             .server_name = "localhost"};
+  auto session = Session::Connect(address, tls);
+  ASSERT_TRUE(session.ok()) << session.error().ToString();
+  auto health = (*session)->Health();
+  ASSERT_TRUE(health.ok()) << health.error().ToString();
+  EXPECT_EQ(*health, "SERVING");
+
+  // A refused handshake is only seen as no connection within the timeout.
+  tls.connect_timeout_s = 1;
+  haptics::SessionOptions no_certificate = tls;
+  no_certificate.tls.cert_file.clear();
+  no_certificate.tls.key_file.clear();
+  auto refused = Session::Connect(address, no_certificate);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().code, Code::kUnavailable);
+
+  haptics::SessionOptions wrong_name = tls;
+  wrong_name.tls.server_name = "elsewhere.example";
+  auto mismatched = Session::Connect(address, wrong_name);
+  ASSERT_FALSE(mismatched.ok());
+  EXPECT_EQ(mismatched.error().code, Code::kUnavailable);
 }
 
 }  // namespace
