@@ -6,6 +6,7 @@
 #include "haptics/client_c.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,6 +29,12 @@ static int starts_with(const char* text, const char* prefix) {
 static void sleep_ms(long ms) {
   struct timespec t = {0, ms * 1000000L};
   nanosleep(&t, NULL);
+}
+
+/* hs_last_error of a thread that has made no failing call: "". */
+static void* last_error_elsewhere(void* out) {
+  *(int*)out = strcmp(hs_last_error(), "") == 0;
+  return NULL;
 }
 
 int main(void) {
@@ -98,6 +105,13 @@ int main(void) {
   quick.struct_size = sizeof quick;
   quick.connect_timeout_s = 0.3;
   CHECK(hs_session_open("127.0.0.1:1", &quick) == NULL);
+  CHECK(starts_with(hs_last_error(), "UNAVAILABLE: "));
+  /* The message is this thread's: another thread has none. */
+  int empty_elsewhere = 0;
+  pthread_t thread;
+  CHECK(pthread_create(&thread, NULL, last_error_elsewhere, &empty_elsewhere) == 0);
+  pthread_join(thread, NULL);
+  CHECK(empty_elsewhere);
   CHECK(starts_with(hs_last_error(), "UNAVAILABLE: "));
   return failures == 0 ? 0 : 1;
 }
