@@ -259,11 +259,13 @@ PYBIND11_MODULE(_client, m) {
             return Take(WithoutGil([&] { return session.ReplaceScene(path, Or(name)); }));
           },
           py::arg("path"), py::arg("name") = py::none())
-      .def("delete_scene",
-           [](PySession& self, const std::string& name) {
-             haptics::Session& session = self.get();
-             Check(WithoutGil([&] { return session.DeleteScene(name); }));
-           })
+      .def(
+          "delete_scene",
+          [](PySession& self, const std::string& name) {
+            haptics::Session& session = self.get();
+            Check(WithoutGil([&] { return session.DeleteScene(name); }));
+          },
+          py::arg("name"))
       .def(
           "upload_model",
           [](PySession& self, const std::string& path, const std::optional<std::string>& name) {
@@ -271,11 +273,13 @@ PYBIND11_MODULE(_client, m) {
             return Take(WithoutGil([&] { return session.UploadModel(path, Or(name)); }));
           },
           py::arg("path"), py::arg("name") = py::none())
-      .def("delete_model",
-           [](PySession& self, const std::string& model_id) {
-             haptics::Session& session = self.get();
-             Check(WithoutGil([&] { return session.DeleteModel(model_id); }));
-           })
+      .def(
+          "delete_model",
+          [](PySession& self, const std::string& model_id) {
+            haptics::Session& session = self.get();
+            Check(WithoutGil([&] { return session.DeleteModel(model_id); }));
+          },
+          py::arg("model_id"))
       .def(
           "device",
           [](PySession& self, const std::string& scene, const std::string& tool, double rate_hz,

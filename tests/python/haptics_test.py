@@ -3,6 +3,7 @@
 the demo scene (tests/client/sdk/with_server.sh starts one): the probe, a
 2 cm cube at (0.1, 0, 0.1), over the organ, a torus of 400 N/m whose top is
 at z = 0.08 m under it."""
+import ast
 import math
 import os
 import tempfile
@@ -101,6 +102,50 @@ class DeviceTest(unittest.TestCase):
                 frame = watcher.latest()
                 self.assertIsNotNone(frame)
                 self.assertGreater(frame.step, 0)
+
+
+class StubsTest(unittest.TestCase):
+    def test_stubs_name_what_the_module_has(self):
+        # Every class, member, function and parameter __init__.pyi declares
+        # is in the module (pybind11's signatures name the parameters).
+        stubs = os.path.join(os.path.dirname(haptics.__file__), "__init__.pyi")
+        with open(stubs, encoding="utf-8") as f:
+            tree = ast.parse(f.read())
+        classes = {node.name: node for node in tree.body if isinstance(node, ast.ClassDef)}
+
+        def members(node):
+            for base in node.bases:
+                if isinstance(base, ast.Name) and base.id in classes:
+                    yield from members(classes[base.id])
+            for item in node.body:
+                if isinstance(item, ast.AnnAssign):
+                    yield item.target.id, None
+                elif isinstance(item, ast.FunctionDef) and item.name != "__init__":
+                    yield item.name, item
+
+        def check_parameters(runtime, function, where):
+            names = [a.arg for a in function.args.args + function.args.kwonlyargs if a.arg != "self"]
+            signature = (runtime.__doc__ or "").split("\n", 1)[0]
+            for name in names:
+                self.assertIn(f"{name}:", signature, f"{where}: parameter {name}")
+
+        for name, node in classes.items():
+            if name.startswith("_") or name == "Error":
+                continue  # stubs only, or plain Python
+            runtime = getattr(haptics, name, None) or getattr(haptics._client, name, None)
+            self.assertIsNotNone(runtime, f"class {name}")
+            for member, function in members(node):
+                self.assertTrue(hasattr(runtime, member), f"{name}.{member}")
+                if function is not None and not member.startswith("__") and \
+                        not any(isinstance(d, ast.Name) and d.id == "property"
+                                for d in function.decorator_list):
+                    check_parameters(getattr(runtime, member), function, f"{name}.{member}")
+        for node in tree.body:
+            if isinstance(node, ast.FunctionDef):
+                self.assertTrue(hasattr(haptics, node.name), node.name)
+                check_parameters(getattr(haptics, node.name), node, node.name)
+            elif isinstance(node, ast.AnnAssign):
+                self.assertTrue(hasattr(haptics, node.target.id), node.target.id)
 
 
 if __name__ == "__main__":
