@@ -15,8 +15,8 @@ TEST(GrpcErrorTest, KeepsCodeAndMessage) {
   EXPECT_TRUE(FromGrpc(grpc::Status::OK).ok());
 }
 
-// ToGrpc gives back the status FromGrpc took, for every code.
 TEST(GrpcErrorTest, ToGrpcRoundTrips) {
+  // ToGrpc gives back the status FromGrpc took, for every code.
   for (int code = 0; code <= 16; ++code) {
     const grpc::Status status(static_cast<grpc::StatusCode>(code), code == 0 ? "" : "why");
     const grpc::Status back = ToGrpc(FromGrpc(status));

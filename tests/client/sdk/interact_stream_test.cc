@@ -41,9 +41,9 @@ class InteractStreamTest : public ::testing::Test {
                                        .on_end = [this] { ++ends_; }};
 };
 
-// Poses written reach the server (its frames report the last one applied),
-// and WritesDone ends the stream OK with one on_end after the frames.
 TEST_F(InteractStreamTest, PosesAppliedAndEndedOk) {
+  // Poses written reach the server (its frames report the last one applied),
+  // and WritesDone ends the stream OK with one on_end after the frames.
   InteractStream stream(server_.channel(), OpenOf("probe"), callbacks_);
   for (uint64_t sequence = 1; sequence <= 3; ++sequence) {
     ASSERT_TRUE(stream.Write(PoseRequest(sequence, 0.05)));
@@ -55,8 +55,8 @@ TEST_F(InteractStreamTest, PosesAppliedAndEndedOk) {
   EXPECT_EQ(ends_, 1);
 }
 
-// An unknown tool ends the stream with the server's NOT_FOUND and no frame.
 TEST_F(InteractStreamTest, RefusalKeepsTheServersStatus) {
+  // An unknown tool ends the stream with the server's NOT_FOUND and no frame.
   InteractStream stream(server_.channel(), OpenOf("nope"), callbacks_);
   const grpc::Status status = stream.Finish();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND) << status.error_message();
@@ -64,9 +64,9 @@ TEST_F(InteractStreamTest, RefusalKeepsTheServersStatus) {
   EXPECT_EQ(ends_, 1);
 }
 
-// Cancel ends a running stream CANCELLED; a stream dropped unfinished is
-// cancelled and its reader joined by the destructor.
 TEST_F(InteractStreamTest, CancelAndDestructorEndTheStream) {
+  // Cancel ends a running stream CANCELLED; a stream dropped unfinished is
+  // cancelled and its reader joined by the destructor.
   {
     InteractStream stream(server_.channel(), OpenOf("probe"), callbacks_);
     while (frames_ == 0) std::this_thread::yield();

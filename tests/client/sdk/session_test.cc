@@ -139,9 +139,9 @@ TEST_F(SessionTest, CallsAfterTheServerEndsAreUnavailable) {
   EXPECT_EQ(scenes.error().code, Code::kUnavailable);
 }
 
-// Over TLS with a client certificate the session works; without the
-// certificate, or expecting another server name, it does not connect.
 TEST(SessionTlsTest, ConnectsWithTheRightCertificatesOnly) {
+  // Over TLS with a client certificate the session works; without the
+  // certificate, or expecting another server name, it does not connect.
   const hs::TestCertificates& c = hs::MakeTestCertificates();
   hs::testing::ServerProcess server({"--tls-cert", c.server_cert.string(), "--tls-key",
                                      c.server_key.string(), "--tls-client-ca", c.ca.string()});

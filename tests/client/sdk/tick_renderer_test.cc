@@ -138,6 +138,25 @@ TEST(TickRendererTest, ANewStreamStartsAFreshLoop) {
   EXPECT_EQ(out.force_n[2], oracle.Tick(X_WD).force_W.z());
 }
 
+TEST(TickRendererTest, BeyondValidityIsFlaggedAndCounted) {
+  // Past the validity radius (1 cm from the floor's proxy at the origin):
+  // kBeyondValidity, counted.
+  TickRenderer renderer(1e-3);
+  Feed feed = Connected(1);
+  WithModel(feed, Floor());
+  int64_t beyond = 0;
+  for (double x : {0.0, 0.005, 0.0099, 0.0101, 0.02, 0.011, 0.003, 0.05}) {
+    haptics::Pose pose = At(0.001);
+    pose.position_m[0] = x;
+    const haptics::TickOutput out = renderer.Tick(pose, feed);
+    const double distance = std::hypot(x, 0.001);
+    EXPECT_EQ((out.flags & haptics::kBeyondValidity) != 0, distance > 0.01) << "x = " << x;
+    if (distance > 0.01) ++beyond;
+  }
+  EXPECT_EQ(beyond, 4);
+  EXPECT_EQ(renderer.beyond_validity_ticks(), beyond);
+}
+
 TEST(TickRendererTest, TicksAllocateNothing) {
   // Ticks taking new models of up to 16 planes, a new stream, a link down
   // and bad poses allocate nothing once the renderer is built.
