@@ -25,7 +25,10 @@ absl::StatusOr<std::string> ReadFile(const std::string& path) {
 // The token from --token-file, else HAPTIC_TOKEN; empty when neither.
 absl::StatusOr<std::string> FindToken(const ConnectionOptions& options) {
   std::string token;
-  if (!options.token_file.empty()) {
+  if (!options.token.empty()) {
+    token = std::string(absl::StripAsciiWhitespace(options.token));
+    if (token.empty()) return absl::InvalidArgumentError("the token is blank");
+  } else if (!options.token_file.empty()) {
     absl::StatusOr<std::string> text = ReadFile(options.token_file);
     if (!text.ok()) return text.status();
     token = std::string(absl::StripAsciiWhitespace(*text));
@@ -43,7 +46,8 @@ class BearerToken final : public exp::Interceptor {
  public:
   explicit BearerToken(const std::string* header) : header_(header) {}
   void Intercept(exp::InterceptorBatchMethods* methods) override {
-    if (methods->QueryInterceptionHookPoint(exp::InterceptionHookPoints::PRE_SEND_INITIAL_METADATA)) {
+    if (methods->QueryInterceptionHookPoint(
+            exp::InterceptionHookPoints::PRE_SEND_INITIAL_METADATA)) {
       methods->GetSendInitialMetadata()->insert({"authorization", *header_});
     }
     methods->Proceed();
@@ -93,13 +97,17 @@ absl::StatusOr<std::shared_ptr<grpc::ChannelCredentials>> Credentials(
 }  // namespace
 
 absl::StatusOr<std::shared_ptr<grpc::Channel>> MakeChannel(const ConnectionOptions& options) {
+  return MakeChannel(options, grpc::ChannelArguments());
+}
+
+absl::StatusOr<std::shared_ptr<grpc::Channel>> MakeChannel(const ConnectionOptions& options,
+                                                           grpc::ChannelArguments arguments) {
   absl::StatusOr<std::shared_ptr<grpc::ChannelCredentials>> credentials = Credentials(options);
   if (!credentials.ok()) return credentials.status();
   absl::StatusOr<std::string> token = FindToken(options);
   if (!token.ok()) return token.status();
   std::vector<std::unique_ptr<exp::ClientInterceptorFactoryInterface>> interceptors;
   if (!token->empty()) interceptors.push_back(std::make_unique<BearerTokenFactory>(*token));
-  grpc::ChannelArguments arguments;
   if (!options.tls_server_name.empty()) arguments.SetSslTargetNameOverride(options.tls_server_name);
   return exp::CreateCustomChannelWithInterceptors(options.address, *credentials, arguments,
                                                   std::move(interceptors));

@@ -14,6 +14,7 @@
 #include "client/frame_rate_args.h"
 #include "client/needs_args.h"
 #include "client/remote/remote_drive.h"
+#include "client/sdk/interact_stream.h"
 #include "common/api/proto_convert.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
@@ -97,55 +98,50 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
     path = *std::move(read);
   }
 
-  auto stub = pb::SessionService::NewStub(channel);
-  grpc::ClientContext context;
+  pb::InteractRequest::Open open;
+  open.set_scene(args.scene);
+  open.set_tool(args.tool);
+  open.set_take_over(args.take_over);
+  SetNeeds(*needs, open);
+  SetFrameRate(open, args.frame_rate_hz);
   const double last_t_s = path.empty() ? 0 : path.back().t_s;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30) +
-                       std::chrono::microseconds(static_cast<int64_t>(last_t_s * 1e6)));
-  auto stream = stub->Interact(&context);
-  pb::InteractRequest open;
-  open.mutable_open()->set_scene(args.scene);
-  open.mutable_open()->set_tool(args.tool);
-  open.mutable_open()->set_take_over(args.take_over);
-  SetNeeds(*needs, *open.mutable_open());
-  SetFrameRate(*open.mutable_open(), args.frame_rate_hz);
-  stream->Write(open);
-
   const uint64_t last = path.size();
   std::atomic<uint64_t> applied{0};
-  // Poses go out on their schedule on their own thread; this one reads frames.
-  std::thread writer([&] {
-    const Clock::time_point start = Clock::now();
-    for (uint64_t i = 0; i < last; ++i) {
-      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
-                                                std::chrono::duration<double>(path[i].t_s)));
-      pb::InteractRequest request;
-      pb::ToolPose* pose = request.mutable_pose();
-      pose->set_sequence(i + 1);
-      pose->set_device_time_ns(
-          std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
-              .count());
-      PoseToProto(path[i].X_WD, pose->mutable_pose());
-      if (!stream->Write(request)) return;
-    }
-    // Done once the last pose shows up in a frame (or after a while).
-    const Clock::time_point wait_until = Clock::now() + std::chrono::seconds(5);
-    while (applied.load() < last && Clock::now() < wait_until) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    stream->WritesDone();
-  });
-  pb::Frame frame;
   uint64_t printed = 0;
-  while (stream->Read(&frame)) {
-    if (frame.last_pose_sequence() <= printed) continue;
-    printed = frame.last_pose_sequence();
-    applied.store(printed);
-    PrintFrame(frame, args.json, out);
+  // Frames are printed on the stream's reader thread; this one sends the
+  // poses on their schedule.
+  sdk::InteractStream stream(channel, open,
+                             {.on_frame =
+                                  [&](const pb::Frame& frame) {
+                                    if (frame.last_pose_sequence() <= printed) return;
+                                    printed = frame.last_pose_sequence();
+                                    applied.store(printed);
+                                    PrintFrame(frame, args.json, out);
+                                  },
+                              .on_end = [&] { applied.store(last); }},
+                             std::chrono::system_clock::now() + std::chrono::seconds(30) +
+                                 std::chrono::microseconds(static_cast<int64_t>(last_t_s * 1e6)));
+  const Clock::time_point start = Clock::now();
+  bool writing = true;
+  for (uint64_t i = 0; i < last && writing; ++i) {
+    std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                              std::chrono::duration<double>(path[i].t_s)));
+    pb::InteractRequest request;
+    pb::ToolPose* pose = request.mutable_pose();
+    pose->set_sequence(i + 1);
+    pose->set_device_time_ns(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
+            .count());
+    PoseToProto(path[i].X_WD, pose->mutable_pose());
+    writing = stream.Write(request);
   }
-  applied.store(last);
-  writer.join();
-  const grpc::Status status = stream->Finish();
+  // Done once the last pose shows up in a frame (or after a while).
+  const Clock::time_point wait_until = Clock::now() + std::chrono::seconds(5);
+  while (writing && applied.load() < last && Clock::now() < wait_until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  stream.WritesDone();
+  const grpc::Status status = stream.Finish();
   return status.ok() ? kExitOk : ReportRpcError("drive", status, err);
 }
 

@@ -31,6 +31,9 @@ struct ConnectionOptions {
   std::string tls_server_name;
   /// File holding the bearer token; empty: HAPTIC_TOKEN, if set.
   std::string token_file;
+  /// The bearer token itself, before token_file (the client SDK's callers
+  /// hand it over).
+  std::string token;
 };
 
 /// Adds --server, --timeout, the TLS options and --token-file to `cmd`,

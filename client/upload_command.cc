@@ -1,37 +1,16 @@
 #include "client/upload_command.h"
 
-#include <openssl/evp.h>
-
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "client/channel.h"
 #include "client/exit_codes.h"
+#include "client/model_upload.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 
 namespace hs::cli {
-namespace {
-
 namespace pb = haptics::v1;
-
-std::string Sha256(const std::string& bytes) {
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int size = 0;
-  EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr);
-  return std::string(reinterpret_cast<const char*>(digest), size);
-}
-
-std::string DefaultName(const std::filesystem::path& file) {
-  std::string name = file.stem().string();
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '.' && c != '-') c = '_';
-  }
-  return name.substr(0, 64);
-}
-
-}  // namespace
 
 int RunUpload(const UploadArgs& args, std::ostream& out, std::ostream& err) {
   std::ifstream in(args.file, std::ios::binary);
@@ -39,32 +18,15 @@ int RunUpload(const UploadArgs& args, std::ostream& out, std::ostream& err) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
   const std::string bytes = buffer.str();
-  const std::filesystem::path path(args.file);
 
   absl::StatusOr<std::shared_ptr<grpc::Channel>> channel = MakeChannel(args.server);
   if (!channel.ok()) return ReportError("upload", channel.status(), err);
   auto stub = pb::SceneService::NewStub(*channel);
-  // Large files take longer than one request: the deadline grows with size
-  // (at least 1 s per 16 MiB).
-  auto context = ContextWithin(args.server.timeout_s + static_cast<double>(bytes.size()) / 16e6);
   pb::UploadModelResponse response;
-  auto writer = stub->UploadModel(context.get(), &response);
-  pb::UploadModelChunk chunk;
-  pb::UploadModelChunk::Header* header = chunk.mutable_header();
-  header->set_name(args.name.empty() ? DefaultName(path) : args.name);
-  header->set_format(path.extension().string().substr(path.has_extension() ? 1 : 0));
-  header->set_size_bytes(static_cast<int64_t>(bytes.size()));
-  header->set_sha256(Sha256(bytes));
-  size_t offset = 0;
-  do {
-    const size_t size = std::min(bytes.size() - offset, static_cast<size_t>(args.chunk_bytes));
-    chunk.set_data(bytes.substr(offset, size));
-    offset += size;
-    if (!writer->Write(chunk)) break;  // the server ended the call; Finish says why
-    chunk.clear_header();
-  } while (offset < bytes.size());
-  writer->WritesDone();
-  const grpc::Status status = writer->Finish();
+  const grpc::Status status =
+      UploadModelBytes(*stub, bytes, args.name.empty() ? DefaultModelName(args.file) : args.name,
+                       ModelFormat(args.file), static_cast<size_t>(args.chunk_bytes),
+                       args.server.timeout_s, &response);
   if (!status.ok()) return ReportRpcError("upload", status, err);
   out << response.model_id() << " " << response.vertices() << " vertices " << response.triangles()
       << " triangles\n";

@@ -2,12 +2,16 @@
 
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <iostream>
+#include <mutex>
 
 #include "client/channel.h"
 #include "client/exit_codes.h"
 #include "client/frame_format.h"
 #include "client/percentiles.h"
+#include "client/sdk/grpc_error.h"
+#include "client/sdk/watcher_impl.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "nlohmann/json.hpp"
 
@@ -99,35 +103,34 @@ class SecondSummary {
 }  // namespace
 
 int RunWatch(const WatchArgs& args, std::ostream& out, std::ostream& err) {
-  pb::WatchRequest request;
-  request.set_scene(args.scene);
+  // No --parts: every part, the local model too.
+  haptics::WatchOptions options;
+  options.poses = options.contacts = options.forces = options.local_model = args.parts.empty();
+  options.open_timeout_s = args.server.timeout_s;
   for (const std::string& part : args.parts) {
     if (part == "poses") {
-      request.add_parts(pb::WATCH_PART_POSES);
+      options.poses = true;
     } else if (part == "contacts") {
-      request.add_parts(pb::WATCH_PART_CONTACTS);
+      options.contacts = true;
     } else if (part == "forces") {
-      request.add_parts(pb::WATCH_PART_FORCES);
+      options.forces = true;
     } else {
       return ReportError("watch", "unknown part '" + part + "' (poses, contacts, forces)", err);
     }
   }
   absl::StatusOr<std::shared_ptr<grpc::Channel>> channel = MakeChannel(args.server);
   if (!channel.ok()) return ReportError("watch", channel.status(), err);
-  auto stub = pb::SessionService::NewStub(*channel);
-  grpc::ClientContext context;
-  if (args.duration_s > 0) {
-    context.set_deadline(std::chrono::system_clock::now() +
-                         std::chrono::microseconds(static_cast<int64_t>(args.duration_s * 1e6)));
-  }
-  auto reader = stub->Watch(&context, request);
-  pb::Frame frame;
+  // Frames are printed on the watcher's thread; this one waits for the
+  // stream's end, --frames or --duration.
+  std::mutex mutex;
+  std::condition_variable changed;
+  bool done = false;
   int64_t frames = 0;
   SecondSummary second;
   const Clock::time_point start = Clock::now();
   Clock::time_point next_summary = start + std::chrono::seconds(1);
-  bool stopped_here = false;
-  while (reader->Read(&frame)) {
+  auto on_message = [&](const pb::Frame& frame) {
+    if (args.max_frames > 0 && frames >= args.max_frames) return;
     ++frames;
     if (args.summary) {
       second.Add(frame);
@@ -139,19 +142,38 @@ int RunWatch(const WatchArgs& args, std::ostream& out, std::ostream& err) {
       PrintFrame(frame, args.json, out);
     }
     if (args.max_frames > 0 && frames >= args.max_frames) {
-      stopped_here = true;
-      context.TryCancel();
-      break;
+      std::lock_guard lock(mutex);
+      done = true;
+      changed.notify_all();
+    }
+  };
+  auto on_end = [&](const haptics::Error&) {
+    std::lock_guard lock(mutex);
+    done = true;
+    changed.notify_all();
+  };
+  haptics::Result<std::unique_ptr<haptics::Watcher>> watcher = sdk::OpenWatcher(
+      *std::move(channel), args.scene, options, {.on_message = on_message, .on_end = on_end});
+  if (!watcher.ok()) return ReportRpcError("watch", sdk::ToGrpc(watcher.error()), err);
+  {
+    std::unique_lock lock(mutex);
+    if (args.duration_s > 0) {
+      changed.wait_until(lock,
+                         start + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double>(args.duration_s)),
+                         [&] { return done; });
+    } else {
+      changed.wait(lock, [&] { return done; });
     }
   }
+  // Stopped here (--frames, --duration) it ends OK; else as the server ended it.
+  (*watcher)->Close();
+  const haptics::Error status = (*watcher)->status();
+  watcher->reset();
   if (args.summary && !second.empty()) {
     second.Flush(std::chrono::duration<double>(Clock::now() - start).count(), args.json, out);
   }
-  const grpc::Status status = reader->Finish();
-  const bool timed_out =
-      args.duration_s > 0 && status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED;
-  if (status.ok() || stopped_here || timed_out) return kExitOk;
-  return ReportRpcError("watch", status, err);
+  return status.ok() ? kExitOk : ReportRpcError("watch", sdk::ToGrpc(status), err);
 }
 
 void AddWatchCommand(CLI::App& app, int& exit_code) {

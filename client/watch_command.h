@@ -1,7 +1,7 @@
 #pragma once
 // `hapticctl watch SCENE [--parts poses,contacts,forces] [--summary]
-// [--json] [--duration S] [--frames N]`: a viewer (SessionService.Watch).
-// Prints every frame, or one summary line per second.
+// [--json] [--duration S] [--frames N]`: a viewer (the client SDK's
+// Watcher, client/sdk). Prints every frame, or one summary line per second.
 
 #include <ostream>
 #include <string>

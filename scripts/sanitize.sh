@@ -17,7 +17,7 @@ here=$(pwd)
 
 # Only what runs here: the timing benchmarks are neither built nor run.
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_COMPILER=clang++-14 -DHS_SANITIZE=address,undefined -DHS_FUZZ=ON \
+  -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 -DHS_SANITIZE=address,undefined -DHS_FUZZ=ON \
   -DHS_TIMING_BENCHMARKS=OFF >/dev/null
 phase "asan build" cmake --build build-asan -j2
 export ASAN_OPTIONS="detect_leaks=1:suppressions=$here/scripts/sanitizers/asan.supp"
@@ -69,7 +69,7 @@ done
 phase fuzz fuzz
 
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_COMPILER=clang++-14 -DHS_SANITIZE=thread >/dev/null
+  -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 -DHS_SANITIZE=thread >/dev/null
 # The tests whose threads are the project's own: the scene runner and its
 # parts, the worker pool and a scene stepped on it, the registries, the
 # session recorder, the Agones lifecycle. Tests through gRPC are left out: Debian's gRPC and

@@ -7,6 +7,7 @@
 #include "client/exit_codes.h"
 #include "client/frame_rate_args.h"
 #include "client/needs_args.h"
+#include "client/sdk/interact_stream.h"
 #include "client/server_call.h"
 #include "common/api/local_model_convert.h"
 #include "common/api/proto_convert.h"
@@ -50,28 +51,27 @@ struct RunResult {
 RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
                   const std::shared_ptr<grpc::Channel>& channel, const Isometry3d& start,
                   std::span<const Vector3d> reference) {
-  auto stub = pb::SessionService::NewStub(channel);
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30) +
-                       std::chrono::milliseconds(static_cast<int64_t>(args.duration_s * 1e3)));
-  auto stream = stub->Interact(&context);
-  pb::InteractRequest open;
-  open.mutable_open()->set_scene(args.scene);
-  open.mutable_open()->set_tool(args.tool);
+  pb::InteractRequest::Open open;
+  open.set_scene(args.scene);
+  open.set_tool(args.tool);
   EffectSet needs{Effect::kForce, Effect::kFriction, Effect::kContactSet, Effect::kReversingVector};
   if (options.local_model) needs = needs.With(Effect::kLocalModel);
-  SetNeeds(needs, *open.mutable_open());
-  SetFrameRate(*open.mutable_open(), args.frame_rate_hz);
-  stream->Write(open);
+  SetNeeds(needs, open);
+  SetFrameRate(open, args.frame_rate_hz);
   RemoteRun run(options, start);
   const Clock::time_point t0 = Clock::now();
   auto seconds_since_start = [&] {
     return std::chrono::duration<double>(Clock::now() - t0).count();
   };
-  std::thread reader([&] {
-    pb::Frame frame;
-    while (stream->Read(&frame)) run.FromServer(seconds_since_start(), ReadFrame(frame, args.tool));
-  });
+  sdk::InteractStream stream(
+      channel, open,
+      {.on_frame =
+           [&](const pb::Frame& frame) {
+             run.FromServer(seconds_since_start(), ReadFrame(frame, args.tool));
+           },
+       .on_end = nullptr},
+      std::chrono::system_clock::now() + std::chrono::seconds(30) +
+          std::chrono::milliseconds(static_cast<int64_t>(args.duration_s * 1e3)));
   const int64_t ticks = static_cast<int64_t>(args.duration_s / options.tick_s);
   bool writing = true;
   for (int64_t k = 0; k < ticks && writing; ++k) {
@@ -84,13 +84,12 @@ RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
       request.mutable_pose()->set_sequence(pose.sequence);
       request.mutable_pose()->set_device_time_ns(static_cast<int64_t>(now_s * 1e9));
       PoseToProto(pose.X_WD, request.mutable_pose()->mutable_pose());
-      writing = writing && stream->Write(request);
+      writing = writing && stream.Write(request);
     });
   }
-  stream->WritesDone();
-  reader.join();
+  stream.WritesDone();
   RunResult result;
-  result.status = stream->Finish();
+  result.status = stream.Finish();
   result.summary = run.Summary(reference);
   result.forces = run.forces();
   result.positions = run.device_positions();

@@ -43,7 +43,10 @@ void ContactToProto(const PairContact& pair, const std::vector<std::string>& nam
     FeatureToProto(p.fixed, point->mutable_fixed());
   }
   out->set_tolerance_m(c.tolerance_m);
-  if (c.time_of_impact) out->set_time_of_impact(*c.time_of_impact);
+  if (c.time_of_impact) {
+    out->set_time_of_impact(*c.time_of_impact);
+    out->set_has_time_of_impact(true);
+  }
 }
 
 }  // namespace

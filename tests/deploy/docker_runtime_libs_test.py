@@ -11,7 +11,7 @@ Usage: docker_runtime_libs_test.py --dockerfile FILE BINARY...
    dependencies (apt-cache depends --recurse, no recommends, suggests,
    conflicts, breaks, replaces or enhances).
 3. Every listed package must hold a file some binary loads (no stale
-   entries).
+   entries). The project's own packages (*.deb files) are not counted.
 
 debian:12-slim is modelled as debootstrap's minbase: the packages of
 Priority required or Essential (dpkg-query), apt, and their dependencies.
@@ -49,6 +49,8 @@ def runtime_packages(dockerfile):
             if words[:2] != ["apt-get", "install"]:
                 continue
             for word in words[2:]:
+                if word.endswith(".deb"):
+                    continue  # the project's own packages: their dependencies go with them
                 (flags if word.startswith("-") else packages).append(word)
     return base, packages, flags, runtime
 

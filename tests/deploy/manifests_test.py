@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
 """deploy/ agrees with itself and with the server.
 
-Usage: manifests_test.py --repo DIR --haptic-server BIN --hapticctl BIN [unittest args]
+Usage: manifests_test.py --repo DIR --haptic-server BIN --hapticctl BIN
+       --unit haptic-server.service --defaults haptic-server.default [unittest args]
+
+The systemd unit and its defaults file (packaging/, as the build
+configured them) run the server as the user `haptic` with its state
+directory and flags it accepts.
 
 The server's command lines (Deployment, Fleet, the Dockerfile's ENTRYPOINT
 and CMD, compose), the probes and the load test are read from the files and
@@ -255,8 +260,8 @@ def health_probe_args(server, kind, probe):
     where = f"{server.where}.{kind}.exec.command"
     command = probe.get("exec", {}).get("command")
     assert command, f"{where}: not an exec probe"
-    assert command[:2] == ["/usr/local/bin/hapticctl", "health"], \
-        f"{where}: expected /usr/local/bin/hapticctl health, found {command[:2]}"
+    assert command[:2] == ["/usr/bin/hapticctl", "health"], \
+        f"{where}: expected /usr/bin/hapticctl health, found {command[:2]}"
     return where, parse_args(command[2:], HEALTH_FLAGS, where)
 
 
@@ -278,7 +283,7 @@ class ServerFlags(unittest.TestCase):
     def test_loadtest_flags_are_in_hapticctl_loadtest_help(self):
         svc = compose()["services"]["loadtest"]
         where = "deploy/docker/compose.yaml: services.loadtest.command"
-        self.assertEqual(svc["entrypoint"], ["/usr/local/bin/hapticctl"], where)
+        self.assertEqual(svc["entrypoint"], ["/usr/bin/hapticctl"], where)
         self.assertEqual(svc["command"][0], "loadtest", where)
         parse_args(svc["command"][1:], LOADTEST_FLAGS, where)
 
@@ -520,13 +525,17 @@ class Image(unittest.TestCase):
         self.assertIn("scripts/setup.sh", build, f"{relpath}: the build stage does not run scripts/setup.sh")
         self.assertRegex(build, r"-G Ninja", f"{relpath}: the build stage does not use Ninja")
         self.assertRegex(build, r"CMAKE_BUILD_TYPE=Release", f"{relpath}: the build stage does not build Release")
-        # haptic-server starts haptic-import from its own folder.
+        # The build stage makes the Debian packages; the runtime installs
+        # haptic-server's (haptic-server and haptic-import, which it starts
+        # from its own folder, in /usr/bin) and hapticctl's.
+        self.assertIn("cpack -G DEB", build, f"{relpath}: the build stage makes no Debian packages")
+        self.assertIn("-DCMAKE_INSTALL_PREFIX=/usr", build, f"{relpath}: the packages are not for /usr")
+        runtime = re.split(r"(?im)^FROM\s", joined)[-1]
+        for package in ("haptic-server", "hapticctl"):
+            self.assertRegex(runtime, rf"apt-get install[^&]*/{package}_\S*\.deb",
+                             f"{relpath}: the runtime does not install the {package} package")
         entry = Dockerfile(relpath).exec_form("ENTRYPOINT")[0]
-        bin_dir = os.path.dirname(entry) + "/"
-        copies = [v for n, v in Dockerfile(relpath).instructions if n == "COPY" and v.rstrip().endswith(bin_dir)]
-        self.assertTrue(copies, f"{relpath}: no COPY into {bin_dir}, the ENTRYPOINT's folder")
-        for binary in ("haptic-server", "hapticctl", "haptic-import"):
-            self.assertIn(f"bin/{binary}", build, f"{relpath}: the build stage does not collect {binary}")
+        self.assertEqual(entry, "/usr/bin/haptic-server", f"{relpath}: ENTRYPOINT, where the package puts it")
 
 
 class Agones(unittest.TestCase):
@@ -603,6 +612,56 @@ class Agones(unittest.TestCase):
         self.assertGreater(b["maxReplicas"], b["minReplicas"], f"{where}.policy.buffer.maxReplicas")
 
 
+def unit_entries(path):
+    """{(section, key): value} of a systemd unit file."""
+    entries, section = {}, None
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            if line.startswith("["):
+                section = line.strip("[]")
+                continue
+            key, _, val = line.partition("=")
+            entries[(section, key)] = val
+    return entries
+
+
+class SystemdUnit(unittest.TestCase):
+    """The unit and defaults file the install puts beside haptic-server
+    (packaging/), as configured in the build."""
+
+    def test_runs_as_haptic_with_its_state_dir(self):
+        unit = unit_entries(ARGS.unit)
+        where = rel(ARGS.unit) if ARGS.unit.startswith(ARGS.repo) else os.path.basename(ARGS.unit)
+        self.assertEqual(unit[("Service", "User")], "haptic", f"{where}: User")
+        self.assertEqual(unit[("Service", "Group")], "haptic", f"{where}: Group")
+        argv = shlex.split(unit[("Service", "ExecStart")])
+        self.assertTrue(argv[0].endswith("/bin/haptic-server"), f"{where}: ExecStart {argv[0]}")
+        self.assertEqual(argv[-1], "$HAPTIC_SERVER_ARGS", f"{where}: ExecStart ends with the defaults' flags")
+        parsed = parse_args(argv[1:-1], SERVER_FLAGS, f"{where}: ExecStart")
+        self.assertEqual(value(parsed, "--state-dir", where), "/var/lib/haptic-server")
+        # systemd makes /var/lib/<StateDirectory> the user's.
+        self.assertEqual(unit[("Service", "StateDirectory")], "haptic-server", f"{where}: StateDirectory")
+        self.assertTrue(unit[("Service", "EnvironmentFile")].lstrip("-").endswith("/default/haptic-server"),
+                        f"{where}: EnvironmentFile")
+        postinst = os.path.join(ARGS.repo, "packaging/debian/haptic-server/postinst")
+        with open(postinst, encoding="utf-8") as f:
+            self.assertRegex(f.read(), r"adduser --system --group [^\n]*\\\n[^\n]* haptic\b",
+                             f"{rel(postinst)}: creates the system user haptic")
+
+    def test_defaults_are_server_flags(self):
+        with open(ARGS.defaults, encoding="utf-8") as f:
+            m = re.search(r'^HAPTIC_SERVER_ARGS="([^"]*)"$', f.read(), re.MULTILINE)
+        self.assertTrue(m, f"{ARGS.defaults}: no HAPTIC_SERVER_ARGS=\"...\"")
+        parsed = parse_args(shlex.split(m.group(1)), SERVER_FLAGS, "HAPTIC_SERVER_ARGS")
+        for scene in values(parsed, "--scene"):
+            name = scene.rsplit("/haptics/scenes/", 1)[-1]
+            self.assertTrue(os.path.exists(os.path.join(ARGS.repo, "scenes", name)),
+                            f"HAPTIC_SERVER_ARGS: --scene {scene} is not one of scenes/")
+
+
 def healthcheck_health_calls(df):
     """The hapticctl health command lines of the HEALTHCHECK, with TLS on
     (the secret folder mounted) and off; $HAPTIC_TLS_SERVER_NAME expanded."""
@@ -620,6 +679,8 @@ def main():
     parser.add_argument("--repo", required=True)
     parser.add_argument("--haptic-server", required=True)
     parser.add_argument("--hapticctl", required=True)
+    parser.add_argument("--unit", required=True, help="the configured haptic-server.service")
+    parser.add_argument("--defaults", required=True, help="the configured /etc/default/haptic-server")
     ARGS, rest = parser.parse_known_args()
     for binary in (ARGS.haptic_server, ARGS.hapticctl):
         if not os.path.exists(binary):

@@ -12,7 +12,8 @@
 namespace hs::testing {
 
 ServerProcess::ServerProcess(const std::vector<std::string>& extra,
-                             const std::vector<std::string>& environment) {
+                             const std::vector<std::string>& environment,
+                             const std::string& listen) {
   int fds[2];
   EXPECT_EQ(pipe(fds), 0);
   posix_spawn_file_actions_t actions;
@@ -20,7 +21,7 @@ ServerProcess::ServerProcess(const std::vector<std::string>& extra,
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, fds[0]);
   const std::string scene = std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto";
-  std::vector<const char*> argv = {HS_HAPTIC_SERVER, "--listen", "127.0.0.1:0", "--scene",
+  std::vector<const char*> argv = {HS_HAPTIC_SERVER, "--listen", listen.c_str(), "--scene",
                                    scene.c_str()};
   for (const std::string& arg : extra) argv.push_back(arg.c_str());
   argv.push_back(nullptr);

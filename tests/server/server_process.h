@@ -13,11 +13,13 @@ namespace hs::testing {
 
 class ServerProcess {
  public:
-  /// Starts the binary with `extra` arguments after the demo scene, and
-  /// `environment` ("NAME=value") added to this process's; returns once it
-  /// listens (or ended: port() is then 0).
+  /// Starts the binary on `listen` with `extra` arguments after the demo
+  /// scene, and `environment` ("NAME=value") added to this process's;
+  /// returns once it listens (or ended: port() is then 0). A test that
+  /// restarts a server gives the port of the one before.
   explicit ServerProcess(const std::vector<std::string>& extra = {},
-                         const std::vector<std::string>& environment = {});
+                         const std::vector<std::string>& environment = {},
+                         const std::string& listen = "127.0.0.1:0");
   /// SIGKILL unless it was ended with StopWith.
   ~ServerProcess();
   ServerProcess(const ServerProcess&) = delete;

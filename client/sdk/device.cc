@@ -1,0 +1,52 @@
+#include "haptics/device.h"
+
+#include "client/sdk/device_impl.h"
+
+namespace haptics {
+
+Device::Impl::Impl(std::shared_ptr<grpc::Channel> channel, hs::sdk::LinkConfig config)
+    : renderer_(config.options.tick_s),
+      link_(std::move(channel), std::move(config), poses_, feeds_) {}
+
+TickOutput Device::Impl::Tick(const Pose& pose) {
+  feeds_.Take();
+  const TickOutput out = renderer_.Tick(pose, feeds_.front());
+  if (out.ok()) {
+    hs::sdk::PoseSample& sample = poses_.back();
+    for (int i = 0; i < 3; ++i) sample.position_m[i] = pose.position_m[i];
+    for (int i = 0; i < 4; ++i) sample.orientation_wxyz[i] = pose.orientation_wxyz[i];
+    sample.time_ns = hs::sdk::SteadyNowNs();
+    sample.beyond_validity_ticks = renderer_.beyond_validity_ticks();
+    poses_.Publish();
+  }
+  beyond_validity_ticks_.store(renderer_.beyond_validity_ticks(), std::memory_order_relaxed);
+  rejected_poses_.store(renderer_.rejected_poses(), std::memory_order_relaxed);
+  return out;
+}
+
+DeviceState Device::Impl::State() const {
+  DeviceState state = link_.State();
+  state.beyond_validity_ticks = beyond_validity_ticks_.load(std::memory_order_relaxed);
+  state.rejected_poses = rejected_poses_.load(std::memory_order_relaxed);
+  return state;
+}
+
+Device::Device(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Device::~Device() = default;
+
+TickOutput Device::Tick(const Pose& pose) { return impl_->Tick(pose); }
+
+DeviceState Device::State() const { return impl_->State(); }
+
+}  // namespace haptics
+
+namespace hs::sdk {
+
+haptics::Result<std::unique_ptr<haptics::Device>> OpenDevice(std::shared_ptr<grpc::Channel> channel,
+                                                             LinkConfig config) {
+  auto impl = std::make_unique<haptics::Device::Impl>(std::move(channel), std::move(config));
+  if (haptics::Error error = impl->Start(); !error.ok()) return error;
+  return std::make_unique<haptics::Device>(std::move(impl));
+}
+
+}  // namespace hs::sdk

@@ -1,0 +1,46 @@
+#pragma once
+// The device's side of a Device: each tick, the force of the newest local
+// model the network thread handed over (a HapticLoop), zero force while
+// the stream is down or has brought no model yet. A new stream starts a
+// new loop (the device is seated again). Wait-free: no lock, no allocation
+// after construction (the loop's model buffers are grown to the server's
+// 16 planes at construction, and a new loop is copied over the old one,
+// which keeps them), no system call.
+
+#include <cstdint>
+
+#include "client/haptic_loop/haptic_loop.h"
+#include "client/sdk/device_feed.h"
+#include "haptics/device.h"
+#include "haptics/pose.h"
+
+namespace hs::sdk {
+
+class TickRenderer {
+ public:
+  explicit TickRenderer(double tick_s);
+
+  /// One tick with the device at `pose` and `feed` the newest state of the
+  /// stream. A pose with a non-finite number or a quaternion that is not
+  /// unit within 1e-6 returns the last output with kInvalidPose.
+  haptics::TickOutput Tick(const haptics::Pose& pose, const Feed& feed);
+
+  /// Whether `pose` may be rendered and sent.
+  static bool ValidPose(const haptics::Pose& pose);
+
+  int64_t beyond_validity_ticks() const { return beyond_validity_ticks_; }
+  int64_t rejected_poses() const { return rejected_poses_; }
+
+ private:
+  // A loop that has not ticked: copied over loop_ for each new stream.
+  const HapticLoop fresh_;
+  HapticLoop loop_;
+  int64_t beyond_validity_ticks_ = 0;
+  uint64_t stream_ = 0;
+  uint64_t model_serial_ = 0;
+  bool has_model_ = false;
+  haptics::TickOutput last_;
+  int64_t rejected_poses_ = 0;
+};
+
+}  // namespace hs::sdk
