@@ -34,7 +34,7 @@ class [[gnu::visibility("hidden")]] Watcher::Impl {
   /// Starts the stream and waits for its first frame (or its end, or the
   /// open timeout: DEADLINE_EXCEEDED).
   Error Start();
-  bool Latest(Frame* out) const;
+  bool Latest(Frame * out) const;
   int64_t frames() const;
   bool ended() const;
   Error status() const;
