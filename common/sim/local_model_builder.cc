@@ -183,6 +183,30 @@ void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures
   for (const EdgeId e : near.edges) placed.edges.push_back(PlaceEdge(at_proxy, e));
 }
 
+// Where point `p` falls on `face` along its normal (`foot`), and how far in
+// front of it (`gap`): false when the gap is outside [-below_m, above_m] or
+// the foot is off the face by more than `margin_m` (and rounding).
+bool FootOnFace(const WorldFace& face, const Vector3d& p, double below_m, double above_m,
+                double margin_m, Vector3d& foot, double& gap) {
+  constexpr double kSlack = 1e-9;
+  gap = face.n.dot(p - face.a);
+  if (gap < -below_m || gap > above_m) return false;
+  foot = p - gap * face.n;
+  return Inside(face, foot, kSlack, margin_m);
+}
+
+// The index in `pairs.materials` of the plane template of face `f` of
+// `object` (id `id`), added the first time (`index` < 0) and kept in
+// `index` after.
+int MaterialIndex(const HapticObject& object, FaceId f, ObjectId id, LocalModelPairs& pairs,
+                  int& index) {
+  if (index < 0) {
+    index = static_cast<int>(pairs.materials.size());
+    pairs.materials.push_back(MaterialPlane(object, f, id));
+  }
+  return index;
+}
+
 // Whether segments a and b may come within `within_m` of each other: their
 // bounding balls do.
 bool SegmentsMayMeet(const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1,
@@ -232,6 +256,11 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_
   return std::abs(n.dot(t.from + a * u - o.from - b * v)) <= apart_m;
 }
 
+// How far behind its plane a pair may be and still count as touching: the
+// proxy's stand-off is 1e-6 of the tool's size in front, so a pair farther
+// behind is not one the tool rests on.
+double Behind(const HapticObject& t) { return 1e-6 * t.bounding_box().diagonal().norm(); }
+
 // The farthest corner of the tool's box from its origin.
 double Reach(const HapticObject& t) {
   const AlignedBox3d box = t.bounding_box();
@@ -279,24 +308,14 @@ struct PlacedById {
 // at the proxy's pose, without margin.
 void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelPairs& pairs,
                 double radius_m, double behind_m, std::vector<ConstraintPlane>& candidates) {
-  constexpr double kSlack = 1e-9;
   const PosedObject at_proxy{&t, nullptr, X_WP};
   PlacedById& placed = Scratch<PlacedById>();
   placed.Begin(t);
-  // Where point `p` falls on `face` along its normal, and how far in front
-  // it is: false when that is outside [-behind_m, radius_m] or the foot is
-  // off the face.
-  auto foot_on_face = [&](const WorldFace& face, const Vector3d& p, Vector3d& foot, double& gap) {
-    gap = face.n.dot(p - face.a);
-    if (gap < -behind_m || gap > radius_m) return false;
-    foot = p - gap * face.n;
-    return Inside(face, foot, kSlack);
-  };
   Vector3d foot;
   double gap;
   for (const LocalModelPairs::VertexFace& pair : pairs.vertex_faces) {
     const Vector3d v = X_WP * t.position(pair.tool_vertex);
-    if (!foot_on_face(pair.face, v, foot, gap)) continue;
+    if (!FootOnFace(pair.face, v, behind_m, radius_m, 0, foot, gap)) continue;
     ConstraintPlane& plane = candidates.emplace_back(pairs.materials[pair.material]);
     plane.normal_W = pair.face.n;
     plane.gap_m = std::max(gap, 0.0);
@@ -305,7 +324,10 @@ void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelP
   }
   for (const LocalModelPairs::FaceVertex& pair : pairs.face_vertices) {
     const WorldFace* tool_face = placed.Face(at_proxy, pair.tool_face);
-    if (tool_face == nullptr || !foot_on_face(*tool_face, pair.vertex_W, foot, gap)) continue;
+    if (tool_face == nullptr ||
+        !FootOnFace(*tool_face, pair.vertex_W, behind_m, radius_m, 0, foot, gap)) {
+      continue;
+    }
     ConstraintPlane& plane = candidates.emplace_back(pairs.materials[pair.material]);
     plane.normal_W = -tool_face->n;
     plane.gap_m = std::max(gap, 0.0);
@@ -338,11 +360,12 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            const LocalModelOptions& options, double margin_m,
                            LocalModelPairs& pairs) {
   const HapticObject& t = *tool.object;
-  const double behind = 1e-6 * t.bounding_box().diagonal().norm();
+  const double behind = Behind(t);
   // How far a pair's features may be apart now and still meet the tests
   // after a move of at most the margin.
   const double within = options.radius_m + margin_m;
-  constexpr double kSlack = 1e-9;
+  Vector3d foot;
+  double gap;
   pairs.X_WP = X_WP;
   pairs.margin_m = margin_m;
   // Every point of the tool is within Reach of its origin, and the objects'
@@ -372,15 +395,11 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
       if (!PlaceFace(o, f, face)) continue;
       int material = -1;
       for (size_t i = 0; i < placed.vertices.size(); ++i) {
-        const Vector3d& v = placed.vertices[i];
-        const double gap = face.n.dot(v - face.a);
-        if (gap < -behind - margin_m || gap > within) continue;
-        if (!Inside(face, v - gap * face.n, kSlack, margin_m)) continue;
-        if (material < 0) {
-          material = static_cast<int>(pairs.materials.size());
-          pairs.materials.push_back(MaterialPlane(*o.object, f, ids[k]));
+        if (!FootOnFace(face, placed.vertices[i], behind + margin_m, within, margin_m, foot, gap)) {
+          continue;
         }
-        pairs.vertex_faces.push_back({tool_near.vertices[i], face, material});
+        pairs.vertex_faces.push_back(
+            {tool_near.vertices[i], face, MaterialIndex(*o.object, f, ids[k], pairs, material)});
       }
     }
     // Features beyond the box are farther than the radius and the margin
@@ -390,16 +409,12 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
       if (!near.contains(q)) continue;
       int material = -1;
       for (size_t i = 0; i < placed.faces.size(); ++i) {
-        const WorldFace& g = placed.faces[i];
-        const double gap = g.n.dot(q - g.a);
-        if (gap < -behind - margin_m || gap > within) continue;
-        if (!Inside(g, q - gap * g.n, kSlack, margin_m)) continue;
-        if (material < 0) {
-          material = static_cast<int>(pairs.materials.size());
-          pairs.materials.push_back(
-              MaterialPlane(*o.object, o.object->VertexFaces(v).front(), ids[k]));
+        if (!FootOnFace(placed.faces[i], q, behind + margin_m, within, margin_m, foot, gap)) {
+          continue;
         }
-        pairs.face_vertices.push_back({placed.face_ids[i], q, material});
+        pairs.face_vertices.push_back(
+            {placed.face_ids[i], q,
+             MaterialIndex(*o.object, o.object->VertexFaces(v).front(), ids[k], pairs, material)});
       }
     }
     for (const EdgeId e : object_near.edges) {  // object edge, tool edge
@@ -414,12 +429,9 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                                   behind)) {
           continue;
         }
-        if (material < 0) {
-          material = static_cast<int>(pairs.materials.size());
-          pairs.materials.push_back(
-              MaterialPlane(*o.object, o.object->EdgeFaces(e).front(), ids[k]));
-        }
-        pairs.edge_edges.push_back({tool_near.edges[i], edge, material});
+        pairs.edge_edges.push_back(
+            {tool_near.edges[i], edge,
+             MaterialIndex(*o.object, o.object->EdgeFaces(e).front(), ids[k], pairs, material)});
       }
     }
   }
@@ -437,12 +449,9 @@ void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
   model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
   model.planes.clear();
   const double size = tool.bounding_box().diagonal().norm();
-  // A pair this far behind its plane (the proxy's stand-off is 1e-6 of the
-  // size in front) is not one the tool rests on.
-  const double behind = 1e-6 * size;
   std::vector<ConstraintPlane>& candidates = Scratch<CandidatePlanes>().planes;
   candidates.clear();
-  PairPlanes(tool, proxy.X_WP, pairs, options.radius_m, behind, candidates);
+  PairPlanes(tool, proxy.X_WP, pairs, options.radius_m, Behind(tool), candidates);
   // The nearest distinct planes, at most max_planes.
   std::sort(candidates.begin(), candidates.end(), Nearer);
   for (const ConstraintPlane& plane : candidates) {
