@@ -80,7 +80,15 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
     remote.run.motion = *motion;
     remote.run.local_model = args.local_model == "on";
     remote.run.link = args.link;
-    return RunRemoteDrive(remote, channel, start, out, err);
+    std::shared_ptr<grpc::Channel> reference;
+    if (!args.reference_server.empty()) {
+      ConnectionOptions direct = args.server;
+      direct.address = args.reference_server;
+      absl::StatusOr<std::shared_ptr<grpc::Channel>> made = MakeChannel(direct);
+      if (!made.ok()) return ReportError("drive", made.status(), err);
+      reference = *std::move(made);
+    }
+    return RunRemoteDrive(remote, channel, reference, start, out, err);
   }
   std::vector<TimedPose> path;
   if (!args.motion.empty()) {
@@ -209,6 +217,9 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--trace", args->trace_path,
                   "With --operator: write the rendered force and device position per tick (CSV)");
+  cmd->add_option("--reference-server", args->reference_server,
+                  "With --operator: run the zero-latency reference (force_rms_error_n) against "
+                  "this address, the server itself when --server is a relay");
   cmd->callback([args, path, motion, hand, &exit_code] {
     if (path->count() + motion->count() + hand->count() != 1) {
       std::cerr << "hapticctl drive: give --path, --motion or --operator\n";

@@ -52,6 +52,9 @@ struct DriveArgs {
   LinkConditions link;
   /// With --operator: a CSV of the rendered force per tick.
   std::string trace_path;
+  /// With --operator: the address of the zero-latency reference run (the
+  /// server itself when `server` is a relay); empty for none.
+  std::string reference_server;
 };
 
 /// Drives the tool and prints to `out`. kExitOk; kExitFailure for a bad

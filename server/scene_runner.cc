@@ -166,7 +166,9 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
     for (const auto& [id, pose] : fresh_.taken()) {
       // Poses are validated at the edge.
       if (!ApplyDevicePose(scene, id, pose.X_WD, pose.seat).ok()) continue;
-      if (pose.model_stale) (void)scene.RequestLocalModel(id);  // `id` is a tool
+      // `id` is a tool and the radius was checked at the edge.
+      if (pose.model.stale) (void)scene.RequestLocalModel(id);
+      (void)scene.SetLocalModelRadius(id, pose.model.validity_radius_m);
       applied_[id] = pose;
       snapshot->inputs.push_back({id, pose.X_WD, pose.stamp, pose.seat});
     }
@@ -245,9 +247,9 @@ void SceneRunner::Detach(FrameSink* sink) {
 }
 
 void SceneRunner::SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp,
-                                bool model_stale) {
+                                const LocalModelRequest& model) {
   CheckNotInSinkCall();
-  WakeIfDevicesFresh(streams_.SetPose(sink, X_WD, stamp, model_stale));
+  WakeIfDevicesFresh(streams_.SetPose(sink, X_WD, stamp, model));
 }
 
 haptics::v1::SceneSpec SceneRunner::spec() const {

@@ -87,10 +87,10 @@ class SceneRunner {
 
   /// The device pose of `sink`'s tool for the next step (latest wins). The
   /// pose was validated by the caller.
-  /// `model_stale`: the device asks for a fresh local model
-  /// (ToolPose.model_stale).
+  /// `model`: what the device asks of its local model (ToolPose's
+  /// model_stale and validity_radius_m, validated by the caller too).
   void SetDevicePose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp,
-                     bool model_stale = false);
+                     const LocalModelRequest& model = {});
 
   /// The spec the scene runs now.
   haptics::v1::SceneSpec spec() const;

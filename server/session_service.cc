@@ -1,6 +1,7 @@
 #include "server/session_service.h"
 
 #include <chrono>
+#include <cmath>
 #include <mutex>
 
 #include "absl/strings/str_cat.h"
@@ -228,8 +229,14 @@ class InteractReactor
       Fail(X_WD.status(), "Interact");
       return false;
     }
-    runner_->SetDevicePose(this, *X_WD, AppliedPose{pose.sequence(), pose.device_time_ns()},
-                           pose.model_stale());
+    if (!(std::isfinite(pose.validity_radius_m()) && pose.validity_radius_m() >= 0)) {
+      Fail(absl::InvalidArgumentError("pose.validity_radius_m must be finite and >= 0"),
+           "Interact");
+      return false;
+    }
+    runner_->SetDevicePose(
+        this, *X_WD, AppliedPose{pose.sequence(), pose.device_time_ns()},
+        {.stale = pose.model_stale(), .validity_radius_m = pose.validity_radius_m()});
     return true;
   }
 

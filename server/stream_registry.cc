@@ -114,7 +114,7 @@ StreamChange StreamRegistry::Detach(FrameSink* sink) {
 }
 
 StreamChange StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD,
-                                     const AppliedPose& stamp, bool model_stale) {
+                                     const AppliedPose& stamp, const LocalModelRequest& model) {
   std::lock_guard lock(mu_);
   const auto it = sinks_.find(sink);
   if (it == sinks_.end() || it->second.tool < 0) return {};
@@ -126,7 +126,8 @@ StreamChange StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD,
                         .stamp = stamp,
                         .fresh = true,
                         .seat = seat,
-                        .model_stale = model_stale || (pending.fresh && pending.model_stale)};
+                        .model = {.stale = model.stale || (pending.fresh && pending.model.stale),
+                                  .validity_radius_m = model.validity_radius_m}};
   it->second.sent_pose = true;
   it->second.heard = std::chrono::steady_clock::now();
   return {.devices_fresh_since = DevicesFreshLocked()};

@@ -39,6 +39,15 @@ struct SceneTools {
   ObjectId Find(const std::string& name) const;
 };
 
+/// What a device asks of its tool's local model with a pose.
+struct LocalModelRequest {
+  /// A fresh model at the next step (ToolPose.model_stale).
+  bool stale = false;
+  /// The validity radius wanted, metres (ToolPose.validity_radius_m; 0:
+  /// the scene's).
+  double validity_radius_m = 0;
+};
+
 /// A device pose waiting for the next step.
 struct PendingPose {
   Isometry3d X_WD = Isometry3d::Identity();
@@ -46,9 +55,9 @@ struct PendingPose {
   bool fresh = false;
   /// The first pose of the device that holds the tool now (Scene::SeatDevice).
   bool seat = false;
-  /// The device asked for a fresh local model with this pose or one it
-  /// replaced (ToolPose.model_stale).
-  bool model_stale = false;
+  /// What the device asked of its local model: a fresh one with this pose
+  /// or one it replaced; the radius of the latest.
+  LocalModelRequest model;
 };
 
 /// The device poses one step takes: (tool, pose) entries [0, count), in
@@ -113,9 +122,9 @@ class StreamRegistry {
   /// The pose of `sink`'s tool for the next step (latest wins); ignored
   /// for a viewer or a stream not attached. A device's first pose seats it
   /// (PendingPose::seat), until a step takes it; so does a request for a
-  /// fresh model (`model_stale`).
+  /// fresh model (`model.stale`).
   StreamChange SetPose(FrameSink* sink, const Isometry3d& X_WD, const AppliedPose& stamp,
-                       bool model_stale = false);
+                       const LocalModelRequest& model = {});
   /// Forgets every device not heard from (attached or sent a pose) since
   /// `silent_since`, queuing its end with `status` as a take-over does;
   /// appends their tools to `released`. Returns what SetPose would, as the

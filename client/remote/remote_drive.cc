@@ -74,7 +74,8 @@ RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
           std::chrono::milliseconds(static_cast<int64_t>(args.duration_s * 1e3)));
   const int64_t ticks = static_cast<int64_t>(args.duration_s / options.tick_s);
   bool writing = true;
-  for (int64_t k = 0; k < ticks && writing; ++k) {
+  const int64_t last_tick = ticks + static_cast<int64_t>(kLongestWaitForDeviceS / options.tick_s);
+  for (int64_t k = 0; run.ticks_rendered() < ticks && k < last_tick && writing; ++k) {
     const double now_s = static_cast<double>(k) * options.tick_s;
     std::this_thread::sleep_until(
         t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(now_s)));
@@ -84,6 +85,8 @@ RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
       request.mutable_pose()->set_sequence(pose.sequence);
       request.mutable_pose()->set_device_time_ns(static_cast<int64_t>(now_s * 1e9));
       PoseToProto(pose.X_WD, request.mutable_pose()->mutable_pose());
+      request.mutable_pose()->set_model_stale(pose.model_stale);
+      request.mutable_pose()->set_validity_radius_m(pose.validity_radius_m);
       writing = writing && stream.Write(request);
     });
   }
@@ -113,6 +116,7 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"penetration_p99_m", s.penetration_p99_m},
           {"penetration_max_m", s.penetration_max_m},
           {"force_rms_error_n", s.force_rms_error_n},
+          {"reference_force_rms_n", s.reference_force_rms_n},
           {"uplink_mean_ms", s.uplink_mean_ms},
           {"downlink_mean_ms", s.downlink_mean_ms},
           {"round_trip_p50_ms", s.round_trip_p50_ms},
@@ -129,12 +133,14 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
 }  // namespace
 
 int RunRemoteDrive(const RemoteDriveArgs& args, const std::shared_ptr<grpc::Channel>& channel,
-                   const Isometry3d& start, std::ostream& out, std::ostream& err) {
+                   const std::shared_ptr<grpc::Channel>& reference_channel, const Isometry3d& start,
+                   std::ostream& out, std::ostream& err) {
   std::vector<Vector3d> reference;
-  if (!args.run.link.ideal()) {
+  if (!args.run.link.ideal() || reference_channel != nullptr) {
     RemoteRunOptions ideal = args.run;
     ideal.link = LinkConditions{.seed = args.run.link.seed};
-    RunResult first = RunOnce(args, ideal, channel, start, {});
+    RunResult first =
+        RunOnce(args, ideal, reference_channel != nullptr ? reference_channel : channel, start, {});
     if (!first.status.ok()) return ReportRpcError("drive", first.status, err);
     reference = std::move(first.forces);
   }

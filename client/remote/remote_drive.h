@@ -3,8 +3,9 @@
 // (remote_run.h) against a scene on a server, over SessionService.Interact,
 // through a simulated link of --latency-ms, --jitter-ms, --loss and
 // --stall-prob/--stall-ms (link_schedule.h). When
-// the link is not ideal, a run over an ideal link comes first: the
-// reference of force_rms_error_n.
+// the link is not ideal, or a reference channel is given (the server
+// itself when `channel` goes through a relay), a run over an ideal link
+// comes first: the reference of force_rms_error_n.
 
 #include <memory>
 #include <ostream>
@@ -31,7 +32,9 @@ struct RemoteDriveArgs {
 
 /// Runs and prints the summary to `out`: one JSON object with --json.
 /// kExitOk, or the exit status of a failed stream (reported on `err`).
+/// `reference_channel`: where the reference run goes (null: `channel`).
 int RunRemoteDrive(const RemoteDriveArgs& args, const std::shared_ptr<grpc::Channel>& channel,
-                   const Isometry3d& start, std::ostream& out, std::ostream& err);
+                   const std::shared_ptr<grpc::Channel>& reference_channel, const Isometry3d& start,
+                   std::ostream& out, std::ostream& err);
 
 }  // namespace hs::cli

@@ -11,6 +11,7 @@ RemoteRun::RemoteRun(const RemoteRunOptions& options, const Isometry3d& start)
     : options_(options),
       hand_(options.motion, options.hand, start),
       loop_(options.loop),
+      sizer_(options.sizer),
       up_(options.link, 0),
       down_(options.link, 1) {}
 
@@ -23,7 +24,9 @@ void RemoteRun::Read(const ServerFrame& frame, int64_t tick) {
   round_trips_ms_.push_back(
       static_cast<double>(tick - static_cast<int64_t>(frame.applied_sequence) + 1) *
       options_.tick_s * 1e3);
+  sizer_.AddRoundTrip(static_cast<double>(tick) * options_.tick_s, round_trips_ms_.back() * 1e-3);
   server_force_ = frame.force_W;
+  has_frame_ = true;
   if (frame.model && !loop_.SetModel(*frame.model)) ++models_rejected_;
 }
 
@@ -31,11 +34,26 @@ void RemoteRun::Tick(int64_t k) {
   const double now_s = static_cast<double>(k) * options_.tick_s;
   down_.PopDue(now_s, [&](const ServerFrame& frame) { Read(frame, k); });
   const Isometry3d X_WD = hand_.DevicePose();
-  const Vector3d force = options_.local_model ? loop_.Tick(X_WD).force_W : server_force_;
-  forces_.push_back(force);
-  positions_.push_back(X_WD.translation());
-  hand_.Step(now_s, options_.tick_s, force);
-  up_.Push(now_s, PoseMessage{static_cast<uint64_t>(k) + 1, hand_.DevicePose()});
+  const Vector3d rendered = options_.local_model ? loop_.Tick(X_WD).force_W : server_force_;
+  if (engaged_at_s_ < 0 && (options_.local_model ? loop_.has_model() : has_frame_)) {
+    engaged_at_s_ = now_s;
+  }
+  // The hand waits, at rest, for the device to be live.
+  if (engaged_at_s_ >= 0) {
+    forces_.push_back(rendered);
+    positions_.push_back(X_WD.translation());
+    hand_.Step(now_s - engaged_at_s_, options_.tick_s, rendered);
+  }
+  PoseMessage pose{.sequence = static_cast<uint64_t>(k) + 1, .X_WD = hand_.DevicePose()};
+  if (options_.local_model) {
+    pose.model_stale = loop_.beyond_validity_ticks() > beyond_validity_sent_;
+    beyond_validity_sent_ = loop_.beyond_validity_ticks();
+    if (options_.size_validity) {
+      sizer_.AddDevicePosition(now_s + options_.tick_s, pose.X_WD.translation());
+      pose.validity_radius_m = sizer_.WantedRadius();
+    }
+  }
+  up_.Push(now_s, pose);
   sent_ = static_cast<uint64_t>(k) + 1;
 }
 
@@ -51,15 +69,18 @@ RemoteSummary RemoteRun::Summary(std::span<const Vector3d> reference) const {
   s.ticks = static_cast<int64_t>(forces_.size());
   s.energy_j = hand_.work_j();
   double error_sq = 0;
+  double reference_sq = 0;
   for (size_t i = 0; i < forces_.size(); ++i) {
     s.max_force_n = std::max(s.max_force_n, forces_[i].norm());
     if (i > 0)
       s.max_force_step_n = std::max(s.max_force_step_n, (forces_[i] - forces_[i - 1]).norm());
     const Vector3d ref = i < reference.size() ? reference[i] : Vector3d::Zero();
     error_sq += (forces_[i] - ref).squaredNorm();
+    reference_sq += ref.squaredNorm();
   }
   if (!reference.empty() && !forces_.empty()) {
     s.force_rms_error_n = std::sqrt(error_sq / static_cast<double>(forces_.size()));
+    s.reference_force_rms_n = std::sqrt(reference_sq / static_cast<double>(forces_.size()));
   }
   std::vector<double> depths;
   depths.reserve(depth_by_sequence_.size());

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "client/haptic_loop/haptic_loop.h"
+#include "client/haptic_loop/validity_sizer.h"
 #include "client/remote/delay_line.h"
 #include "client/remote/hand_operator.h"
 
@@ -26,6 +27,11 @@ namespace hs::cli {
 struct PoseMessage {
   uint64_t sequence = 0;
   Isometry3d X_WD = Isometry3d::Identity();
+  /// With the local model: the device went past its model's validity
+  /// sphere since the last pose (ToolPose.model_stale), and the validity
+  /// radius it wants (ToolPose.validity_radius_m; 0: the scene's).
+  bool model_stale = false;
+  double validity_radius_m = 0;
 };
 
 /// What the device reads from a frame of its tool.
@@ -49,6 +55,10 @@ struct RemoteRunOptions {
   LinkConditions link;
   double tick_s = 1e-3;
   HapticLoopOptions loop;
+  /// With the local model: ask for a validity radius sized from the round
+  /// trip and the hand's speed (validity_sizer.h); false keeps the scene's.
+  bool size_validity = true;
+  ValiditySizerOptions sizer;
 };
 
 /// What a run measured.
@@ -64,8 +74,9 @@ struct RemoteSummary {
   double penetration_p99_m = 0;
   double penetration_max_m = 0;
   /// RMS of the rendered force against a reference run's, tick by tick, N
-  /// (0 without a reference).
+  /// (0 without a reference), and the RMS of the reference's force.
   double force_rms_error_n = 0;
+  double reference_force_rms_n = 0;
   double max_force_n = 0;
   /// The one-way hold the link applied on average, each way, milliseconds,
   /// and the round trip seen: from sending a pose to reading the frame
@@ -86,6 +97,10 @@ struct RemoteSummary {
   int64_t beyond_validity_ticks = 0;
 };
 
+/// How long a run waits for its device to be live before the hand moves,
+/// seconds: a run of N ticks ends after N ticks of motion or this long.
+inline constexpr double kLongestWaitForDeviceS = 10;
+
 class RemoteRun {
  public:
   /// The hand starts at rest at `start`, the device's pose (world frame).
@@ -93,8 +108,12 @@ class RemoteRun {
 
   /// Tick `k`, at k * tick_s: reads the frames the link delivers by then,
   /// renders the force, moves the hand under it and sends the device's
-  /// pose (sequence k + 1).
+  /// pose (sequence k + 1). The hand holds still until the device is live
+  /// (its first model, or with the local model off its first frame), as an
+  /// operator waits for the device to say so; its motion starts then.
   void Tick(int64_t k);
+  /// Ticks the hand has moved through (those after the device was live).
+  int64_t ticks_rendered() const { return static_cast<int64_t>(forces_.size()); }
   /// Calls `send(PoseMessage)` for each pose that reaches the server by
   /// `now_s` (seconds on the ticks' clock), in order.
   template <typename F>
@@ -104,9 +123,10 @@ class RemoteRun {
   /// A frame the server sent at `now_s`, onto the link back.
   void FromServer(double now_s, ServerFrame frame);
 
-  /// The rendered force of each tick so far, world frame, N.
+  /// The rendered force of each tick since the device was live, world
+  /// frame, N.
   const std::vector<Vector3d>& forces() const { return forces_; }
-  /// The device position at each tick, world frame, metres.
+  /// The device position at each of those ticks, world frame, metres.
   const std::vector<Vector3d>& device_positions() const { return positions_; }
   /// The measures; `reference`: the forces of the zero-latency run of the
   /// same operator, for force_rms_error_n (empty: 0).
@@ -118,9 +138,15 @@ class RemoteRun {
   RemoteRunOptions options_;
   HandOperator hand_;
   HapticLoop loop_;
+  ValiditySizer sizer_;
+  // The loop's ticks past its validity sphere when the last pose went.
+  int64_t beyond_validity_sent_ = 0;
   DelayLine<PoseMessage> up_;
   DelayLine<ServerFrame> down_;
   Vector3d server_force_ = Vector3d::Zero();
+  bool has_frame_ = false;
+  // When the device was first live, seconds on the ticks' clock (-1: not yet).
+  double engaged_at_s_ = -1;
   uint64_t newest_applied_ = 0;
   // Poses sent so far: a frame that reports a later one applied is not
   // this run's (the tool's last device before it), and is not read.

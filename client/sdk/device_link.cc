@@ -187,6 +187,12 @@ bool DeviceLink::SendPose(InteractStream& writer, uint64_t& sequence) {
   q->set_y(sample.orientation_wxyz[2]);
   q->set_z(sample.orientation_wxyz[3]);
   pose->set_model_stale(sample.beyond_validity_ticks > sent_beyond_validity_);
+  const double now_s = static_cast<double>(sample.time_ns) * 1e-9;
+  const int64_t round_trip_ns = round_trip_peak_ns_.exchange(-1);
+  if (round_trip_ns >= 0) sizer_.AddRoundTrip(now_s, static_cast<double>(round_trip_ns) * 1e-9);
+  sizer_.AddDevicePosition(
+      now_s, Vector3d(sample.position_m[0], sample.position_m[1], sample.position_m[2]));
+  pose->set_validity_radius_m(sizer_.WantedRadius());
   sent_beyond_validity_ = sample.beyond_validity_ticks;
   return writer.Write(request);
 }
@@ -210,7 +216,12 @@ void DeviceLink::OnFrame(uint64_t stream, const pb::Frame& frame) {
     }
   }
   if (frame.last_pose_sequence() > 0 && frame.last_pose_device_time_ns() > 0) {
-    round_trip_ns_ = now - frame.last_pose_device_time_ns();
+    const int64_t round_trip_ns = now - frame.last_pose_device_time_ns();
+    round_trip_ns_ = round_trip_ns;
+    int64_t peak = round_trip_peak_ns_.load();
+    while (round_trip_ns > peak &&
+           !round_trip_peak_ns_.compare_exchange_weak(peak, round_trip_ns)) {
+    }
   }
   for (const pb::ToolState& tool : frame.tools()) {
     if (tool.tool() != config_.tool || !tool.has_local_model()) continue;

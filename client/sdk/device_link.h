@@ -16,6 +16,7 @@
 #include <string>
 #include <thread>
 
+#include "client/haptic_loop/validity_sizer.h"
 #include "client/sdk/device_feed.h"
 #include "client/sdk/interact_stream.h"
 #include "client/sdk/triple_buffer.h"
@@ -73,6 +74,9 @@ class DeviceLink {
   // runs, the network thread between streams.
   Feed feed_;
   int64_t sent_beyond_validity_ = 0;
+  // The validity radius each pose asks for, from the device's speed and
+  // the round trips (network thread only).
+  ValiditySizer sizer_;
 
   std::thread thread_;
   mutable std::mutex mutex_;
@@ -92,6 +96,8 @@ class DeviceLink {
   std::atomic<int64_t> models_{0};
   std::atomic<int64_t> reconnects_{0};
   std::atomic<int64_t> round_trip_ns_{-1};
+  // The longest round trip seen since the last pose went (-1: none).
+  std::atomic<int64_t> round_trip_peak_ns_{-1};
   std::atomic<int64_t> model_arrival_ns_{-1};
   uint64_t last_revision_ = 0;
 };

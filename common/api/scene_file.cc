@@ -1,5 +1,6 @@
 #include "common/api/scene_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -191,6 +192,10 @@ absl::StatusOr<SceneOptions> ToOptions(const pb::SceneSpec& spec) {
   if (spec.relative_tolerance() != 0) options.relative_tolerance = spec.relative_tolerance();
   if (spec.force_clamp_n() != 0) options.force_clamp_n = spec.force_clamp_n();
   if (spec.local_model_radius_m() != 0) options.local_model_radius_m = spec.local_model_radius_m();
+  options.local_model_radius_cap_m =
+      spec.local_model_radius_cap_m() != 0
+          ? spec.local_model_radius_cap_m()
+          : std::max(options.local_model_radius_cap_m, options.local_model_radius_m);
   HS_ASSIGN_OR_RETURN(options.enabled,
                       EffectsFromProto(spec.effects(), EffectSet::All(), "effects"));
   if (spec.has_gravity_m_per_s2()) {

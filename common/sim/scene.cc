@@ -35,6 +35,11 @@ absl::StatusOr<std::unique_ptr<Scene>> Scene::Create(const SceneOptions& options
   if (!(options.local_model_radius_m > 0 && options.local_model_radius_m <= kMaxLocalModelRadius)) {
     return absl::InvalidArgumentError("local_model_radius_m must be in (0, 1]");
   }
+  if (!(options.local_model_radius_cap_m >= options.local_model_radius_m &&
+        options.local_model_radius_cap_m <= kMaxLocalModelRadius)) {
+    return absl::InvalidArgumentError(
+        "local_model_radius_cap_m must be in [local_model_radius_m, 1]");
+  }
   if (!(std::isfinite(options.contact_angular_damping_per_s) &&
         options.contact_angular_damping_per_s >= 0)) {
     return absl::InvalidArgumentError("contact_angular_damping_per_s must be finite and >= 0");
@@ -91,6 +96,17 @@ absl::Status Scene::CheckDevicePose(ObjectId id, const Isometry3d& X_WD) const {
 absl::Status Scene::RequestLocalModel(ObjectId id) {
   HS_RETURN_IF_ERROR(CheckTool(id));
   tools_.RequestLocalModel(id);
+  return absl::OkStatus();
+}
+
+absl::Status Scene::SetLocalModelRadius(ObjectId id, double radius_m) {
+  HS_RETURN_IF_ERROR(CheckTool(id));
+  if (!(std::isfinite(radius_m) && radius_m >= 0)) {
+    return absl::InvalidArgumentError("validity_radius_m must be finite and >= 0");
+  }
+  tools_.SetLocalModelRadius(id, radius_m == 0 ? 0
+                                               : std::clamp(radius_m, options_.local_model_radius_m,
+                                                            options_.local_model_radius_cap_m));
   return absl::OkStatus();
 }
 

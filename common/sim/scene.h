@@ -58,6 +58,12 @@ class Scene {
   /// the last one's validity sphere). NOT_FOUND or FAILED_PRECONDITION, as
   /// SetDevicePose, when `id` is no tool.
   absl::Status RequestLocalModel(ObjectId id);
+  /// Tool `id`'s local models from its next step have the validity radius
+  /// its device asked for (ToolPose.validity_radius_m), metres, taken
+  /// within [local_model_radius_m, local_model_radius_cap_m]; 0 returns to
+  /// the scene's. INVALID_ARGUMENT when not finite or negative; NOT_FOUND
+  /// or FAILED_PRECONDITION, as SetDevicePose, when `id` is no tool.
+  absl::Status SetLocalModelRadius(ObjectId id, double radius_m);
 
   /// Steps the tools on up to `threads` threads (the stepping one
   /// included): each tool's contacts apart from its proxy and force, the

@@ -27,6 +27,10 @@ struct SceneOptions {
   /// 0.1 m/s for a 100 ms round trip; the search's cost grows with its
   /// square on a fine surface.
   double local_model_radius_m = 0.01;
+  /// The largest validity radius a tool's device may ask for
+  /// (Scene::SetLocalModelRadius), metres, in [local_model_radius_m, 1]:
+  /// 4 cm holds a hand at 0.2 m/s for 200 ms.
+  double local_model_radius_cap_m = 0.04;
   /// Acceleration of free bodies by gravity, world frame, m/s^2. Finite.
   Vector3d gravity_W = Vector3d(0, 0, -9.81);
   /// How fast a free body's spin dies while it touches something, 1/s

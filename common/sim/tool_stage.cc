@@ -76,9 +76,14 @@ bool ToolStage::NothingToStep() const {
 
 void ToolStage::RequestLocalModel(ObjectId id) { scratch_[index_[id]].model_wanted = true; }
 
+void ToolStage::SetLocalModelRadius(ObjectId id, double radius_m) {
+  scratch_[index_[id]].model_radius_m = radius_m;
+}
+
 bool ToolStage::PairsServe(const Isometry3d& X_WP, ToolScratch& scratch) const {
   const LocalModelPairs& pairs = scratch.model_pairs;
   if (pairs.margin_m < 0 || scratch.model_wanted) return false;
+  if (scratch.searched_radius_m != scratch.model_radius_m) return false;
   if (pairs.obstacle_count != objects_.obstacles().size()) return false;
   if (++scratch.steps_since_search * options_.step_s > kLongestSearchPeriodS) return false;
   return pairs.Moved(X_WP) <= pairs.margin_m;
@@ -462,16 +467,18 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
   }
   if (stages.Has(Effect::kLocalModel)) {
     StageTimer timer(stats[static_cast<int>(Effect::kLocalModel)]);
-    const LocalModelOptions model_options{.radius_m = options_.local_model_radius_m,
+    const double radius_m =
+        scratch.model_radius_m > 0 ? scratch.model_radius_m : options_.local_model_radius_m;
+    const LocalModelOptions model_options{.radius_m = radius_m,
                                           .force_clamp_n = options_.force_clamp_n,
                                           .friction = stages.Has(Effect::kFriction)};
     const bool search = !PairsServe(proxy.X_WP, scratch);
     if (search) {
       GatherLocalModelPairs(objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP, objects_.obstacles(),
-                            objects_.obstacle_ids(), model_options,
-                            kPairMarginFraction * options_.local_model_radius_m,
+                            objects_.obstacle_ids(), model_options, kPairMarginFraction * radius_m,
                             scratch.model_pairs);
       scratch.steps_since_search = 0;
+      scratch.searched_radius_m = scratch.model_radius_m;
     }
     // A model changes only with the proxy, the device or the options: a
     // device's loop takes each revision once.

@@ -51,6 +51,10 @@ class ToolStage {
   /// Tool `id`'s next step builds a fresh local model (its device went past
   /// the last one's validity sphere); `id` must be a tool.
   void RequestLocalModel(ObjectId id);
+  /// Tool `id`'s local models take validity radius `radius_m` (metres,
+  /// > 0, already within the scene's bounds) from its next step; `id`
+  /// must be a tool.
+  void SetLocalModelRadius(ObjectId id, double radius_m);
 
   /// Steps every tool through `stages` on `workers`: `frames` takes one
   /// entry per tool (in the order added), `stats` each stage's runs and
@@ -123,6 +127,10 @@ class ToolStage {
     LocalModelPairs model_pairs;
     int steps_since_search = 0;
     bool model_wanted = false;
+    // The validity radius the tool's device asked for (0: the scene's),
+    // and the one the pairs were searched with.
+    double model_radius_m = 0;
+    double searched_radius_m = 0;
     LocalModel model;
   };
   // A piece of a step for one worker: the contacts half of tool `index`

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <set>
 #include <thread>
@@ -34,10 +36,11 @@ class Device {
     for (pb::Effect e : needs) open.mutable_open()->add_needs(e);
     stream_->Write(open);
   }
-  bool Send(uint64_t sequence, const pb::Pose& pose) {
+  bool Send(uint64_t sequence, const pb::Pose& pose, double validity_radius_m = 0) {
     pb::InteractRequest request;
     request.mutable_pose()->set_sequence(sequence);
     *request.mutable_pose()->mutable_pose() = pose;
+    request.mutable_pose()->set_validity_radius_m(validity_radius_m);
     return stream_->Write(request);
   }
   // The first frame that carries pose `sequence`; false when the stream ends.
@@ -429,8 +432,9 @@ TEST(SessionServiceTest, BodiesGoToStreamsThatNeedThem) {
 }
 
 // Bad session input gets its specific code and leaves the scene as it was:
-// unknown scene or tool NOT_FOUND, a NaN or non-unit pose or a missing
-// 'open' INVALID_ARGUMENT, an unknown watch part INVALID_ARGUMENT.
+// unknown scene or tool NOT_FOUND, a NaN or non-unit pose, a NaN or
+// negative validity radius or a missing 'open' INVALID_ARGUMENT, an
+// unknown watch part INVALID_ARGUMENT.
 TEST(SessionServiceTest, BadInputGetsSpecificCodes) {
   TestServer server;
   server.Create(SmallScene("strict"));
@@ -442,6 +446,11 @@ TEST(SessionServiceTest, BadInputGetsSpecificCodes) {
     Device device(server, "strict", "probe");
     device.Send(1, PoseAt(0, std::nan(""), 0.05));
     EXPECT_EQ(device.Finish().error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  }
+  for (double radius : {std::nan(""), -0.01, std::numeric_limits<double>::infinity()}) {
+    Device device(server, "strict", "probe");
+    device.Send(1, PoseAt(0, 0, 0.05), radius);
+    EXPECT_EQ(device.Finish().error_code(), grpc::StatusCode::INVALID_ARGUMENT) << radius;
   }
   {
     Device device(server, "strict", "probe");

@@ -28,6 +28,7 @@ const std::vector<std::string> kKeys = {"mode",
                                         "stall_ms",
                                         "seed",
                                         "ticks",
+                                        "reference_force_rms_n",
                                         "energy_j",
                                         "max_force_step_n",
                                         "max_force_n",
@@ -59,7 +60,7 @@ class RemoteDriveTest : public ::testing::Test {
   int Drive() {
     out_.str("");
     err_.str("");
-    return RunRemoteDrive(args_, server_.channel(), start_, out_, err_);
+    return RunRemoteDrive(args_, server_.channel(), nullptr, start_, out_, err_);
   }
 
   hs::testing::TestServer server_;

@@ -23,7 +23,7 @@ const std::string kScene = std::string(HS_SCENES_DIR) + "/probe_on_torus.textpro
 // may hand back at most this much work to the hand over a run, joules.
 constexpr double kPassiveBoundJ = 1e-3;
 
-RemoteSummary RunOperator(OperatorMotion motion, bool local_model, double latency_ms,
+RemoteSummary RunOperator(OperatorMotion motion, bool local_model, const LinkConditions& link,
                           double seconds, std::vector<Vector3d>* forces = nullptr,
                           std::span<const Vector3d> reference = {}) {
   absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(kScene);
@@ -40,15 +40,19 @@ RemoteSummary RunOperator(OperatorMotion motion, bool local_model, double latenc
   RemoteRunOptions options;
   options.motion = motion;
   options.local_model = local_model;
-  options.link = {.latency_ms = latency_ms, .seed = 1};
+  options.link = link;
   RemoteRun run(options, start);
   uint64_t applied = 0;
   const int64_t ticks = static_cast<int64_t>(seconds / options.tick_s);
-  for (int64_t k = 0; k < ticks; ++k) {
+  for (int64_t k = 0; run.ticks_rendered() < ticks; ++k) {
     const double now = static_cast<double>(k) * options.tick_s;
     run.Tick(k);
     run.DeliverPoses(now, [&](const PoseMessage& pose) {
       EXPECT_TRUE(scene.SetDevicePose(tool, pose.X_WD).ok());
+      if (pose.model_stale) {
+        EXPECT_TRUE(scene.RequestLocalModel(tool).ok());
+      }
+      EXPECT_TRUE(scene.SetLocalModelRadius(tool, pose.validity_radius_m).ok());
       applied = pose.sequence;
     });
     const ToolFrame& t = scene.Step().tools.front();
@@ -71,9 +75,10 @@ class RemoteOperatorTest : public testing::TestWithParam<OperatorMotion> {};
 // the server's late forces instead puts energy into the hand.
 TEST_P(RemoteOperatorTest, LocalModelKeepsTheContactPassiveAt100Ms) {
   std::vector<Vector3d> reference_forces;
-  const RemoteSummary reference = RunOperator(GetParam(), true, 0, 4, &reference_forces);
-  const RemoteSummary local = RunOperator(GetParam(), true, 100, 4, nullptr, reference_forces);
-  const RemoteSummary server = RunOperator(GetParam(), false, 100, 4);
+  const RemoteSummary reference = RunOperator(GetParam(), true, {.seed = 1}, 4, &reference_forces);
+  const RemoteSummary local =
+      RunOperator(GetParam(), true, {.latency_ms = 100, .seed = 1}, 4, nullptr, reference_forces);
+  const RemoteSummary server = RunOperator(GetParam(), false, {.latency_ms = 100, .seed = 1}, 4);
   std::cout << "local: energy " << local.energy_j << " J, max step " << local.max_force_step_n
             << " N, penetration p99 " << local.penetration_p99_m << " m, rms error "
             << local.force_rms_error_n << " N, max force " << local.max_force_n << " N\n"
@@ -87,6 +92,32 @@ TEST_P(RemoteOperatorTest, LocalModelKeepsTheContactPassiveAt100Ms) {
   EXPECT_LE(local.penetration_p99_m, reference.penetration_p99_m + 2e-3);
   EXPECT_GT(server.energy_j, kPassiveBoundJ);
   EXPECT_NEAR(local.round_trip_p50_ms, 100, 2);
+}
+
+// Over a link of 50 ms each way with 10 ms jitter and 1 % of messages
+// held 100 ms (and everything behind them), the device sizes its model
+// from the round trips it sees and the hand's speed: every operator stays
+// passive, and the press and the tap go no deeper than twice the
+// zero-latency run. (The slide's depth over stalls, and the press and the
+// slide at 150 ms each way, are not within those bounds yet:
+// docs/remote-haptics.md.)
+TEST_P(RemoteOperatorTest, LocalModelStaysPassiveOverStalls) {
+  std::vector<Vector3d> reference_forces;
+  const RemoteSummary reference = RunOperator(GetParam(), true, {.seed = 1}, 4, &reference_forces);
+  const RemoteSummary stalled = RunOperator(
+      GetParam(), true,
+      {.latency_ms = 100, .jitter_ms = 10, .stall_prob = 0.01, .stall_ms = 100, .seed = 1}, 4,
+      nullptr, reference_forces);
+  std::cout << "energy " << stalled.energy_j << " J, penetration p99 " << stalled.penetration_p99_m
+            << " m (" << reference.penetration_p99_m << " m with no latency), rms error "
+            << stalled.force_rms_error_n << " N of " << stalled.reference_force_rms_n
+            << " N, round trip p99 " << stalled.round_trip_p99_ms << " ms\n";
+  EXPECT_GT(stalled.poses_stalled + stalled.frames_stalled, 0) << "the link must stall";
+  EXPECT_GT(stalled.round_trip_p99_ms, 150);
+  EXPECT_LE(stalled.energy_j, kPassiveBoundJ);
+  if (GetParam() != OperatorMotion::kSlide) {
+    EXPECT_LE(stalled.penetration_p99_m, 2 * reference.penetration_p99_m);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Operators, RemoteOperatorTest,

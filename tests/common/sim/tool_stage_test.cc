@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -177,6 +179,42 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   }
   EXPECT_GT(pressing, 5) << "the path must press with the proxy held";
   EXPECT_EQ(kept->RequestLocalModel(0).code(), absl::StatusCode::kFailedPrecondition);
+}
+
+// The radius a device asks for is taken within the scene's bounds (its
+// local_model_radius_m, 1 cm, and local_model_radius_cap_m, 4 cm) from the
+// next step, 0 returns to the scene's, and the model is then the one a
+// fresh search with that radius makes; a radius that is not finite or is
+// negative is INVALID_ARGUMENT and changes nothing.
+TEST(ToolStageTest, ADeviceSizesItsModelWithinTheScenesBounds) {
+  std::unique_ptr<Scene> scene = RemoteDeviceScene();
+  std::unique_ptr<Scene> searched = RemoteDeviceScene();
+  const std::vector<std::pair<double, double>> asked_taken = {
+      {0.02, 0.02}, {0.001, 0.01}, {0.5, 0.04}, {0, 0.01}, {0.03, 0.03}};
+  double z = 0.095;
+  for (const auto& [asked, taken] : asked_taken) {
+    z -= 0.001;
+    ASSERT_TRUE(scene->SetDevicePose(2, At(0.1, 0, z)).ok());
+    ASSERT_TRUE(scene->SetLocalModelRadius(2, asked).ok());
+    const LocalModel model = scene->Step().tools[0].local_model;
+    EXPECT_EQ(model.validity_radius_m, taken) << asked;
+    // The oracle: a scene whose own radius is `taken`, searched afresh.
+    ASSERT_TRUE(searched->SetDevicePose(2, At(0.1, 0, z)).ok());
+    ASSERT_TRUE(searched->SetLocalModelRadius(2, taken).ok());
+    ASSERT_TRUE(searched->RequestLocalModel(2).ok());
+    const LocalModel& fresh = searched->Step().tools[0].local_model;
+    ASSERT_EQ(model.planes.size(), fresh.planes.size()) << asked;
+    for (size_t i = 0; i < model.planes.size(); ++i) {
+      EXPECT_EQ(model.planes[i].normal_W, fresh.planes[i].normal_W) << asked;
+      EXPECT_EQ(model.planes[i].gap_m, fresh.planes[i].gap_m) << asked;
+    }
+  }
+  for (double bad : {std::nan(""), -0.01, std::numeric_limits<double>::infinity()}) {
+    EXPECT_EQ(scene->SetLocalModelRadius(2, bad).code(), absl::StatusCode::kInvalidArgument);
+  }
+  ASSERT_TRUE(scene->SetDevicePose(2, At(0.1, 0, z - 0.001)).ok());
+  EXPECT_EQ(scene->Step().tools[0].local_model.validity_radius_m, 0.03);
+  EXPECT_EQ(scene->SetLocalModelRadius(0, 0.02).code(), absl::StatusCode::kFailedPrecondition);
 }
 
 // A device that sends no changed pose costs no query: the steps run no
