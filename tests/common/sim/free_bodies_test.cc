@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -94,6 +95,36 @@ TEST(FreeBodiesTest, TwoToolsPinchAndLiftABox) {
   EXPECT_NEAR(slipped.X_WO.translation().z(), 0.01, 1e-4);
   EXPECT_NEAR(forces[0].z(), -0.02, 0.002);
   EXPECT_NEAR(forces[1].z(), -0.02, 0.002);
+}
+
+// Two jaws of friction `friction`, their bottoms `jaw_bottom` above the
+// floor, close 2 mm into each side of the cube resting on the floor (12
+// steps) and hold still for 300 steps: after every step the cube's centre
+// stays 1 cm above the floor (within 0.1 mm, ten steps of gravity's fall
+// g dt^2) and within 1 mm of x = 0.3, between the jaws' faces at 0.292 and
+// 0.308, and no step moves it farther than the jaws' 1 mm.
+void ExpectSqueezeKeepsCubeOnFloor(double friction, double jaw_bottom) {
+  PinchRig pinch = MakePinchRig(friction, 0.015 + jaw_bottom);
+  Vector3d before = pinch.frame->bodies[0].X_WO.translation();
+  for (int i = 1; i <= 312; ++i) {
+    const Vector3d p = pinch.Drive(0.001 * std::min(i, 12), 0).bodies[0].X_WO.translation();
+    SCOPED_TRACE(testing::Message() << "friction " << friction << ", jaws " << jaw_bottom
+                                    << " m above the floor, step " << i);
+    ASSERT_NEAR(p.z(), 0.01, 1e-4);
+    ASSERT_NEAR(p.x(), 0.3, 1e-3);
+    ASSERT_LE((p - before).norm(), 1e-3);
+    before = p;
+  }
+}
+
+// Squeezing a cube on the floor keeps it there, with and without friction,
+// jaws on the floor or above it (the case that threw it 0.56 m sideways and
+// through the floor: friction 0.6, jaws on the floor).
+TEST(FreeBodiesTest, SqueezedCubeStaysOnFloorBetweenJaws) {
+  for (const double friction : {0.6, 0.0}) {
+    for (const double jaw_bottom : {0.0, 0.001})
+      ExpectSqueezeKeepsCubeOnFloor(friction, jaw_bottom);
+  }
 }
 
 // A body names what it touched in its step: the floor while it rests;
