@@ -3,8 +3,12 @@
 #include "common/sim/free_bodies.h"
 
 #include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -74,11 +78,10 @@ BodyFrame PinchAndLift(double tool_friction, Vector3d forces[2]) {
 
 // With friction (0.5), the pinched cube rises with the tools and stays
 // between them; each device feels its squeeze, equal and opposite, by hand
-// 2.0 N (the faces' 500 N/m in series over the 4 mm the jaws close past
-// the cube), and together they carry its weight (8 g; the first jaw in
-// id order carries what its friction can). With friction 0.01 the jaws
-// can hold 2 x 0.01 x 2.0 N = 0.04 N, less than the weight: the cube
-// slides back to the floor, and each device feels the 0.02 N it held.
+// 1.0 N (the faces' 500 N/m in series over the 2 mm each jaw is in the
+// cube; within 0.1 N: the grip is taken at the depth of the sub-step's
+// pose, which the lift's friction tilts a little), and together they carry
+// its weight (8 g).
 TEST(FreeBodiesTest, TwoToolsPinchAndLiftABox) {
   Vector3d forces[2];
   const double weight = 0.008 * 9.81;
@@ -86,14 +89,61 @@ TEST(FreeBodiesTest, TwoToolsPinchAndLiftABox) {
   EXPECT_GT(lifted.X_WO.translation().z(), 0.01 + 0.0075);  // most of the 1 cm
   EXPECT_NEAR(lifted.v_W.z(), 0.05, 0.005);                 // going up with the jaws
   EXPECT_NEAR(lifted.X_WO.translation().x(), 0.3, 0.0025);  // between them
-  EXPECT_NEAR(forces[0].x(), -2.0, 0.05);
-  EXPECT_NEAR(forces[1].x(), 2.0, 0.05);
+  EXPECT_NEAR(forces[0].x(), -1.0, 0.1);
+  EXPECT_NEAR(forces[1].x(), 1.0, 0.1);
   EXPECT_NEAR(forces[0].z() + forces[1].z(), -weight, 0.1 * weight);
+}
 
+// Jaws of friction 0.5 lifting the cube share its weight evenly: each
+// device feels half of it (8 g x 9.81 m/s^2 / 2 = 0.039 N) downwards,
+// within 10 % (the solver's finite sweeps and the lift's tilt).
+TEST(FreeBodiesTest, TwoJawsLiftingShareWeightEvenly) {
+  Vector3d forces[2];
+  const double half_weight = 0.008 * 9.81 / 2;
+  PinchAndLift(0.5, forces);
+  EXPECT_NEAR(forces[0].z(), -half_weight, 0.1 * half_weight);
+  EXPECT_NEAR(forces[1].z(), -half_weight, 0.1 * half_weight);
+}
+
+// With friction 0.01 the jaws can hold 2 x 0.01 x 1.0 N = 0.02 N, less
+// than the weight: the cube slides back to the floor, and each device
+// feels the 0.01 N it held (500 N/m x 2 mm x 0.01, by hand).
+TEST(FreeBodiesTest, JawsWithLittleFrictionLetTheCubeSlip) {
+  Vector3d forces[2];
   const BodyFrame slipped = PinchAndLift(0.01, forces);
   EXPECT_NEAR(slipped.X_WO.translation().z(), 0.01, 1e-4);
-  EXPECT_NEAR(forces[0].z(), -0.02, 0.002);
-  EXPECT_NEAR(forces[1].z(), -0.02, 0.002);
+  EXPECT_NEAR(forces[0].z(), -0.01, 0.002);
+  EXPECT_NEAR(forces[1].z(), -0.01, 0.002);
+}
+
+// Two jaws of friction `friction`, their bottoms `jaw_bottom` above the
+// floor, close 2 mm into each side of the cube resting on the floor (12
+// steps) and hold still for 300 steps: after every step the cube's centre
+// stays 1 cm above the floor (within 0.1 mm, ten steps of gravity's fall
+// g dt^2) and within 1 mm of x = 0.3, between the jaws' faces at 0.292 and
+// 0.308, and no step moves it farther than the jaws' 1 mm.
+void ExpectSqueezeKeepsCubeOnFloor(double friction, double jaw_bottom) {
+  PinchRig pinch = MakePinchRig(friction, 0.015 + jaw_bottom);
+  Vector3d before = pinch.frame->bodies[0].X_WO.translation();
+  for (int i = 1; i <= 312; ++i) {
+    const Vector3d p = pinch.Drive(0.001 * std::min(i, 12), 0).bodies[0].X_WO.translation();
+    SCOPED_TRACE(testing::Message() << "friction " << friction << ", jaws " << jaw_bottom
+                                    << " m above the floor, step " << i);
+    ASSERT_NEAR(p.z(), 0.01, 1e-4);
+    ASSERT_NEAR(p.x(), 0.3, 1e-3);
+    ASSERT_LE((p - before).norm(), 1e-3);
+    before = p;
+  }
+}
+
+// Squeezing a cube on the floor keeps it there, with and without friction,
+// jaws on the floor or above it (the case that threw it 0.56 m sideways and
+// through the floor: friction 0.6, jaws on the floor).
+TEST(FreeBodiesTest, SqueezedCubeStaysOnFloorBetweenJaws) {
+  for (const double friction : {0.6, 0.0}) {
+    for (const double jaw_bottom : {0.0, 0.001})
+      ExpectSqueezeKeepsCubeOnFloor(friction, jaw_bottom);
+  }
 }
 
 // A body names what it touched in its step: the floor while it rests;
@@ -161,6 +211,82 @@ TEST(FreeBodiesTest, StackOfTwoFreeBodiesHolds) {
   const StepFrame& frame = rig.scene->Step();
   EXPECT_NEAR(frame.bodies[0].X_WO.translation().z(), 0.01, 1e-4);
   EXPECT_NEAR(frame.bodies[1].X_WO.translation().z(), 0.03, 1e-4);
+}
+
+// Three cubes stacked on the floor (each dropped from 1 mm above the one
+// below, the upper two 2 mm off-centre) settle within 500 steps and stay:
+// over the next 1,000 steps each centre stays within 0.1 mm of its resting
+// height by hand (1, 3, 5 cm; ten steps of gravity's fall g dt^2 each)
+// and of where it settled sideways, and turns less than 1 mrad.
+TEST(FreeBodiesTest, StackOfThreeSettlesAndStays) {
+  Rig rig = MakeRig();
+  AddCube(*rig.scene, 0.0, 0.3);
+  AddCube(*rig.scene, 0.021, 0.302);
+  AddCube(*rig.scene, 0.042, 0.304);
+  for (int i = 0; i < 500; ++i) rig.scene->Step();
+  const std::vector<BodyFrame> settled = rig.scene->Step().bodies;
+  for (int i = 0; i < 1000; ++i) {
+    const StepFrame& frame = rig.scene->Step();
+    for (int b = 0; b < 3; ++b) {
+      const Isometry3d& X = frame.bodies[b].X_WO;
+      SCOPED_TRACE(testing::Message() << "cube " << b << ", step " << i);
+      ASSERT_NEAR(X.translation().z(), 0.01 + 0.02 * b, 1e-4);
+      ASSERT_LT((X.translation() - settled[b].X_WO.translation()).head<2>().norm(), 1e-4);
+      ASSERT_LT(Eigen::AngleAxisd(X.linear()).angle(), 1e-3);
+    }
+  }
+}
+
+// A fixed seed for the property below (RC_PARAMS from the environment
+// wins, to replay a reported failure), set before RapidCheck reads it.
+const bool kSeeded = setenv("RC_PARAMS", "seed=20261128 max_success=25", /*overwrite=*/0) == 0;
+
+// A real in [lo, hi] on a grid of a thousandth of the range.
+rc::Gen<double> Real(double lo, double hi) {
+  return rc::gen::map(rc::gen::inRange(0, 1001),
+                      [lo, hi](int i) { return lo + (hi - lo) * (i / 1000.0); });
+}
+
+// Over random squeezes (friction 0 to 1, the jaws' bottoms 0 to 5 mm above
+// the floor, each jaw closing 0 to 4 mm into the cube at 0.2 to 1 mm a
+// step, then held 50 steps and lifted 0 to 5 mm at 0.05 mm a step), no
+// step ends with a corner of the cube deeper in the floor than 2e-5 m (two
+// steps of gravity's fall g dt^2), and no step moves the cube's centre
+// farther than the farther jaw moved plus 0.5 mm (the two jaws' grips, at
+// most 500 N/m x 8 mm, pushing the 8 g cube for a step of 1 ms, move it
+// 0.5 mm at most).
+RC_GTEST_PROP(FreeBodiesTest, SqueezeNeverDrivesCubeIntoFloor, ()) {
+  (void)kSeeded;
+  const double friction = *Real(0, 1);
+  const double jaw_bottom = *Real(0, 0.005);
+  const double left_in = *Real(0, 0.004), right_in = *Real(0, 0.004);
+  const double speed = *Real(0.0002, 0.001);
+  const double lift = *Real(0, 0.005);
+  PinchRig pinch = MakePinchRig(friction, 0.015 + jaw_bottom);
+  Vector3d before = pinch.frame->bodies[0].X_WO.translation();
+  double left = 0, right = 0, up = 0;
+  // The jaws start 1 cm from the cube's faces.
+  const double left_end = 0.01 + left_in, right_end = 0.01 + right_in;
+  for (int i = 0; i < 200; ++i) {
+    const double left_next = std::min(left_end, left + speed);
+    const double right_next = std::min(right_end, right + speed);
+    const bool closed = left_next == left_end && right_next == right_end;
+    const double up_next = closed && i >= 100 ? std::min(lift, up + 0.00005) : up;
+    const double jaw_step = std::max({left_next - left, right_next - right, up_next - up});
+    left = left_next;
+    right = right_next;
+    up = up_next;
+    const Isometry3d X = pinch.DriveEach(left, right, up).bodies[0].X_WO;
+    double lowest = 1;
+    for (const double x : {-0.01, 0.01}) {
+      for (const double y : {-0.01, 0.01}) {
+        for (const double z : {-0.01, 0.01}) lowest = std::min(lowest, (X * Vector3d(x, y, z)).z());
+      }
+    }
+    RC_ASSERT(lowest > -2e-5);
+    RC_ASSERT((X.translation() - before).norm() <= jaw_step + 5e-4);
+    before = X.translation();
+  }
 }
 
 // Free bodies move identically, to the bit, for identical inputs.

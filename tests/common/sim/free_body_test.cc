@@ -42,55 +42,5 @@ TEST(FreeBodyTest, SpinMatchesAnalytic) {
   EXPECT_LT(s.X_WO.translation().norm(), 1e-15);
 }
 
-// A body falling onto a fixed surface under its centre of mass is moved
-// out by the separation and stops along the normal without spinning.
-TEST(FreeBodyTest, ContactStopsApproach) {
-  FreeBodyState s;
-  s.v_W = Vector3d(0, 0, -1);
-  BodyContact c;
-  c.normal_W = Vector3d::UnitZ();
-  c.p_WC = Vector3d(0, 0, -0.5);
-  c.separation_m = 0.01;
-  const Vector3d impulse = RespondToContact(UnitCube(), c, s);
-  EXPECT_EQ(s.X_WO.translation(), Vector3d(0, 0, 0.01));
-  EXPECT_LT(s.v_W.norm(), 1e-15);
-  EXPECT_LT(s.w_W.norm(), 1e-15);
-  EXPECT_NEAR(impulse.z(), 1, 1e-15);
-}
-
-// Friction removes sliding up to mu times the normal impulse; a body
-// already leaving the surface takes no impulse.
-TEST(FreeBodyTest, FrictionLimitedByCone) {
-  FreeBodyState s;
-  s.v_W = Vector3d(1, 0, -0.5);
-  BodyContact c;
-  c.normal_W = Vector3d::UnitZ();
-  c.p_WC = Vector3d::Zero();  // at the centre of mass: no spin
-  c.friction = 0.4;
-  RespondToContact(UnitCube(), c, s);
-  EXPECT_NEAR(s.v_W.x(), 1 - 0.4 * 0.5, 1e-15);
-  EXPECT_NEAR(s.v_W.z(), 0, 1e-15);
-  s.v_W.z() = 0.1;
-  const Vector3d leaving = s.v_W;
-  EXPECT_EQ(RespondToContact(UnitCube(), c, s), Vector3d::Zero());
-  EXPECT_EQ(s.v_W, leaving);
-}
-
-// Two equal free bodies meeting head on stop each other (restitution 0):
-// momentum is kept.
-TEST(FreeBodyTest, TwoBodiesShareImpulse) {
-  FreeBodyState a, b;
-  a.v_W = Vector3d(1, 0, 0);
-  b.v_W = Vector3d(-1, 0, 0);
-  b.X_WO.translation() = Vector3d(1, 0, 0);
-  const MassProperties m = UnitCube();
-  BodyContact c;
-  c.normal_W = -Vector3d::UnitX();  // from b toward a
-  c.p_WC = Vector3d(0.5, 0, 0);
-  RespondToContact(m, c, a, {&m, &b});
-  EXPECT_LT(a.v_W.norm(), 1e-15);
-  EXPECT_LT(b.v_W.norm(), 1e-15);
-}
-
 }  // namespace
 }  // namespace hs
