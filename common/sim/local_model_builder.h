@@ -38,20 +38,27 @@ struct WorldEdge {
 /// a proxy that moved farther needs the face search again. The objects'
 /// features are kept in the world frame, the tool's by id.
 struct LocalModelPairs {
+  /// Each pair's `floor_m`: at any proxy pose X_WP, the gap of the plane
+  /// it gives (if any) is at least floor_m - Moved(X_WP) (and rounding):
+  /// a model needs only the pairs whose floor is near its nearest planes
+  /// (ModelFromPairs).
   struct VertexFace {
     VertexId tool_vertex;
     WorldFace face;
     int material;  ///< Index into `materials`.
+    double floor_m;
   };
   struct FaceVertex {
     FaceId tool_face;
     Vector3d vertex_W;
     int material;
+    double floor_m;
   };
   struct EdgeEdge {
     EdgeId tool_edge;
     WorldEdge edge;
     int material;
+    double floor_m;
   };
   /// The proxy pose they were gathered at, and the margin.
   Isometry3d X_WP = Isometry3d::Identity();
