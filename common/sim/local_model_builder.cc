@@ -21,6 +21,7 @@ struct PlacedTool {
 };
 struct CandidatePlanes {
   std::vector<ConstraintPlane> planes;
+  std::vector<int> order;
 };
 
 // Two planes closer than these in direction (cosine) and offset (relative
@@ -318,18 +319,14 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_
            near_enough();
   }
   const double lines_m = std::max(radius_m, behind_m) + 2 * margin_m;
-  Vector3d n = u.cross(v);
-  const double sine = n.norm() / (lu * lv);
+  const Vector3d n = u.cross(v);
+  const double length = n.norm();
+  const double sine = length / (lu * lv);
   if (!(sine > 4 * turn + 1e-9)) return near_enough();
-  n.normalize();
-  const double turned = 2 * turn / sine;
-  const double out_o = o.out.norm(), out_t = t.out.norm();
-  if (!(out_o > 0 && out_t > 0)) return false;
-  const double along_o = n.dot(o.out) / out_o, along_t = n.dot(t.out) / out_t;
-  const bool either = (along_o >= -turned && along_t <= turned + turn) ||
-                      (-along_o >= -turned && -along_t <= turned + turn);
-  if (!either) return false;
+  // The cheap tests first: the lines' distance, where their closest points
+  // fall, then which way the normal may point.
   const Vector3d w = t.from - o.from;
+  if (std::abs(n.dot(w)) > lines_m * length) return false;
   const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
   const double det = uu * vv - uv * uv;
   const double a = (uv * vw - vv * uw) / det, b = (uu * vw - uv * uw) / det;
@@ -337,7 +334,13 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_
   if (a < -slide_m / lu || a > 1 + slide_m / lu || b < -slide_m / lv || b > 1 + slide_m / lv) {
     return false;
   }
-  return std::abs(n.dot(t.from + a * u - o.from - b * v)) <= lines_m && near_enough();
+  const double turned = 2 * turn / sine;
+  const double out_o = o.out.norm(), out_t = t.out.norm();
+  if (!(out_o > 0 && out_t > 0)) return false;
+  const double along_o = n.dot(o.out) / (length * out_o), along_t = n.dot(t.out) / (length * out_t);
+  const bool either = (along_o >= -turned && along_t <= turned + turn) ||
+                      (-along_o >= -turned && -along_t <= turned + turn);
+  return either && near_enough();
 }
 
 // Which of a set of boxes (world frame) may meet a query box: a uniform
@@ -621,18 +624,31 @@ void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelP
   }
 }
 
-// The nearest distinct planes of `candidates` (sorted here), at most
-// `max_planes`, into `planes`.
-void NearestDistinct(std::vector<ConstraintPlane>& candidates, int max_planes, double size,
-                     std::vector<ConstraintPlane>& planes) {
-  planes.clear();
-  std::sort(candidates.begin(), candidates.end(), Nearer);
-  for (const ConstraintPlane& plane : candidates) {
-    if (static_cast<int>(planes.size()) == max_planes) break;
-    const bool seen = std::any_of(planes.begin(), planes.end(), [&](const ConstraintPlane& p) {
-      return SamePlane(p, plane, size);
-    });
-    if (!seen) planes.push_back(plane);
+// The nearest distinct planes of `candidates`, at most `max_planes`, into
+// `planes`: the candidates in Nearer's order (a total one), each kept
+// unless one kept is the same plane. Sorts indices, the nearest few first
+// (`order` is scratch).
+void NearestDistinct(const std::vector<ConstraintPlane>& candidates, int max_planes, double size,
+                     std::vector<int>& order, std::vector<ConstraintPlane>& planes) {
+  auto nearer = [&](int x, int y) { return Nearer(candidates[x], candidates[y]); };
+  order.resize(candidates.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  // Most models take their planes from the nearest few candidates.
+  size_t sorted = std::min(order.size(), static_cast<size_t>(4 * std::max(max_planes, 1)));
+  std::partial_sort(order.begin(), order.begin() + sorted, order.end(), nearer);
+  for (;;) {
+    planes.clear();
+    for (size_t i = 0; i < sorted; ++i) {
+      if (static_cast<int>(planes.size()) == max_planes) return;
+      const ConstraintPlane& plane = candidates[order[i]];
+      const bool seen = std::any_of(planes.begin(), planes.end(), [&](const ConstraintPlane& p) {
+        return SamePlane(p, plane, size);
+      });
+      if (!seen) planes.push_back(plane);
+    }
+    if (sorted == order.size()) return;
+    std::sort(order.begin() + sorted, order.end(), nearer);  // after the first `sorted`
+    sorted = order.size();
   }
 }
 
@@ -652,11 +668,20 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                            const LocalModelOptions& options, double margin_m,
                            LocalModelPairs& pairs) {
+  GatherLocalModelPairs(tool, X_WP, obstacles, ids, options, margin_m, options.radius_m, pairs);
+}
+
+void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
+                           std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                           const LocalModelOptions& options, double margin_m, double reach_m,
+                           LocalModelPairs& pairs) {
   const HapticObject& t = *tool.object;
   const double behind = Behind(t);
+  // The gap the pairs are gathered for: the radius, or less.
+  const double radius_m = std::min(reach_m, options.radius_m);
   // How far a pair's features may be apart now and still meet the tests
   // after a move of at most the margin.
-  const double within = options.radius_m + margin_m;
+  const double within = radius_m + margin_m;
   Vector3d foot;
   double gap;
   pairs.X_WP = X_WP;
@@ -680,7 +705,11 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   const double pad = BoundSlack(X_WP, pairs.lever_m);
   // Pairs whose features are farther apart than this cannot give a plane
   // after a move of at most the margin (EdgePairMayGivePlane).
-  const double edge_reach = std::max(options.radius_m, behind) + margin_m;
+  const double edge_reach = std::max(radius_m, behind) + margin_m;
+  // The tests are loosened for rounding (FootOnFace's slack, the edges'
+  // ends): a short search holds the planes nearer than its reach by more.
+  pairs.complete_m =
+      radius_m < options.radius_m ? radius_m - pad : std::numeric_limits<double>::infinity();
   tool_near.normals.Begin(t);
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const PosedObject& o = obstacles[k];
@@ -758,8 +787,8 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
       side.grid.ForEachMeeting(GrowBox(SegmentBox(g.from, g.to), reach), [&](int j) {
         const WorldEdge& edge = side.edges[j];
         double apart_m;
-        if (!EdgePairMayGivePlane(g, edge, margin_m, margin_m / pairs.lever_m, options.radius_m,
-                                  behind, apart_m)) {
+        if (!EdgePairMayGivePlane(g, edge, margin_m, margin_m / pairs.lever_m, radius_m, behind,
+                                  apart_m)) {
           return;
         }
         const EdgeId e = side.edge_ids[j];
@@ -774,7 +803,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   }
 }
 
-void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
+bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                     const LocalModelPairs& pairs, const LocalModelOptions& options,
                     LocalModel& model) {
   model.X_WP = proxy.X_WP;
@@ -786,30 +815,33 @@ void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
   model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
   const double size = tool.bounding_box().diagonal().norm();
   const double behind = Behind(tool);
-  std::vector<ConstraintPlane>& candidates = Scratch<CandidatePlanes>().planes;
+  CandidatePlanes& candidate_planes = Scratch<CandidatePlanes>();
+  std::vector<ConstraintPlane>& candidates = candidate_planes.planes;
   candidates.clear();
   PlacedById& placed = Scratch<PlacedById>();
   placed.Begin(tool);
   // A pair's plane is at least its floor less `moved` away (the pairs'
-  // floor_m): the pairs are taken in rising bands of floor until the
-  // nearest max_planes distinct planes of those taken are all nearer than
-  // any pair left could give, or none left could give a plane at all.
-  // Every plane left out then sorts after the last one kept: the model is
-  // the one all the pairs make.
+  // floor_m), and a pair not gathered gives none nearer than complete_m:
+  // the pairs are taken in rising bands of floor until the nearest
+  // max_planes distinct planes of those taken are all nearer than any
+  // plane left could be, or none left could give a plane at all. Every
+  // plane left out then sorts after the last one kept: the model is the
+  // one all the pairs make.
   const double moved = pairs.Moved(proxy.X_WP) + BoundSlack(proxy.X_WP, pairs.lever_m);
   const double band = options.radius_m / 8;
   double from = -std::numeric_limits<double>::infinity();
   double to = moved + band;
   for (;;) {
     PairPlanes(tool, proxy.X_WP, pairs, options.radius_m, behind, from, to, placed, candidates);
-    NearestDistinct(candidates, options.max_planes, size, model.planes);
-    // Left: floors above `to`, so planes farther than to - moved.
-    const double nearest_left = to - moved;
-    if (nearest_left > options.radius_m) break;
+    NearestDistinct(candidates, options.max_planes, size, candidate_planes.order, model.planes);
+    // Every plane nearer than this has been taken.
+    const double taken = std::min(to - moved, pairs.complete_m);
     if (static_cast<int>(model.planes.size()) >= options.max_planes &&
-        (model.planes.empty() || model.planes.back().gap_m < nearest_left)) {
-      break;
+        (model.planes.empty() || model.planes.back().gap_m < taken)) {
+      return true;
     }
+    if (taken >= options.radius_m) return true;
+    if (to - moved >= pairs.complete_m) return false;
     from = to;
     to += 2 * (to - moved);
   }
@@ -820,7 +852,7 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vec
                      const LocalModelOptions& options, LocalModel& model) {
   LocalModelPairs& pairs = Scratch<FreshPairs>().pairs;
   GatherLocalModelPairs(tool, proxy.X_WP, obstacles, ids, options, 0, pairs);
-  ModelFromPairs(*tool.object, proxy, p_WD, pairs, options, model);
+  (void)ModelFromPairs(*tool.object, proxy, p_WD, pairs, options, model);  // the whole radius
 }
 
 }  // namespace hs

@@ -224,8 +224,10 @@ Isometry3d MoveWithin(const LocalModelPairs& pairs, std::mt19937& rng, double ma
 // The pairs' promise: wherever the proxy moves within the margin, the
 // model made from the pairs gathered before is the one a fresh search
 // there makes, plane for plane and bit for bit (the same tests on the same
-// numbers). A turned cube over a floor and beside a faceted ball, random
-// gather poses and moves, with and without a cap on the planes.
+// numbers); pairs gathered short of the radius make it too, or say they
+// cannot. A turned cube over a floor and beside a faceted ball, random
+// gather poses and moves, with and without a cap on the planes, searches
+// for the whole radius and for half of it.
 TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
   const auto floor = Floor();
   const auto ball = MakeBody(MakeIcosphere(0.03, 2), At(0.035, 0, 0.03));
@@ -234,20 +236,29 @@ TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
   const std::vector<ObjectId> ids{1, 2};
   std::mt19937 rng(23);
   int planes = 0;
-  for (const int max_planes : {16, 64}) {
+  int short_served = 0, short_refused = 0;
+  for (const auto& [max_planes, reach] :
+       {std::pair{16, kRadius}, {64, kRadius}, {16, kRadius / 2}, {64, kRadius / 2}}) {
     const LocalModelOptions options{.radius_m = kRadius, .max_planes = max_planes};
     for (int k = 0; k < 40; ++k) {
       Isometry3d X_WP = testing_poses::RandomPose(rng, 0.02);
       X_WP.translation() += Vector3d(0, 0, 0.018);
       LocalModelPairs pairs;
       const double margin = 0.25 * kRadius;
-      GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, options, margin, pairs);
+      GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, options, margin, reach, pairs);
       for (int j = 0; j < 20; ++j) {
         const Isometry3d moved = MoveWithin(pairs, rng, margin);
         ASSERT_LE(pairs.Moved(moved), margin);
         const Vector3d p_WD = moved.translation() - Vector3d(0, 0, 0.001);
         LocalModel from_pairs, searched;
-        ModelFromPairs(tool->object, ProxyAt(moved), p_WD, pairs, options, from_pairs);
+        const bool served =
+            ModelFromPairs(tool->object, ProxyAt(moved), p_WD, pairs, options, from_pairs);
+        if (reach == kRadius) {
+          ASSERT_TRUE(served);
+        } else {
+          ++(served ? short_served : short_refused);
+          if (!served) continue;
+        }
         BuildLocalModel(tool->posed(), ProxyAt(moved), p_WD, posed, ids, options, searched);
         ASSERT_EQ(from_pairs.planes.size(), searched.planes.size()) << k << " " << j;
         planes += static_cast<int>(searched.planes.size());
@@ -267,6 +278,9 @@ TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
     }
   }
   EXPECT_GT(planes, 2000);  // the poses came within the radius of both
+  // Both answers of the short searches were met.
+  EXPECT_GT(short_served, 100) << short_refused;
+  EXPECT_GT(short_refused, 100);
 }
 
 // A plane of the brute-force oracle below: its normal and a point on it.
@@ -413,7 +427,7 @@ TEST(LocalModelBuilderTest, ModelsFromPairsHoldEveryPlaneOfAllPairs) {
     const std::vector<ObjectId> ids{7};
     const double size = c.tool->object.bounding_box().diagonal().norm();
     const double behind = 1e-6 * size;  // the builder's stand-off allowance
-    for (int k = 0; k < 12; ++k) {
+    for (int k = 0; k < 8; ++k) {
       Isometry3d X_WP = c.X_WP;
       X_WP.translation() += c.spread * testing_poses::RandomDirection(rng);
       X_WP.linear() =
@@ -422,7 +436,7 @@ TEST(LocalModelBuilderTest, ModelsFromPairsHoldEveryPlaneOfAllPairs) {
       LocalModelPairs pairs;
       const double margin = 0.15 * kRadius;
       GatherLocalModelPairs(c.tool->posed(), X_WP, posed, ids, options, margin, pairs);
-      for (int j = 0; j < 4; ++j) {
+      for (int j = 0; j < 3; ++j) {
         const Isometry3d moved = j == 0 ? X_WP : MoveWithin(pairs, rng, margin);
         LocalModel model;
         ModelFromPairs(c.tool->object, ProxyAt(moved), moved.translation(), pairs, options, model);
