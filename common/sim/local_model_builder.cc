@@ -843,7 +843,11 @@ bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
     if (taken >= options.radius_m) return true;
     if (to - moved >= pairs.complete_m) return false;
     from = to;
-    to += 2 * (to - moved);
+    // A model not yet full takes every pair left that may count: most
+    // such models are the few planes of a coarse object.
+    to = static_cast<int>(model.planes.size()) < options.max_planes
+             ? moved + std::min(options.radius_m, pairs.complete_m) + band
+             : to + 2 * (to - moved);
   }
 }
 
