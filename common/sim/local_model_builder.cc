@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/collision/faces_in_box.h"
 #include "common/core/scratch.h"
@@ -10,19 +11,8 @@
 namespace hs {
 namespace {
 
-// Kept between steps (common/core/scratch.h): the faces near the tool, and
-// the tool's vertices and faces at the proxy pose.
-struct NearFeatures {
-  std::vector<FaceId> faces;
-  std::vector<VertexId> vertices;
-  std::vector<EdgeId> edges;
-};
-struct ObjectNear {
-  NearFeatures features;
-};
-struct ToolNear {
-  NearFeatures features;
-};
+// Kept between steps (common/core/scratch.h): the tool's features near
+// an object at the proxy pose, and the candidate planes of a model.
 struct PlacedTool {
   std::vector<Vector3d> vertices;
   std::vector<WorldFace> faces;
@@ -31,6 +21,7 @@ struct PlacedTool {
 };
 struct CandidatePlanes {
   std::vector<ConstraintPlane> planes;
+  std::vector<int> order;
 };
 
 // Two planes closer than these in direction (cosine) and offset (relative
@@ -70,12 +61,65 @@ Vector3d FaceNormal(const PosedObject& o, FaceId f) {
   return PlaceFace(o, f, face) ? face.n : Vector3d::Zero();
 }
 
-// Edge `e` of `o` in the world frame.
-WorldEdge PlaceEdge(const PosedObject& o, EdgeId e) {
+// Marks on an object's elements (faces, vertices or edges) that tell this
+// use's from older ones: `stamp` is this use's.
+struct Marks {
+  std::vector<uint32_t> marks;
+  uint32_t stamp = 0;
+
+  void Begin(int count) {
+    if (++stamp == 0) {  // wrapped: forget every mark
+      std::fill(marks.begin(), marks.end(), 0);
+      stamp = 1;
+    }
+    if (static_cast<int>(marks.size()) < count) marks.resize(count, 0);
+  }
+  // True the first time `i` is marked in this use.
+  bool Mark(int i) {
+    if (marks[i] == stamp) return false;
+    marks[i] = stamp;
+    return true;
+  }
+};
+
+// The face normals of one object at one pose, each computed once.
+struct NormalCache {
+  std::vector<Vector3d> normals;
+  Marks placed;
+
+  void Begin(const HapticObject& h) {
+    placed.Begin(h.num_faces());
+    if (static_cast<int>(normals.size()) < h.num_faces()) normals.resize(h.num_faces());
+  }
+  const Vector3d& Normal(const PosedObject& o, FaceId f) {
+    if (placed.Mark(f)) normals[f] = FaceNormal(o, f);
+    return normals[f];
+  }
+};
+
+// An object's faces near a region, their vertices and edges (each once),
+// and the object's face normals at its pose.
+struct NearFeatures {
+  std::vector<FaceId> faces;
+  std::vector<VertexId> vertices;
+  std::vector<EdgeId> edges;
+  Marks vertex_marks, edge_marks;
+  NormalCache normals;
+};
+struct ObjectNear {
+  NearFeatures features;
+};
+struct ToolNear {
+  NearFeatures features;
+};
+
+// Edge `e` of `o` in the world frame, its faces' normals from `normals`
+// (begun for `o` at its pose).
+WorldEdge PlaceEdge(const PosedObject& o, EdgeId e, NormalCache& normals) {
   const Edge& edge = o.object->edge(e);
   WorldEdge out{o.X_WO * o.object->position(edge.vertices[0]),
                 o.X_WO * o.object->position(edge.vertices[1]), Vector3d::Zero()};
-  for (const FaceId f : o.object->EdgeFaces(e)) out.out += FaceNormal(o, f);
+  for (const FaceId f : o.object->EdgeFaces(e)) out.out += normals.Normal(o, f);
   return out;
 }
 
@@ -106,28 +150,25 @@ bool EdgePairPlane(const WorldEdge& t, const WorldEdge& o, ConstraintPlane& plan
   return true;
 }
 
-template <typename T>
-void SortUnique(std::vector<T>& ids) {
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-}
-
 // The faces of `o` whose volumes meet `box_W`, and their vertices and edges,
-// each once, sorted (the same model whatever the traversal order).
-// Returns the world box of those faces.
+// each once (in the order the hierarchy gives them: the model does not
+// depend on the order of the pairs). Returns the world box of those faces.
 AlignedBox3d FindNearFeatures(const PosedObject& o, const AlignedBox3d& box_W, NearFeatures& out) {
   out.faces.clear();
   out.vertices.clear();
   out.edges.clear();
   FindFacesInBox(*o.model, o.X_WO, box_W, out.faces);
-  SortUnique(out.faces);
+  out.vertex_marks.Begin(o.object->num_vertices());
+  out.edge_marks.Begin(o.object->num_edges());
   for (const FaceId f : out.faces) {
     const Face& face = o.object->face(f);
-    out.vertices.insert(out.vertices.end(), face.vertices.begin(), face.vertices.end());
-    out.edges.insert(out.edges.end(), face.edges.begin(), face.edges.end());
+    for (const VertexId v : face.vertices) {
+      if (out.vertex_marks.Mark(v)) out.vertices.push_back(v);
+    }
+    for (const EdgeId e : face.edges) {
+      if (out.edge_marks.Mark(e)) out.edges.push_back(e);
+    }
   }
-  SortUnique(out.vertices);
-  SortUnique(out.edges);
   AlignedBox3d box;
   for (const VertexId v : out.vertices) box.extend(o.X_WO * o.object->position(v));
   return box;
@@ -162,12 +203,20 @@ bool Nearer(const ConstraintPlane& x, const ConstraintPlane& y) {
   for (int i = 0; i < 3; ++i) {
     if (x.point_W[i] != y.point_W[i]) return x.point_W[i] < y.point_W[i];
   }
-  return x.object < y.object;
+  if (x.object != y.object) return x.object < y.object;
+  // Two faces' pairs may give one plane with different materials: the
+  // order of the pairs must not choose between them.
+  if (x.stiffness_n_per_m != y.stiffness_n_per_m) {
+    return x.stiffness_n_per_m < y.stiffness_n_per_m;
+  }
+  if (x.damping_ns_per_m != y.damping_ns_per_m) return x.damping_ns_per_m < y.damping_ns_per_m;
+  if (x.static_friction != y.static_friction) return x.static_friction < y.static_friction;
+  return x.dynamic_friction < y.dynamic_friction;
 }
 
 // The tool's `near` features at X_WP in the world frame.
 void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures& near,
-               PlacedTool& placed) {
+               NormalCache& normals, PlacedTool& placed) {
   const PosedObject at_proxy{&t, nullptr, X_WP};
   placed.vertices.clear();
   for (const VertexId v : near.vertices) placed.vertices.push_back(X_WP * t.position(v));
@@ -180,7 +229,7 @@ void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures
     placed.face_ids.push_back(g);
   }
   placed.edges.clear();
-  for (const EdgeId e : near.edges) placed.edges.push_back(PlaceEdge(at_proxy, e));
+  for (const EdgeId e : near.edges) placed.edges.push_back(PlaceEdge(at_proxy, e, normals));
 }
 
 // Where point `p` falls on `face` along its normal (`foot`), and how far in
@@ -207,45 +256,77 @@ int MaterialIndex(const HapticObject& object, FaceId f, ObjectId id, LocalModelP
   return index;
 }
 
-// Whether segments a and b may come within `within_m` of each other: their
-// bounding balls do.
-bool SegmentsMayMeet(const Vector3d& a0, const Vector3d& a1, const Vector3d& b0, const Vector3d& b1,
-                     double within_m) {
-  const double half_a = 0.5 * (a1 - a0).norm(), half_b = 0.5 * (b1 - b0).norm();
-  return (0.5 * (a0 + a1) - 0.5 * (b0 + b1)).norm() <= half_a + half_b + within_m;
+// The distance between segments [p0, p1] and [q0, q1], up to rounding
+// (Ericson, Real-Time Collision Detection, 5.1.9): at most 1e-8 of their
+// lengths more than the true one, nearly parallel segments included.
+double SegmentDistance(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0,
+                       const Vector3d& q1) {
+  const Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (!(a > 0) && !(e > 0)) return r.norm();
+  if (!(a > 0)) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (!(e > 0)) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return (p0 + s * d1 - q0 - t * d2).norm();
 }
+
+// What SegmentDistance may overstate the distance by, and what
+// EdgePairPlane's ends (1e-9 of an edge past either end) may understate
+// a plane's gap by, for edges of lengths `lu` and `lv`.
+double SegmentSlack(double lu, double lv) { return 1e-7 * (lu + lv); }
 
 // Whether tool edge `t` and object edge `o` may give a plane (EdgePairPlane,
 // its gap in [-behind_m, radius_m]) once the tool has moved by at most
-// `margin_m`, turning by at most `turn`: EdgePairPlane's tests, each
-// loosened by what such a move may change. The plane's normal, across two
-// edges at an angle whose sine is s, turns by at most turn / s (twice that
-// here); the closest points slide along the edges by at most margin / s
-// (thrice here); the lines' distance changes by at most twice the margin.
-// Edges within four turns of parallel are kept whenever their balls may
-// meet: their normal may turn any way. Without a margin, the test itself.
+// `margin_m`, turning by at most `turn`. First their distance (`apart_m`
+// out): such a plane's gap is the distance of two points of the edges
+// (to within their ends' slack), which the move changes by at most the
+// margin. Then EdgePairPlane's tests, each loosened by what such a move
+// may change. The plane's normal, across two edges at an angle whose
+// sine is s, turns by at most turn / s (twice that here); the closest
+// points slide along the edges by at most margin / s (thrice here); the
+// lines' distance changes by at most twice the margin. Edges within four
+// turns of parallel are kept whenever they are near enough: their normal
+// may turn any way. Without a margin, the test itself.
 bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_m, double turn,
-                          double radius_m, double behind_m) {
-  if (margin_m == 0) {
-    ConstraintPlane plane;
-    return EdgePairPlane(t, o, plane) && plane.gap_m >= -behind_m && plane.gap_m <= radius_m;
-  }
-  const double apart_m = std::max(radius_m, behind_m) + 2 * margin_m;
-  if (!SegmentsMayMeet(t.from, t.to, o.from, o.to, apart_m)) return false;
+                          double radius_m, double behind_m, double& apart_m) {
   const Vector3d u = t.to - t.from, v = o.to - o.from;
   const double lu = u.norm(), lv = v.norm();
-  Vector3d n = u.cross(v);
-  const double sine = n.norm() / (lu * lv);
-  if (!(sine > 4 * turn + 1e-9)) return true;
-  n.normalize();
-  const double turned = 2 * turn / sine;
-  const double out_o = o.out.norm(), out_t = t.out.norm();
-  if (!(out_o > 0 && out_t > 0)) return false;
-  const double along_o = n.dot(o.out) / out_o, along_t = n.dot(t.out) / out_t;
-  const bool either = (along_o >= -turned && along_t <= turned + turn) ||
-                      (-along_o >= -turned && -along_t <= turned + turn);
-  if (!either) return false;
+  // Last, as the dearest test: the edges' distance.
+  auto near_enough = [&] {
+    apart_m = SegmentDistance(t.from, t.to, o.from, o.to);
+    return apart_m <= std::max(radius_m, behind_m) + margin_m + SegmentSlack(lu, lv);
+  };
+  if (margin_m == 0) {
+    ConstraintPlane plane;
+    return EdgePairPlane(t, o, plane) && plane.gap_m >= -behind_m && plane.gap_m <= radius_m &&
+           near_enough();
+  }
+  const double lines_m = std::max(radius_m, behind_m) + 2 * margin_m;
+  const Vector3d n = u.cross(v);
+  const double length = n.norm();
+  const double sine = length / (lu * lv);
+  if (!(sine > 4 * turn + 1e-9)) return near_enough();
+  // The cheap tests first: the lines' distance, where their closest points
+  // fall, then which way the normal may point.
   const Vector3d w = t.from - o.from;
+  if (std::abs(n.dot(w)) > lines_m * length) return false;
   const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
   const double det = uu * vv - uv * uv;
   const double a = (uv * vw - vv * uw) / det, b = (uu * vw - uv * uw) / det;
@@ -253,7 +334,191 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_
   if (a < -slide_m / lu || a > 1 + slide_m / lu || b < -slide_m / lv || b > 1 + slide_m / lv) {
     return false;
   }
-  return std::abs(n.dot(t.from + a * u - o.from - b * v)) <= apart_m;
+  const double turned = 2 * turn / sine;
+  const double out_o = o.out.norm(), out_t = t.out.norm();
+  if (!(out_o > 0 && out_t > 0)) return false;
+  const double along_o = n.dot(o.out) / (length * out_o), along_t = n.dot(t.out) / (length * out_t);
+  const bool either = (along_o >= -turned && along_t <= turned + turn) ||
+                      (-along_o >= -turned && -along_t <= turned + turn);
+  return either && near_enough();
+}
+
+// Which of a set of boxes (world frame) may meet a query box: a uniform
+// grid of cells, each listing the boxes that meet it, kept between
+// searches (common/core/scratch.h) so that it stops allocating.
+class BoxGrid {
+ public:
+  // Bins `boxes` (kept by reference until the next Build) in cells of side
+  // `cell_m` at least, no more cells than a few per box.
+  void Build(const std::vector<AlignedBox3d>& boxes, double cell_m) {
+    boxes_ = &boxes;
+    AlignedBox3d bounds;
+    for (const AlignedBox3d& box : boxes) {
+      if (!box.isEmpty()) bounds.extend(box);
+    }
+    seen_.assign(boxes.size(), 0);
+    stamp_ = 0;
+    start_.clear();
+    items_.clear();
+    if (bounds.isEmpty()) return;
+    origin_ = bounds.min();
+    const Vector3d sizes = bounds.sizes();
+    const double max_cells = std::clamp(4.0 * static_cast<double>(boxes.size()), 64.0, 16384.0);
+    double cell = std::max(cell_m, 1e-12);
+    for (;;) {
+      double cells = 1;
+      for (int i = 0; i < 3; ++i) {
+        n_[i] = static_cast<int>(std::min(std::floor(sizes[i] / cell), 1e6)) + 1;
+        cells *= n_[i];
+      }
+      if (cells <= max_cells) break;
+      cell *= std::cbrt(cells / max_cells) * 1.01;
+    }
+    inv_cell_ = 1 / cell;
+    start_.assign(static_cast<size_t>(n_[0]) * n_[1] * n_[2] + 1, 0);
+    // Count, then place: start_[c] .. start_[c + 1] are cell c's boxes.
+    for (int pass = 0; pass < 2; ++pass) {
+      for (size_t k = 0; k < boxes.size(); ++k) {
+        int lo[3], hi[3];
+        if (!Cells(boxes[k], lo, hi)) continue;
+        for (int z = lo[2]; z <= hi[2]; ++z) {
+          for (int y = lo[1]; y <= hi[1]; ++y) {
+            for (int x = lo[0]; x <= hi[0]; ++x) {
+              const int c = Cell(x, y, z);
+              if (pass == 0) {
+                ++start_[c + 1];
+              } else {
+                items_[fill_[c]++] = static_cast<int>(k);
+              }
+            }
+          }
+        }
+      }
+      if (pass == 0) {
+        for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+        items_.resize(start_.back());
+        fill_.assign(start_.begin(), start_.end() - 1);
+      }
+    }
+  }
+
+  // Calls visit(k) once for each box k that meets `query`, in no
+  // particular order.
+  template <typename Visit>
+  void ForEachMeeting(const AlignedBox3d& query, Visit&& visit) {
+    int lo[3], hi[3];
+    if (start_.empty() || !Cells(query, lo, hi)) return;
+    if (++stamp_ == 0) {  // wrapped: forget every mark
+      std::fill(seen_.begin(), seen_.end(), 0);
+      stamp_ = 1;
+    }
+    const std::vector<AlignedBox3d>& boxes = *boxes_;
+    for (int z = lo[2]; z <= hi[2]; ++z) {
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const int c = Cell(x, y, z);
+          for (int i = start_[c]; i < start_[c + 1]; ++i) {
+            const int k = items_[i];
+            if (seen_[k] == stamp_) continue;
+            seen_[k] = stamp_;
+            if (boxes[k].intersects(query)) visit(k);
+          }
+        }
+      }
+    }
+  }
+
+ private:
+  int Cell(int x, int y, int z) const { return (z * n_[1] + y) * n_[0] + x; }
+  // The range of cells `box` meets, clamped to the grid; false when it
+  // misses the grid or is empty.
+  bool Cells(const AlignedBox3d& box, int lo[3], int hi[3]) const {
+    if (box.isEmpty()) return false;
+    for (int i = 0; i < 3; ++i) {
+      const double from = (box.min()[i] - origin_[i]) * inv_cell_;
+      const double to = (box.max()[i] - origin_[i]) * inv_cell_;
+      if (!(to >= 0 && from < n_[i])) return false;
+      lo[i] = from <= 0 ? 0 : static_cast<int>(from);
+      hi[i] = to >= n_[i] - 1 ? n_[i] - 1 : static_cast<int>(to);
+    }
+    return true;
+  }
+
+  const std::vector<AlignedBox3d>* boxes_ = nullptr;
+  Vector3d origin_ = Vector3d::Zero();
+  double inv_cell_ = 1;
+  int n_[3] = {1, 1, 1};
+  std::vector<int> start_, items_, fill_;
+  std::vector<uint32_t> seen_;
+  uint32_t stamp_ = 0;
+};
+
+// The box of every point p with FootOnFace(face, p, below_m, above_m,
+// margin_m) true (`pad_m` more for rounding): the face grown by the margin
+// in its plane (its edges pushed out by margin_m and FootOnFace's slack:
+// the triangle scaled about its incentre), swept from below_m behind to
+// above_m in front.
+AlignedBox3d FootBox(const WorldFace& face, double below_m, double above_m, double margin_m,
+                     double pad_m) {
+  const double la = (face.c - face.b).norm(), lb = (face.a - face.c).norm(),
+               lc = (face.b - face.a).norm();
+  const double perimeter = la + lb + lc;
+  const double inradius = (face.b - face.a).cross(face.c - face.a).norm() / perimeter;
+  const double out_m = margin_m + 1e-9 * std::max({la, lb, lc});
+  AlignedBox3d box;
+  if (!(inradius > 1e-9 * perimeter)) {  // a sliver: anywhere
+    box.extend(Vector3d::Constant(-std::numeric_limits<double>::infinity()));
+    box.extend(Vector3d::Constant(std::numeric_limits<double>::infinity()));
+    return box;
+  }
+  const Vector3d centre = (la * face.a + lb * face.b + lc * face.c) / perimeter;
+  const double scale = (inradius + out_m) / inradius;
+  for (const Vector3d* corner : {&face.a, &face.b, &face.c}) {
+    const Vector3d grown = centre + scale * (*corner - centre);
+    box.extend(grown + above_m * face.n);
+    box.extend(grown - below_m * face.n);
+  }
+  return GrowBox(box, pad_m);
+}
+
+// A segment's box.
+AlignedBox3d SegmentBox(const Vector3d& from, const Vector3d& to) {
+  AlignedBox3d box(from);
+  box.extend(to);
+  return box;
+}
+
+// One object's features of one kind near the tool, for a search: placed
+// in the world frame, their ids, the boxes the grid bins them by, and the
+// index of their material plane in the pairs (-1: none yet).
+struct ObjectSide {
+  std::vector<WorldFace> faces;
+  std::vector<FaceId> face_ids;
+  std::vector<Vector3d> points;
+  std::vector<VertexId> point_ids;
+  std::vector<WorldEdge> edges;
+  std::vector<EdgeId> edge_ids;
+  double longest_m = 0;  // the longest of `edges`
+  std::vector<AlignedBox3d> boxes;
+  std::vector<int> material;
+  BoxGrid grid;
+
+  void Clear() {
+    faces.clear();
+    face_ids.clear();
+    points.clear();
+    point_ids.clear();
+    edges.clear();
+    edge_ids.clear();
+    longest_m = 0;
+    boxes.clear();
+  }
+};
+
+// What rounding may move a bound of the pairs near proxy pose X_WP by,
+// metres: far more than a double's rounding of coordinates that size.
+double BoundSlack(const Isometry3d& X_WP, double lever_m) {
+  return 1e-9 * (1 + X_WP.translation().cwiseAbs().maxCoeff() + lever_m);
 }
 
 // How far behind its plane a pair may be and still count as touching: the
@@ -274,19 +539,31 @@ double Reach(const HapticObject& t) {
 // The tool's faces and edges placed at one proxy pose, each once however
 // many pairs name it: `stamp` tells this placing's entries from older ones.
 struct PlacedById {
+  std::vector<Vector3d> vertices;
   std::vector<WorldFace> faces;
   std::vector<bool> face_ok;
   std::vector<WorldEdge> edges;
-  std::vector<uint64_t> face_stamp, edge_stamp;
+  std::vector<uint64_t> vertex_stamp, face_stamp, edge_stamp;
   uint64_t stamp = 0;
+  NormalCache normals;
 
   void Begin(const HapticObject& t) {
     ++stamp;
+    vertices.resize(t.num_vertices());
+    vertex_stamp.resize(t.num_vertices(), 0);
     faces.resize(t.num_faces());
     face_ok.resize(t.num_faces());
     face_stamp.resize(t.num_faces(), 0);
     edges.resize(t.num_edges());
     edge_stamp.resize(t.num_edges(), 0);
+    normals.Begin(t);
+  }
+  const Vector3d& Vertex(const HapticObject& t, const Isometry3d& X_WP, VertexId v) {
+    if (vertex_stamp[v] != stamp) {
+      vertex_stamp[v] = stamp;
+      vertices[v] = X_WP * t.position(v);
+    }
+    return vertices[v];
   }
   const WorldFace* Face(const PosedObject& at_proxy, FaceId f) {
     if (face_stamp[f] != stamp) {
@@ -298,23 +575,25 @@ struct PlacedById {
   const WorldEdge& Edge(const PosedObject& at_proxy, EdgeId e) {
     if (edge_stamp[e] != stamp) {
       edge_stamp[e] = stamp;
-      edges[e] = PlaceEdge(at_proxy, e);
+      edges[e] = PlaceEdge(at_proxy, e, normals);
     }
     return edges[e];
   }
 };
 
-// The planes of `pairs` at `proxy` into `candidates`: the tests of a pair
-// at the proxy's pose, without margin.
+// The planes of the pairs of `pairs` whose floor is in (from_m, to_m], at
+// `proxy`, appended to `candidates`: the tests of a pair at the proxy's
+// pose, without margin.
 void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelPairs& pairs,
-                double radius_m, double behind_m, std::vector<ConstraintPlane>& candidates) {
+                double radius_m, double behind_m, double from_m, double to_m, PlacedById& placed,
+                std::vector<ConstraintPlane>& candidates) {
   const PosedObject at_proxy{&t, nullptr, X_WP};
-  PlacedById& placed = Scratch<PlacedById>();
-  placed.Begin(t);
+  auto in_window = [&](double floor_m) { return floor_m > from_m && floor_m <= to_m; };
   Vector3d foot;
   double gap;
   for (const LocalModelPairs::VertexFace& pair : pairs.vertex_faces) {
-    const Vector3d v = X_WP * t.position(pair.tool_vertex);
+    if (!in_window(pair.floor_m)) continue;
+    const Vector3d& v = placed.Vertex(t, X_WP, pair.tool_vertex);
     if (!FootOnFace(pair.face, v, behind_m, radius_m, 0, foot, gap)) continue;
     ConstraintPlane& plane = candidates.emplace_back(pairs.materials[pair.material]);
     plane.normal_W = pair.face.n;
@@ -323,6 +602,7 @@ void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelP
     plane.tool_point_W = v;
   }
   for (const LocalModelPairs::FaceVertex& pair : pairs.face_vertices) {
+    if (!in_window(pair.floor_m)) continue;
     const WorldFace* tool_face = placed.Face(at_proxy, pair.tool_face);
     if (tool_face == nullptr ||
         !FootOnFace(*tool_face, pair.vertex_W, behind_m, radius_m, 0, foot, gap)) {
@@ -335,11 +615,40 @@ void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelP
     plane.tool_point_W = foot;
   }
   for (const LocalModelPairs::EdgeEdge& pair : pairs.edge_edges) {
+    if (!in_window(pair.floor_m)) continue;
     ConstraintPlane plane = pairs.materials[pair.material];
     if (!EdgePairPlane(placed.Edge(at_proxy, pair.tool_edge), pair.edge, plane)) continue;
     if (plane.gap_m < -behind_m || plane.gap_m > radius_m) continue;
     plane.gap_m = std::max(plane.gap_m, 0.0);
     candidates.push_back(plane);
+  }
+}
+
+// The nearest distinct planes of `candidates`, at most `max_planes`, into
+// `planes`: the candidates in Nearer's order (a total one), each kept
+// unless one kept is the same plane. Sorts indices, the nearest few first
+// (`order` is scratch).
+void NearestDistinct(const std::vector<ConstraintPlane>& candidates, int max_planes, double size,
+                     std::vector<int>& order, std::vector<ConstraintPlane>& planes) {
+  auto nearer = [&](int x, int y) { return Nearer(candidates[x], candidates[y]); };
+  order.resize(candidates.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  // Most models take their planes from the nearest few candidates.
+  size_t sorted = std::min(order.size(), static_cast<size_t>(4 * std::max(max_planes, 1)));
+  std::partial_sort(order.begin(), order.begin() + sorted, order.end(), nearer);
+  for (;;) {
+    planes.clear();
+    for (size_t i = 0; i < sorted; ++i) {
+      if (static_cast<int>(planes.size()) == max_planes) return;
+      const ConstraintPlane& plane = candidates[order[i]];
+      const bool seen = std::any_of(planes.begin(), planes.end(), [&](const ConstraintPlane& p) {
+        return SamePlane(p, plane, size);
+      });
+      if (!seen) planes.push_back(plane);
+    }
+    if (sorted == order.size()) return;
+    std::sort(order.begin() + sorted, order.end(), nearer);  // after the first `sorted`
+    sorted = order.size();
   }
 }
 
@@ -359,11 +668,20 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                            const LocalModelOptions& options, double margin_m,
                            LocalModelPairs& pairs) {
+  GatherLocalModelPairs(tool, X_WP, obstacles, ids, options, margin_m, options.radius_m, pairs);
+}
+
+void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
+                           std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                           const LocalModelOptions& options, double margin_m, double reach_m,
+                           LocalModelPairs& pairs) {
   const HapticObject& t = *tool.object;
   const double behind = Behind(t);
+  // The gap the pairs are gathered for: the radius, or less.
+  const double radius_m = std::min(reach_m, options.radius_m);
   // How far a pair's features may be apart now and still meet the tests
   // after a move of at most the margin.
-  const double within = options.radius_m + margin_m;
+  const double within = radius_m + margin_m;
   Vector3d foot;
   double gap;
   pairs.X_WP = X_WP;
@@ -378,66 +696,114 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   pairs.face_vertices.clear();
   pairs.edge_edges.clear();
   PlacedTool& placed = Scratch<PlacedTool>();
+  ObjectSide& side = Scratch<ObjectSide>();
   const PosedObject at_proxy{tool.object, tool.model, X_WP};
   const AlignedBox3d near = GrowBox(WorldBox(t, X_WP), within);
   NearFeatures& object_near = Scratch<ObjectNear>().features;
   NearFeatures& tool_near = Scratch<ToolNear>().features;
+  // Rounding allowance on the boxes the grids compare.
+  const double pad = BoundSlack(X_WP, pairs.lever_m);
+  // Pairs whose features are farther apart than this cannot give a plane
+  // after a move of at most the margin (EdgePairMayGivePlane).
+  const double edge_reach = std::max(radius_m, behind) + margin_m;
+  // The tests are loosened for rounding (FootOnFace's slack, the edges'
+  // ends): a short search holds the planes nearer than its reach by more.
+  pairs.complete_m =
+      radius_m < options.radius_m ? radius_m - pad : std::numeric_limits<double>::infinity();
+  tool_near.normals.Begin(t);
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const PosedObject& o = obstacles[k];
     // The object's features near the tool, and the tool's near those: on
     // both sides only what may come within the radius after the margin.
     const AlignedBox3d object_box = FindNearFeatures(o, near, object_near);
     if (object_box.isEmpty()) continue;
+    object_near.normals.Begin(*o.object);
     FindNearFeatures(at_proxy, GrowBox(object_box, within), tool_near);
-    PlaceTool(t, X_WP, tool_near, placed);
+    PlaceTool(t, X_WP, tool_near, tool_near.normals, placed);
+    // Each kind of pair: the object's features binned in a grid by where
+    // their partner must be, each of the tool's looked up in it, and the
+    // pair's tests run on what the grid gives.
+    AlignedBox3d tool_vertices;
+    for (const Vector3d& v : placed.vertices) tool_vertices.extend(v);
+    side.Clear();
     for (const FaceId f : object_near.faces) {  // tool vertex, object face
       WorldFace face;
       if (!PlaceFace(o, f, face)) continue;
-      int material = -1;
-      for (size_t i = 0; i < placed.vertices.size(); ++i) {
-        if (!FootOnFace(face, placed.vertices[i], behind + margin_m, within, margin_m, foot, gap)) {
-          continue;
-        }
+      side.faces.push_back(face);
+      side.face_ids.push_back(f);
+      side.boxes.push_back(
+          FootBox(face, behind + margin_m, within, margin_m, pad).intersection(tool_vertices));
+    }
+    side.material.assign(side.faces.size(), -1);
+    side.grid.Build(side.boxes, within);
+    for (size_t i = 0; i < placed.vertices.size(); ++i) {
+      const Vector3d& v = placed.vertices[i];
+      side.grid.ForEachMeeting(AlignedBox3d(v, v), [&](int j) {
+        if (!FootOnFace(side.faces[j], v, behind + margin_m, within, margin_m, foot, gap)) return;
         pairs.vertex_faces.push_back(
-            {tool_near.vertices[i], face, MaterialIndex(*o.object, f, ids[k], pairs, material)});
-      }
+            {tool_near.vertices[i], side.faces[j],
+             MaterialIndex(*o.object, side.face_ids[j], ids[k], pairs, side.material[j]), gap});
+      });
     }
     // Features beyond the box are farther than the radius and the margin
     // from the tool: a move the pairs hold for cannot bring them together.
+    side.Clear();
     for (const VertexId v : object_near.vertices) {  // object vertex, tool face
       const Vector3d q = o.X_WO * o.object->position(v);
       if (!near.contains(q)) continue;
-      int material = -1;
-      for (size_t i = 0; i < placed.faces.size(); ++i) {
-        if (!FootOnFace(placed.faces[i], q, behind + margin_m, within, margin_m, foot, gap)) {
-          continue;
-        }
-        pairs.face_vertices.push_back(
-            {placed.face_ids[i], q,
-             MaterialIndex(*o.object, o.object->VertexFaces(v).front(), ids[k], pairs, material)});
-      }
+      side.points.push_back(q);
+      side.point_ids.push_back(v);
+      side.boxes.emplace_back(q, q);
     }
+    side.material.assign(side.points.size(), -1);
+    side.grid.Build(side.boxes, within);
+    for (size_t i = 0; i < placed.faces.size(); ++i) {
+      const WorldFace& face = placed.faces[i];
+      side.grid.ForEachMeeting(FootBox(face, behind + margin_m, within, margin_m, pad), [&](int j) {
+        const Vector3d& q = side.points[j];
+        if (!FootOnFace(face, q, behind + margin_m, within, margin_m, foot, gap)) return;
+        const VertexId v = side.point_ids[j];
+        pairs.face_vertices.push_back({placed.face_ids[i], q,
+                                       MaterialIndex(*o.object, o.object->VertexFaces(v).front(),
+                                                     ids[k], pairs, side.material[j]),
+                                       gap});
+      });
+    }
+    side.Clear();
     for (const EdgeId e : object_near.edges) {  // object edge, tool edge
-      const WorldEdge edge = PlaceEdge(o, e);
-      AlignedBox3d box(edge.from);
-      box.extend(edge.to);
+      const WorldEdge edge = PlaceEdge(o, e, object_near.normals);
+      const AlignedBox3d box = SegmentBox(edge.from, edge.to);
       if (!box.intersects(near)) continue;
-      int material = -1;
-      for (size_t i = 0; i < placed.edges.size(); ++i) {
-        const WorldEdge& g = placed.edges[i];
-        if (!EdgePairMayGivePlane(g, edge, margin_m, margin_m / pairs.lever_m, options.radius_m,
-                                  behind)) {
-          continue;
+      side.edges.push_back(edge);
+      side.edge_ids.push_back(e);
+      side.boxes.push_back(box);
+      side.longest_m = std::max(side.longest_m, (edge.to - edge.from).norm());
+    }
+    side.material.assign(side.edges.size(), -1);
+    side.grid.Build(side.boxes, within);
+    for (size_t i = 0; i < placed.edges.size(); ++i) {
+      const WorldEdge& g = placed.edges[i];
+      const double reach = edge_reach + SegmentSlack((g.to - g.from).norm(), side.longest_m) + pad;
+      side.grid.ForEachMeeting(GrowBox(SegmentBox(g.from, g.to), reach), [&](int j) {
+        const WorldEdge& edge = side.edges[j];
+        double apart_m;
+        if (!EdgePairMayGivePlane(g, edge, margin_m, margin_m / pairs.lever_m, radius_m, behind,
+                                  apart_m)) {
+          return;
         }
+        const EdgeId e = side.edge_ids[j];
         pairs.edge_edges.push_back(
             {tool_near.edges[i], edge,
-             MaterialIndex(*o.object, o.object->EdgeFaces(e).front(), ids[k], pairs, material)});
-      }
+             MaterialIndex(*o.object, o.object->EdgeFaces(e).front(), ids[k], pairs,
+                           side.material[j]),
+             apart_m - SegmentSlack((g.to - g.from).norm(), (edge.to - edge.from).norm()) -
+                 behind});
+      });
     }
   }
 }
 
-void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
+bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                     const LocalModelPairs& pairs, const LocalModelOptions& options,
                     LocalModel& model) {
   model.X_WP = proxy.X_WP;
@@ -447,19 +813,41 @@ void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
   model.friction = options.friction;
   model.touching = proxy.touching;
   model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
-  model.planes.clear();
   const double size = tool.bounding_box().diagonal().norm();
-  std::vector<ConstraintPlane>& candidates = Scratch<CandidatePlanes>().planes;
+  const double behind = Behind(tool);
+  CandidatePlanes& candidate_planes = Scratch<CandidatePlanes>();
+  std::vector<ConstraintPlane>& candidates = candidate_planes.planes;
   candidates.clear();
-  PairPlanes(tool, proxy.X_WP, pairs, options.radius_m, Behind(tool), candidates);
-  // The nearest distinct planes, at most max_planes.
-  std::sort(candidates.begin(), candidates.end(), Nearer);
-  for (const ConstraintPlane& plane : candidates) {
-    if (static_cast<int>(model.planes.size()) == options.max_planes) break;
-    const bool seen =
-        std::any_of(model.planes.begin(), model.planes.end(),
-                    [&](const ConstraintPlane& p) { return SamePlane(p, plane, size); });
-    if (!seen) model.planes.push_back(plane);
+  PlacedById& placed = Scratch<PlacedById>();
+  placed.Begin(tool);
+  // A pair's plane is at least its floor less `moved` away (the pairs'
+  // floor_m), and a pair not gathered gives none nearer than complete_m:
+  // the pairs are taken in rising bands of floor until the nearest
+  // max_planes distinct planes of those taken are all nearer than any
+  // plane left could be, or none left could give a plane at all. Every
+  // plane left out then sorts after the last one kept: the model is the
+  // one all the pairs make.
+  const double moved = pairs.Moved(proxy.X_WP) + BoundSlack(proxy.X_WP, pairs.lever_m);
+  const double band = options.radius_m / 8;
+  double from = -std::numeric_limits<double>::infinity();
+  double to = moved + band;
+  for (;;) {
+    PairPlanes(tool, proxy.X_WP, pairs, options.radius_m, behind, from, to, placed, candidates);
+    NearestDistinct(candidates, options.max_planes, size, candidate_planes.order, model.planes);
+    // Every plane nearer than this has been taken.
+    const double taken = std::min(to - moved, pairs.complete_m);
+    if (static_cast<int>(model.planes.size()) >= options.max_planes &&
+        (model.planes.empty() || model.planes.back().gap_m < taken)) {
+      return true;
+    }
+    if (taken >= options.radius_m) return true;
+    if (to - moved >= pairs.complete_m) return false;
+    from = to;
+    // A model not yet full takes every pair left that may count: most
+    // such models are the few planes of a coarse object.
+    to = static_cast<int>(model.planes.size()) < options.max_planes
+             ? moved + std::min(options.radius_m, pairs.complete_m) + band
+             : to + 2 * (to - moved);
   }
 }
 
@@ -468,7 +856,7 @@ void BuildLocalModel(const PosedObject& tool, const ProxyState& proxy, const Vec
                      const LocalModelOptions& options, LocalModel& model) {
   LocalModelPairs& pairs = Scratch<FreshPairs>().pairs;
   GatherLocalModelPairs(tool, proxy.X_WP, obstacles, ids, options, 0, pairs);
-  ModelFromPairs(*tool.object, proxy, p_WD, pairs, options, model);
+  (void)ModelFromPairs(*tool.object, proxy, p_WD, pairs, options, model);  // the whole radius
 }
 
 }  // namespace hs

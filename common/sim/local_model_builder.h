@@ -38,24 +38,34 @@ struct WorldEdge {
 /// a proxy that moved farther needs the face search again. The objects'
 /// features are kept in the world frame, the tool's by id.
 struct LocalModelPairs {
+  /// Each pair's `floor_m`: at any proxy pose X_WP, the gap of the plane
+  /// it gives (if any) is at least floor_m - Moved(X_WP) (and rounding):
+  /// a model needs only the pairs whose floor is near its nearest planes
+  /// (ModelFromPairs).
   struct VertexFace {
     VertexId tool_vertex;
     WorldFace face;
     int material;  ///< Index into `materials`.
+    double floor_m;
   };
   struct FaceVertex {
     FaceId tool_face;
     Vector3d vertex_W;
     int material;
+    double floor_m;
   };
   struct EdgeEdge {
     EdgeId tool_edge;
     WorldEdge edge;
     int material;
+    double floor_m;
   };
   /// The proxy pose they were gathered at, and the margin.
   Isometry3d X_WP = Isometry3d::Identity();
   double margin_m = -1;  ///< < 0: never gathered.
+  /// Every pair that may give a plane with a gap up to this (metres) is
+  /// here; infinite when gathered for the whole radius.
+  double complete_m = 0;
   /// The arm a turn of the tool moves the features by (Moved).
   double lever_m = 0;
   /// How many fixed objects there were.
@@ -85,10 +95,22 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            const LocalModelOptions& options, double margin_m,
                            LocalModelPairs& pairs);
 
+/// As above, but only the pairs that may give a plane with a gap up to
+/// `reach_m` (metres, in (0, options.radius_m]; the whole radius at or
+/// over it): a shorter search where the model's nearest planes are much
+/// nearer than the radius. ModelFromPairs says when they no longer do.
+void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
+                           std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
+                           const LocalModelOptions& options, double margin_m, double reach_m,
+                           LocalModelPairs& pairs);
+
 /// Fills `model` for `tool` at `proxy`, moved toward the device at `p_WD`,
 /// from `pairs`: while `pairs.Moved(proxy.X_WP) <= pairs.margin_m`, the
-/// model BuildLocalModel makes there (its revision left as it was).
-void ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
+/// model BuildLocalModel makes there (its revision left as it was), and
+/// true. False when the pairs were gathered short of the radius and the
+/// model's farthest plane may lie beyond them (then `model` is not the
+/// search's: gather farther).
+bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                     const LocalModelPairs& pairs, const LocalModelOptions& options,
                     LocalModel& model);
 

@@ -30,6 +30,18 @@ struct StartContact {
   ContactSet contact;
 };
 
+// How far a face search gathers pairs (LocalModelPairs::complete_m), given
+// the model the last one made: the whole radius unless that model was
+// full, else twice the gap of its farthest plane with the margin, which a
+// proxy's move within the margin does not take the farthest plane past.
+// A shorter search has fewer pairs to find and each step fewer to test.
+double SearchReach(const LocalModel& last, const LocalModelOptions& options, double margin_m) {
+  if (last.revision == 0 || static_cast<int>(last.planes.size()) < options.max_planes) {
+    return options.radius_m;
+  }
+  return std::min(options.radius_m, 2 * (last.planes.back().gap_m + margin_m));
+}
+
 void AddStats(StageStatsTable& to, StageStatsTable& from) {
   for (int e = 0; e < kNumEffects; ++e) {
     to[e].runs += from[e].runs;
@@ -472,21 +484,29 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
     const LocalModelOptions model_options{.radius_m = radius_m,
                                           .force_clamp_n = options_.force_clamp_n,
                                           .friction = stages.Has(Effect::kFriction)};
-    const bool search = !PairsServe(proxy.X_WP, scratch);
-    if (search) {
+    const double margin = kPairMarginFraction * radius_m;
+    auto gather = [&](double reach_m) {
       GatherLocalModelPairs(objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP, objects_.obstacles(),
-                            objects_.obstacle_ids(), model_options, kPairMarginFraction * radius_m,
+                            objects_.obstacle_ids(), model_options, margin, reach_m,
                             scratch.model_pairs);
       scratch.steps_since_search = 0;
       scratch.searched_radius_m = scratch.model_radius_m;
-    }
+    };
+    const bool search = !PairsServe(proxy.X_WP, scratch);
+    if (search) gather(SearchReach(scratch.model, model_options, margin));
     // A model changes only with the proxy, the device or the options: a
     // device's loop takes each revision once.
     if (search || !proxy.X_WP.isApprox(scratch.model.X_WP, 0.0) ||
         tool.X_WD.translation() != scratch.model.p_WD ||
         scratch.model.friction != model_options.friction) {
-      ModelFromPairs(objects_[tool.id].object, proxy, tool.X_WD.translation(), scratch.model_pairs,
-                     model_options, scratch.model);
+      const HapticObject& t = objects_[tool.id].object;
+      if (!ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
+                          scratch.model)) {
+        // The model's farthest plane lies beyond a short search's pairs.
+        gather(model_options.radius_m);
+        (void)ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
+                             scratch.model);  // the whole radius
+      }
       ++scratch.model.revision;
     }
     scratch.model_wanted = false;

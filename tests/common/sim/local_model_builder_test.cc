@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <vector>
@@ -222,8 +224,10 @@ Isometry3d MoveWithin(const LocalModelPairs& pairs, std::mt19937& rng, double ma
 // The pairs' promise: wherever the proxy moves within the margin, the
 // model made from the pairs gathered before is the one a fresh search
 // there makes, plane for plane and bit for bit (the same tests on the same
-// numbers). A turned cube over a floor and beside a faceted ball, random
-// gather poses and moves, with and without a cap on the planes.
+// numbers); pairs gathered short of the radius make it too, or say they
+// cannot. A turned cube over a floor and beside a faceted ball, random
+// gather poses and moves, with and without a cap on the planes, searches
+// for the whole radius and for half of it.
 TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
   const auto floor = Floor();
   const auto ball = MakeBody(MakeIcosphere(0.03, 2), At(0.035, 0, 0.03));
@@ -232,20 +236,29 @@ TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
   const std::vector<ObjectId> ids{1, 2};
   std::mt19937 rng(23);
   int planes = 0;
-  for (const int max_planes : {16, 64}) {
+  int short_served = 0, short_refused = 0;
+  for (const auto& [max_planes, reach] :
+       {std::pair{16, kRadius}, {64, kRadius}, {16, kRadius / 2}, {64, kRadius / 2}}) {
     const LocalModelOptions options{.radius_m = kRadius, .max_planes = max_planes};
     for (int k = 0; k < 40; ++k) {
       Isometry3d X_WP = testing_poses::RandomPose(rng, 0.02);
       X_WP.translation() += Vector3d(0, 0, 0.018);
       LocalModelPairs pairs;
       const double margin = 0.25 * kRadius;
-      GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, options, margin, pairs);
+      GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, options, margin, reach, pairs);
       for (int j = 0; j < 20; ++j) {
         const Isometry3d moved = MoveWithin(pairs, rng, margin);
         ASSERT_LE(pairs.Moved(moved), margin);
         const Vector3d p_WD = moved.translation() - Vector3d(0, 0, 0.001);
         LocalModel from_pairs, searched;
-        ModelFromPairs(tool->object, ProxyAt(moved), p_WD, pairs, options, from_pairs);
+        const bool served =
+            ModelFromPairs(tool->object, ProxyAt(moved), p_WD, pairs, options, from_pairs);
+        if (reach == kRadius) {
+          ASSERT_TRUE(served);
+        } else {
+          ++(served ? short_served : short_refused);
+          if (!served) continue;
+        }
         BuildLocalModel(tool->posed(), ProxyAt(moved), p_WD, posed, ids, options, searched);
         ASSERT_EQ(from_pairs.planes.size(), searched.planes.size()) << k << " " << j;
         planes += static_cast<int>(searched.planes.size());
@@ -265,6 +278,188 @@ TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
     }
   }
   EXPECT_GT(planes, 2000);  // the poses came within the radius of both
+  // Both answers of the short searches were met.
+  EXPECT_GT(short_served, 100) << short_refused;
+  EXPECT_GT(short_refused, 100);
+}
+
+// A plane of the brute-force oracle below: its normal and a point on it.
+struct OraclePlane {
+  Vector3d normal_W, point_W;
+};
+
+// The brute-force oracle: the planes every pair of features of `tool` at
+// X_WP and `object` gives, by the definition BuildLocalModel documents
+// (every tool vertex over every object face, every object vertex under
+// every tool face, every tool edge against every object edge: the pair
+// would meet moving along the plane's normal, in front by at most
+// `radius`, behind by at most `behind`). `tolerance` > 0 asks for the pairs
+// that pass with that much room on every test (relative: of an edge's
+// length, of a unit normal), < 0 for those that pass with that much
+// allowance: the builder's own rounding lies between.
+std::vector<OraclePlane> AllPairsPlanes(const Body& tool, const Isometry3d& X_WP,
+                                        const Body& object, double radius, double behind,
+                                        double tolerance) {
+  const HapticObject &t = tool.object, &o = object.object;
+  auto place = [](const HapticObject& h, const Isometry3d& X, VertexId v) {
+    return Vector3d(X * h.position(v));
+  };
+  auto normal = [&](const HapticObject& h, const Isometry3d& X, FaceId f) {
+    const Face& face = h.face(f);
+    const Vector3d a = place(h, X, face.vertices[0]), b = place(h, X, face.vertices[1]),
+                   c = place(h, X, face.vertices[2]);
+    return Vector3d((b - a).cross(c - a).normalized());
+  };
+  // Whether `p`, on the plane of face f, is inside it (by the tolerance).
+  auto inside = [&](const HapticObject& h, const Isometry3d& X, FaceId f, const Vector3d& p) {
+    const Face& face = h.face(f);
+    const Vector3d n = normal(h, X, f);
+    for (int i = 0; i < 3; ++i) {
+      const Vector3d from = place(h, X, face.vertices[i]);
+      const Vector3d edge = place(h, X, face.vertices[(i + 1) % 3]) - from;
+      if (n.cross(edge).dot(p - from) < tolerance * edge.squaredNorm()) return false;
+    }
+    return true;
+  };
+  auto in_range = [&](double gap) {
+    const double room = std::abs(tolerance) * radius;
+    return tolerance > 0 ? gap >= -behind + room && gap <= radius - room
+                         : gap >= -behind - room && gap <= radius + room;
+  };
+  std::vector<OraclePlane> planes;
+  // A vertex `p` over face f of `h` at X: the face's plane, turned round
+  // when the face is the tool's.
+  auto vertex_face = [&](const HapticObject& h, const Isometry3d& X, FaceId f, const Vector3d& p,
+                         bool tool_face) {
+    const Vector3d n = normal(h, X, f);
+    if (!n.allFinite()) return;
+    const double gap = n.dot(p - place(h, X, h.face(f).vertices[0]));
+    if (!in_range(gap) || !inside(h, X, f, p - gap * n)) return;
+    planes.push_back({tool_face ? Vector3d(-n) : n, tool_face ? p : Vector3d(p - gap * n)});
+  };
+  for (VertexId v = 0; v < t.num_vertices(); ++v) {
+    for (FaceId f = 0; f < o.num_faces(); ++f)
+      vertex_face(o, object.X_WO, f, place(t, X_WP, v), false);
+  }
+  for (VertexId v = 0; v < o.num_vertices(); ++v) {
+    for (FaceId f = 0; f < t.num_faces(); ++f)
+      vertex_face(t, X_WP, f, place(o, object.X_WO, v), true);
+  }
+  auto out = [&](const HapticObject& h, const Isometry3d& X, EdgeId e) {
+    Vector3d sum = Vector3d::Zero();
+    for (const FaceId f : h.EdgeFaces(e)) sum += normal(h, X, f);
+    return sum;
+  };
+  for (EdgeId i = 0; i < t.num_edges(); ++i) {
+    const Vector3d t0 = place(t, X_WP, t.edge(i).vertices[0]),
+                   t1 = place(t, X_WP, t.edge(i).vertices[1]), t_out = out(t, X_WP, i);
+    for (EdgeId j = 0; j < o.num_edges(); ++j) {
+      const Vector3d o0 = place(o, object.X_WO, o.edge(j).vertices[0]),
+                     o1 = place(o, object.X_WO, o.edge(j).vertices[1]),
+                     o_out = out(o, object.X_WO, j);
+      const Vector3d u = t1 - t0, v = o1 - o0;
+      // Parallel edges give no plane of their own (their ends' pairs do);
+      // within the tolerance of parallel the oracle asks nothing.
+      const Vector3d cross = u.cross(v);
+      if (!(cross.norm() > std::max(tolerance, 1e-10) * u.norm() * v.norm())) continue;
+      // The lines' closest points, which must lie on both edges.
+      const Vector3d w = t0 - o0;
+      const double det = u.dot(u) * v.dot(v) - u.dot(v) * u.dot(v);
+      const double a = (u.dot(v) * v.dot(w) - v.dot(v) * u.dot(w)) / det;
+      const double b = (u.dot(u) * v.dot(w) - u.dot(v) * u.dot(w)) / det;
+      if (a < tolerance || a > 1 - tolerance || b < tolerance || b > 1 - tolerance) continue;
+      const Vector3d on_tool = t0 + a * u, on_object = o0 + b * v;
+      // Out of the object and into the tool: either sign of the normal
+      // that does both (within the tolerance).
+      for (const double sign : {1.0, -1.0}) {
+        const Vector3d n = sign * cross.normalized();
+        if (!(n.dot(o_out) > tolerance * o_out.norm() &&
+              n.dot(t_out) < -tolerance * t_out.norm())) {
+          continue;
+        }
+        if (in_range(n.dot(on_tool - on_object))) planes.push_back({n, on_object});
+      }
+    }
+  }
+  return planes;
+}
+
+// Whether `planes` holds one that is `plane` (the builder's own
+// criterion: normals within 1e-9 in cosine, offsets within 1e-9 of the
+// tool's size; the oracle computes in another order, rounding ~1e-16).
+bool Holds(const std::vector<ConstraintPlane>& planes, const OraclePlane& plane, double size) {
+  return std::any_of(planes.begin(), planes.end(), [&](const ConstraintPlane& p) {
+    return p.normal_W.dot(plane.normal_W) > 1 - 1e-9 &&
+           std::abs(p.normal_W.dot(p.point_W - plane.point_W)) <= 1e-9 * size;
+  });
+}
+
+// Against the brute-force oracle: wherever the proxy moves within the
+// search's margin, the model made from the pairs gathered before holds
+// every plane that any pair of features of the tool and the object gives
+// there, and no other (no cap on the planes). A coarse ring tool through a
+// coarse ring (every kind of pair, many edge pairs) and a turned cube over
+// a faceted ball, at random gather poses near the object and random moves
+// within the margin.
+TEST(LocalModelBuilderTest, ModelsFromPairsHoldEveryPlaneOfAllPairs) {
+  const auto ring = MakeBody(MakeTorus(0.05, 0.008, 24, 8));
+  const auto hook = MakeBody(MakeTorus(0.05, 0.008, 24, 8));
+  const auto ball = MakeBody(MakeIcosphere(0.03, 2), At(0, 0, -0.03));
+  const auto cube = Tool();
+  struct Case {
+    const Body* tool;
+    const Body* object;
+    Isometry3d X_WP;  // the middle of the gather poses
+    double spread;    // how far from it they go
+  };
+  // The hook standing through the ring, its inside touching the ring's
+  // tube at +x; the cube resting on the ball's top.
+  Isometry3d through = Isometry3d::Identity();
+  through.linear() = Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d::UnitX()).toRotationMatrix();
+  through.translation() = Vector3d(0.05 + 0.05 - 0.016 - 0.004, 0, 0);
+  const Case cases[] = {{hook.get(), ring.get(), through, 0.004},
+                        {cube.get(), ball.get(), At(0, 0, kTool / 2 + 0.003), 0.004}};
+  const LocalModelOptions options{.radius_m = kRadius, .max_planes = 1 << 20};
+  std::mt19937 rng(31);
+  int oracle_planes = 0;
+  for (const Case& c : cases) {
+    const std::vector<PosedObject> posed{c.object->posed()};
+    const std::vector<ObjectId> ids{7};
+    const double size = c.tool->object.bounding_box().diagonal().norm();
+    const double behind = 1e-6 * size;  // the builder's stand-off allowance
+    for (int k = 0; k < 8; ++k) {
+      Isometry3d X_WP = c.X_WP;
+      X_WP.translation() += c.spread * testing_poses::RandomDirection(rng);
+      X_WP.linear() =
+          X_WP.linear() *
+          Eigen::AngleAxisd(0.05, testing_poses::RandomDirection(rng)).toRotationMatrix();
+      LocalModelPairs pairs;
+      const double margin = 0.15 * kRadius;
+      GatherLocalModelPairs(c.tool->posed(), X_WP, posed, ids, options, margin, pairs);
+      for (int j = 0; j < 3; ++j) {
+        const Isometry3d moved = j == 0 ? X_WP : MoveWithin(pairs, rng, margin);
+        LocalModel model;
+        ModelFromPairs(c.tool->object, ProxyAt(moved), moved.translation(), pairs, options, model);
+        for (const OraclePlane& plane :
+             AllPairsPlanes(*c.tool, moved, *c.object, kRadius, behind, 1e-7)) {
+          ++oracle_planes;
+          EXPECT_TRUE(Holds(model.planes, plane, size))
+              << "case " << k << " move " << j << ": missing n " << plane.normal_W.transpose()
+              << " at " << plane.point_W.transpose();
+        }
+        const std::vector<OraclePlane> loose =
+            AllPairsPlanes(*c.tool, moved, *c.object, kRadius, behind, -1e-7);
+        for (const ConstraintPlane& plane : model.planes) {
+          std::vector<ConstraintPlane> one{plane};
+          EXPECT_TRUE(std::any_of(loose.begin(), loose.end(),
+                                  [&](const OraclePlane& p) { return Holds(one, p, size); }))
+              << "case " << k << " move " << j << ": no pair gives n " << plane.normal_W.transpose()
+              << " at " << plane.point_W.transpose();
+        }
+      }
+    }
+  }
+  EXPECT_GT(oracle_planes, 1000);  // the poses came within the radius
 }
 
 // Moved bounds the move of any point the pairs hold: a shift counts its
