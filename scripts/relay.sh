@@ -90,10 +90,10 @@ PY
 if [ "$results" != /dev/null ]; then
   plots=""
   for op in "${operators[@]}"; do
-    for mode in on off; do
+    for mode in local_model server_force; do
       [ -f "$tmp/$op-$mode.dat" ] || continue
-      label="$op, $([ "$mode" = on ] && echo 'local model' || echo 'server force')"
-      style=$([ "$mode" = on ] && echo 'lw 2' || echo 'dt 2')
+      label="$op, ${mode/_/ }"
+      style=$([ "$mode" = local_model ] && echo 'lw 2' || echo 'dt 2')
       plots+="${plots:+, }\"$tmp/$op-$mode.dat\" using 1:COL with linespoints $style title \"$label\""
     done
   done

@@ -3,10 +3,10 @@
 // radius that covers where the hand can go before the next model arrives.
 //
 // A model is taken at the device pose of a frame's step and reaches the
-// device a round trip later; the server takes the next one when the proxy
-// has moved a quarter of the radius, or after `model_period_s` at most. So
-// a hand at speed v is at most v * (round trip + model period) / (3/4)
-// from the pose of the model it renders. The sizer keeps the peak speed
+// device a round trip later, and the next comes with a later frame: a hand
+// at speed v is about v * (round trip + the time between the frames that
+// bring models, `model_period_s` at most) from the pose of the model it
+// renders, and the safety factor covers the rest. The sizer keeps the peak speed
 // and the peak round trip of the last window (two half-windows, so a peak
 // is forgotten between one and two windows after it: a stall of the link
 // is remembered that long), and wants that distance times a safety
@@ -21,10 +21,9 @@ namespace hs {
 struct ValiditySizerOptions {
   /// How long a peak speed or round trip is remembered, seconds.
   double window_s = 1.0;
-  /// The longest the server waits before the next model, seconds.
+  /// The longest between two frames that bring models, seconds.
   double model_period_s = 0.05;
-  /// The factor over the distance the hand can travel (>= 4/3 covers the
-  /// quarter radius the proxy moves before the server takes a new model).
+  /// The factor over the distance the hand can travel.
   double safety = 1.5;
   /// The speed a hand is taken to reach at once from rest, metres a
   /// second: a hand still for a while may move the next moment, and the

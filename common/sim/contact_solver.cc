@@ -41,71 +41,59 @@ void Displace(const MassProperties& mass, const Vector3d& dx, const Vector3d& dt
 
 }  // namespace
 
-void ContactSolver::Solve(const MassProperties& body, FreeBodyState& state,
-                          std::span<SolverContact> contacts, double h_s) {
-  const size_t count = contacts.size();
-  if (count == 0) return;
-  rows_.resize(count);
-  order_.clear();
-  others_.clear();
-  patches_.clear();
-  const double inverse_mass = 1 / body.mass_kg;
-  const Vector3d c = CentreOfMass(body, state);
-  const Matrix3d inverse_I_W = InverseInertiaW(body, state);
+double ContactSolver::Response(const Vector3d& u, const Vector3d& r, int other,
+                               const Vector3d& r_other) const {
+  double k = inverse_mass_ + u.dot((inverse_I_W_ * r.cross(u)).cross(r));
+  if (other >= 0) {
+    const Other& o = others_[other];
+    k += 1 / o.mass->mass_kg + u.dot((o.inverse_I_W * r_other.cross(u)).cross(r_other));
+  }
+  return k;
+}
 
-  // 1 / effective mass along u at lever arm r (and r_other on the free
-  // other `other`, -1 for none): how much the relative velocity there
-  // changes along u per unit impulse along u.
-  auto response = [&](const Vector3d& u, const Vector3d& r, int other, const Vector3d& r_other) {
-    double k = inverse_mass + u.dot((inverse_I_W * r.cross(u)).cross(r));
-    if (other >= 0) {
-      const Other& o = others_[other];
-      k += 1 / o.mass->mass_kg + u.dot((o.inverse_I_W * r_other.cross(u)).cross(r_other));
-    }
-    return k;
-  };
-  for (size_t i = 0; i < count; ++i) {
-    const SolverContact& contact = contacts[i];
+int ContactSolver::OtherIndex(const SolverContact& contact) {
+  // Others are few: a linear search finds a body met before.
+  for (size_t o = 0; o < others_.size(); ++o) {
+    if (others_[o].state == contact.other.state) return static_cast<int>(o);
+  }
+  Other other;
+  other.mass = contact.other.mass;
+  other.state = contact.other.state;
+  other.c = CentreOfMass(*other.mass, *other.state);
+  // The other takes the impulses through its centre of mass: its turn is
+  // left to its own contacts, which this problem does not hold (a body
+  // landing off-centre on one resting on the floor would otherwise spin
+  // both, as if nothing held the lower one).
+  other.inverse_I_W = Matrix3d::Zero();
+  others_.push_back(other);
+  return static_cast<int>(others_.size()) - 1;
+}
+
+void ContactSolver::SetUpRows(const Vector3d& c, double h_s) {
+  for (size_t i = 0; i < contacts_.size(); ++i) {
+    const SolverContact& contact = contacts_[i];
     Row& row = rows_[i];
     row = Row{};
     row.r = contact.p_WC - c;
     if (contact.side == ContactSide::kBody) {
-      // Others are few: a linear search finds a body met before.
-      int found = -1;
-      for (size_t o = 0; o < others_.size(); ++o) {
-        if (others_[o].state == contact.other.state) found = static_cast<int>(o);
-      }
-      if (found < 0) {
-        Other other;
-        other.mass = contact.other.mass;
-        other.state = contact.other.state;
-        other.c = CentreOfMass(*other.mass, *other.state);
-        // The other takes the impulses through its centre of mass: its
-        // turn is left to its own contacts, which this problem does not
-        // hold (a body landing off-centre on one resting on the floor
-        // would otherwise spin both, as if nothing held the lower one).
-        other.inverse_I_W = Matrix3d::Zero();
-        found = static_cast<int>(others_.size());
-        others_.push_back(other);
-      }
-      row.other = found;
-      row.r_other = contact.p_WC - others_[found].c;
+      row.other = OtherIndex(contact);
+      row.r_other = contact.p_WC - others_[row.other].c;
     }
     Tangents(contact.normal_W, row.t1, row.t2);
-    row.k_n = response(contact.normal_W, row.r, row.other, row.r_other);
-    row.k_push = response(contact.normal_W, row.r, -1, Vector3d::Zero());
-    row.k_t1 = response(row.t1, row.r, row.other, row.r_other);
-    row.k_t2 = response(row.t2, row.r, row.other, row.r_other);
+    row.k_n = Response(contact.normal_W, row.r, row.other, row.r_other);
+    row.k_push = Response(contact.normal_W, row.r, -1, Vector3d::Zero());
+    row.k_t1 = Response(row.t1, row.r, row.other, row.r_other);
+    row.k_t2 = Response(row.t2, row.r, row.other, row.r_other);
     row.closing = std::max(0.0, -contact.depth_m) / h_s;
     if (contact.side == ContactSide::kTool) {
       // A tool's points that follow one another with one tag and one
       // normal are one patch.
-      const bool same = !patches_.empty() && i > 0 && contacts[i - 1].side == ContactSide::kTool &&
-                        contacts[i - 1].tag == contact.tag &&
-                        contacts[i - 1].normal_W == contact.normal_W;
+      const bool same = !patches_.empty() && i > 0 && contacts_[i - 1].side == ContactSide::kTool &&
+                        contacts_[i - 1].tag == contact.tag &&
+                        contacts_[i - 1].normal_W == contact.normal_W;
       if (!same) {
         Patch patch;
-        patch.first = i;
+        patch.first = static_cast<int>(i);
         patch.n = contact.normal_W;
         patch.v_other = contact.v_other_W;
         patch.depth = contact.depth_m;
@@ -134,55 +122,75 @@ void ContactSolver::Solve(const MassProperties& body, FreeBodyState& state,
     }
     const Vector3d middle = (lo + hi) / 2;
     patch.r = middle.x() * t1 + middle.y() * t2 + middle.z() * patch.n;
-    patch.k_n = response(patch.n, patch.r, -1, Vector3d::Zero());
+    patch.k_n = Response(patch.n, patch.r, -1, Vector3d::Zero());
     patch.closing = std::max(0.0, -patch.depth) / h_s;
   }
   // Bodies, then fixed objects: the last word in each sweep goes to what
   // must not give way (tools' patches come first of all).
   for (const ContactSide side : {ContactSide::kBody, ContactSide::kFixed}) {
-    for (size_t i = 0; i < count; ++i) {
-      if (contacts[i].side == side) order_.push_back(static_cast<int>(i));
+    for (size_t i = 0; i < contacts_.size(); ++i) {
+      if (contacts_[i].side == side) order_.push_back(static_cast<int>(i));
     }
   }
+}
 
-  // The velocity of the body's point at lever arm r relative to the other
-  // side's (a free other at r_other, else one moving at v_other).
-  auto relative_velocity = [&](const Vector3d& r, int other, const Vector3d& r_other,
-                               const Vector3d& v_other) {
-    Vector3d v = state.v_W + state.w_W.cross(r);
-    if (other >= 0) {
-      const FreeBodyState& o = *others_[other].state;
-      v -= o.v_W + o.w_W.cross(r_other);
-    } else {
-      v -= v_other;
-    }
-    return v;
-  };
-  auto row_velocity = [&](size_t i) {
-    const Row& row = rows_[i];
-    return relative_velocity(row.r, row.other, row.r_other, contacts[i].v_other_W);
-  };
-  auto apply = [&](const Vector3d& r, int other, const Vector3d& r_other, const Vector3d& impulse) {
-    state.v_W += inverse_mass * impulse;
-    state.w_W += inverse_I_W * r.cross(impulse);
-    if (other >= 0) {
-      const Other& o = others_[other];
-      o.state->v_W -= impulse / o.mass->mass_kg;
-      o.state->w_W -= o.inverse_I_W * r_other.cross(impulse);
-    }
-  };
-  auto apply_row = [&](size_t i, const Vector3d& impulse) {
-    const Row& row = rows_[i];
-    apply(row.r, row.other, row.r_other, impulse);
-  };
+Vector3d ContactSolver::RelativeVelocity(const Vector3d& r, int other, const Vector3d& r_other,
+                                         const Vector3d& v_other) const {
+  Vector3d v = state_->v_W + state_->w_W.cross(r);
+  if (other >= 0) {
+    const FreeBodyState& o = *others_[other].state;
+    v -= o.v_W + o.w_W.cross(r_other);
+  } else {
+    v -= v_other;
+  }
+  return v;
+}
 
+Vector3d ContactSolver::RowVelocity(size_t i) const {
+  const Row& row = rows_[i];
+  return RelativeVelocity(row.r, row.other, row.r_other, contacts_[i].v_other_W);
+}
+
+void ContactSolver::Apply(const Vector3d& r, int other, const Vector3d& r_other,
+                          const Vector3d& impulse) {
+  state_->v_W += inverse_mass_ * impulse;
+  state_->w_W += inverse_I_W_ * r.cross(impulse);
+  if (other >= 0) {
+    const Other& o = others_[other];
+    o.state->v_W -= impulse / o.mass->mass_kg;
+    o.state->w_W -= o.inverse_I_W * r_other.cross(impulse);
+  }
+}
+
+void ContactSolver::ApplyRow(size_t i, const Vector3d& impulse) {
+  const Row& row = rows_[i];
+  Apply(row.r, row.other, row.r_other, impulse);
+}
+
+void ContactSolver::Friction(size_t i, double limit) {
+  Row& row = rows_[i];
+  const Vector3d v = RowVelocity(i);
+  double t1 = row.tangent1 - row.t1.dot(v) / row.k_t1;
+  double t2 = row.tangent2 - row.t2.dot(v) / row.k_t2;
+  const double length = std::hypot(t1, t2);
+  if (length > limit) {
+    const double scale = length > 0 ? limit / length : 0.0;
+    t1 *= scale;
+    t2 *= scale;
+  }
+  ApplyRow(i, (t1 - row.tangent1) * row.t1 + (t2 - row.tangent2) * row.t2);
+  row.tangent1 = t1;
+  row.tangent2 = t2;
+}
+
+void ContactSolver::SolveVelocities() {
   // Bounds, from the velocities at the start: a tool's patch presses with
   // at least its grip, and stops the approach at its centroid at most as
   // far as a hard contact there would alone. The grips act at once.
   for (Patch& patch : patches_) {
-    const double approach = std::max(
-        0.0, -patch.n.dot(relative_velocity(patch.r, -1, Vector3d::Zero(), patch.v_other)) -
-                 patch.closing);
+    const double approach =
+        std::max(0.0, -patch.n.dot(RelativeVelocity(patch.r, -1, Vector3d::Zero(), patch.v_other)) -
+                          patch.closing);
     patch.hi = patch.lo + approach / patch.k_n;
     patch.normal = patch.lo;
   }
@@ -192,63 +200,48 @@ void ContactSolver::Solve(const MassProperties& body, FreeBodyState& state,
     row.hi = kInfinity;
   }
   for (const Patch& patch : patches_) {
-    if (patch.lo > 0) apply(patch.r, -1, Vector3d::Zero(), patch.lo * patch.n);
+    if (patch.lo > 0) Apply(patch.r, -1, Vector3d::Zero(), patch.lo * patch.n);
   }
-
-  // Friction at point i within `limit`; the normal row after it has the
-  // last word on the approach.
-  auto friction = [&](size_t i, double limit) {
-    Row& row = rows_[i];
-    const Vector3d v = row_velocity(i);
-    double t1 = row.tangent1 - row.t1.dot(v) / row.k_t1;
-    double t2 = row.tangent2 - row.t2.dot(v) / row.k_t2;
-    const double length = std::hypot(t1, t2);
-    if (length > limit) {
-      const double scale = length > 0 ? limit / length : 0.0;
-      t1 *= scale;
-      t2 *= scale;
-    }
-    apply_row(i, (t1 - row.tangent1) * row.t1 + (t2 - row.tangent2) * row.t2);
-    row.tangent1 = t1;
-    row.tangent2 = t2;
-  };
+  // Friction at each point within its limit; the normal row after it has
+  // the last word on the approach.
   for (int iteration = 0; iteration < options_.iterations; ++iteration) {
     for (Patch& patch : patches_) {
       const double share = patch.normal / static_cast<double>(patch.count);
       for (int k = 0; k < patch.count; ++k) {
         const size_t i = static_cast<size_t>(patch.first + k);
-        if (contacts[i].friction > 0) friction(i, contacts[i].friction * share);
+        if (contacts_[i].friction > 0) Friction(i, contacts_[i].friction * share);
       }
       const double vn =
-          patch.n.dot(relative_velocity(patch.r, -1, Vector3d::Zero(), patch.v_other)) +
+          patch.n.dot(RelativeVelocity(patch.r, -1, Vector3d::Zero(), patch.v_other)) +
           patch.closing;
       const double normal = std::clamp(patch.normal - vn / patch.k_n, patch.lo, patch.hi);
-      apply(patch.r, -1, Vector3d::Zero(), (normal - patch.normal) * patch.n);
+      Apply(patch.r, -1, Vector3d::Zero(), (normal - patch.normal) * patch.n);
       patch.normal = normal;
     }
     for (const int index : order_) {
       const size_t i = static_cast<size_t>(index);
-      const SolverContact& contact = contacts[i];
+      const SolverContact& contact = contacts_[i];
       Row& row = rows_[i];
-      if (contact.friction > 0) friction(i, contact.friction * row.normal);
-      const double vn = contact.normal_W.dot(row_velocity(i)) + row.closing;
+      if (contact.friction > 0) Friction(i, contact.friction * row.normal);
+      const double vn = contact.normal_W.dot(RowVelocity(i)) + row.closing;
       const double normal = std::clamp(row.normal - vn / row.k_n, row.lo, row.hi);
-      apply_row(i, (normal - row.normal) * contact.normal_W);
+      ApplyRow(i, (normal - row.normal) * contact.normal_W);
       row.normal = normal;
     }
   }
-  for (size_t i = 0; i < count; ++i) {
+  for (size_t i = 0; i < contacts_.size(); ++i) {
     const Row& row = rows_[i];
     const double normal =
         row.patch >= 0 ? patches_[row.patch].normal / patches_[row.patch].count : row.normal;
-    contacts[i].impulse_W =
-        normal * contacts[i].normal_W + row.tangent1 * row.t1 + row.tangent2 * row.t2;
+    contacts_[i].impulse_W =
+        normal * contacts_[i].normal_W + row.tangent1 * row.t1 + row.tangent2 * row.t2;
   }
+}
 
-  // The position pass: pseudo-impulses (kg*m) that move, not speed up,
-  // the body out along each contact's own normal. A tool's patch pushes
-  // the body at most its own advance; fixed objects and bodies push the
-  // depth, capped.
+void ContactSolver::SolvePositions(const MassProperties& body) {
+  // Pseudo-impulses (kg*m) that move, not speed up, the body out along
+  // each contact's own normal. A tool's patch pushes the body at most its
+  // own advance; fixed objects and bodies push the depth, capped.
   Vector3d dx = Vector3d::Zero(), dtheta = Vector3d::Zero();
   for (Patch& patch : patches_) {
     patch.push_hi = patch.max_push / patch.k_n;
@@ -257,13 +250,13 @@ void ContactSolver::Solve(const MassProperties& body, FreeBodyState& state,
   for (const int index : order_) {
     const size_t i = static_cast<size_t>(index);
     Row& row = rows_[i];
-    row.push_target = std::min(contacts[i].depth_m, std::max(0.0, contacts[i].max_push_m));
+    row.push_target = std::min(contacts_[i].depth_m, std::max(0.0, contacts_[i].max_push_m));
     row.push = 0;
   }
   auto pushed = [&](const Vector3d& n, const Vector3d& r) { return n.dot(dx + dtheta.cross(r)); };
   auto push_by = [&](const Vector3d& r, const Vector3d& p) {
-    dx += inverse_mass * p;
-    dtheta += inverse_I_W * r.cross(p);
+    dx += inverse_mass_ * p;
+    dtheta += inverse_I_W_ * r.cross(p);
   };
   for (int iteration = 0; iteration < options_.iterations; ++iteration) {
     for (Patch& patch : patches_) {
@@ -276,7 +269,7 @@ void ContactSolver::Solve(const MassProperties& body, FreeBodyState& state,
     for (const int index : order_) {
       const size_t i = static_cast<size_t>(index);
       Row& row = rows_[i];
-      const Vector3d& n = contacts[i].normal_W;
+      const Vector3d& n = contacts_[i].normal_W;
       // The body moves out of another body on its own: the other was
       // placed by its own contacts (a stack's lower cubes rest on the floor
       // and are not pressed into it from above).
@@ -286,7 +279,25 @@ void ContactSolver::Solve(const MassProperties& body, FreeBodyState& state,
       row.push = push;
     }
   }
-  Displace(body, dx, dtheta, state);
+  Displace(body, dx, dtheta, *state_);
+}
+
+void ContactSolver::Solve(const MassProperties& body, FreeBodyState& state,
+                          std::span<SolverContact> contacts, double h_s) {
+  if (contacts.empty()) return;
+  rows_.resize(contacts.size());
+  order_.clear();
+  others_.clear();
+  patches_.clear();
+  state_ = &state;
+  contacts_ = contacts;
+  inverse_mass_ = 1 / body.mass_kg;
+  inverse_I_W_ = InverseInertiaW(body, state);
+  SetUpRows(CentreOfMass(body, state), h_s);
+  SolveVelocities();
+  SolvePositions(body);
+  state_ = nullptr;
+  contacts_ = {};
 }
 
 }  // namespace hs

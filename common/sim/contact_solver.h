@@ -137,7 +137,34 @@ class ContactSolver {
     Matrix3d inverse_I_W = Matrix3d::Zero();
   };
 
+  // 1 / effective mass along u at lever arm r (and r_other on the free
+  // other `other`, -1 for none): how much the relative velocity there
+  // changes along u per unit impulse along u.
+  double Response(const Vector3d& u, const Vector3d& r, int other, const Vector3d& r_other) const;
+  // The index in others_ of contact's other body, added when new.
+  int OtherIndex(const SolverContact& contact);
+  // Rows, patches and order_ for contacts_, the body's centre of mass at c.
+  void SetUpRows(const Vector3d& c, double h_s);
+  // The velocity of the body's point at lever arm r relative to the other
+  // side's (a free other at r_other, else one moving at v_other).
+  Vector3d RelativeVelocity(const Vector3d& r, int other, const Vector3d& r_other,
+                            const Vector3d& v_other) const;
+  Vector3d RowVelocity(size_t i) const;
+  void Apply(const Vector3d& r, int other, const Vector3d& r_other, const Vector3d& impulse);
+  void ApplyRow(size_t i, const Vector3d& impulse);
+  // Friction at point i within `limit` (its accumulated impulse clamped).
+  void Friction(size_t i, double limit);
+  // The velocity pass; sets each contact's impulse_W.
+  void SolveVelocities();
+  // The position pass; moves the body.
+  void SolvePositions(const MassProperties& body);
+
   ContactSolverOptions options_;
+  // The body and contacts of the Solve running.
+  FreeBodyState* state_ = nullptr;
+  std::span<SolverContact> contacts_;
+  double inverse_mass_ = 0;
+  Matrix3d inverse_I_W_ = Matrix3d::Zero();
   std::vector<Row> rows_;
   std::vector<int> order_;  // non-tool rows: bodies, then fixed
   std::vector<Patch> patches_;

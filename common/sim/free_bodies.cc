@@ -213,6 +213,34 @@ void FreeBodies::AddFaceCorners(const Body& body, const SideContact& side, Objec
   }
 }
 
+// At most eight points, the farthest along eight directions on the face:
+// the query may report a point twice (two feature pairs) or add points
+// where the faces' triangulations cross, which would load one side of a
+// face more than the other.
+void FreeBodies::KeepEightPoints(const Vector3d& n) {
+  if (points_.size() <= 1) return;
+  Vector3d t1, t2;
+  FaceTangents(n, t1, t2);
+  const std::array<Vector3d, 8> directions = {t1,      -t1,     t2,       -t2,
+                                              t1 + t2, t1 - t2, -t1 + t2, -t1 - t2};
+  std::array<int, 8> picked;
+  int unique = 0;
+  for (const Vector3d& d : directions) {
+    int best = 0;
+    for (size_t i = 1; i < points_.size(); ++i) {
+      if (d.dot(points_[i].p_W) > d.dot(points_[best].p_W) + kSamePointM) {
+        best = static_cast<int>(i);
+      }
+    }
+    if (std::find(picked.begin(), picked.begin() + unique, best) == picked.begin() + unique) {
+      picked[unique++] = best;
+    }
+  }
+  std::sort(picked.begin(), picked.begin() + unique);
+  for (int k = 0; k < unique; ++k) points_[k] = points_[picked[k]];
+  points_.resize(unique);
+}
+
 bool FreeBodies::GatherContact(Body& body, const Isometry3d& X_WO_from, double h, int substeps,
                                ObjectId other, const ToolStage& tools) {
   const HapticObject& that = objects_[other].object;
@@ -295,32 +323,7 @@ bool FreeBodies::GatherContact(Body& body, const Isometry3d& X_WO_from, double h
     AddFaceCorners(body, found->moving, other, found->fixed, n, plane, depth, c.X_WO);
   }
   if (points_.empty()) points_.push_back({c_W, depth, X_FW * c_W});
-  // At most eight points, the farthest along eight directions on the face:
-  // the query may report a point twice (two feature pairs) or add points
-  // where the faces' triangulations cross, which would load one side of a
-  // face more than the other.
-  if (points_.size() > 1) {
-    Vector3d t1, t2;
-    FaceTangents(n, t1, t2);
-    const std::array<Vector3d, 8> directions = {t1,      -t1,     t2,       -t2,
-                                                t1 + t2, t1 - t2, -t1 + t2, -t1 - t2};
-    std::array<int, 8> picked;
-    int unique = 0;
-    for (const Vector3d& d : directions) {
-      int best = 0;
-      for (size_t i = 1; i < points_.size(); ++i) {
-        if (d.dot(points_[i].p_W) > d.dot(points_[best].p_W) + kSamePointM) {
-          best = static_cast<int>(i);
-        }
-      }
-      if (std::find(picked.begin(), picked.begin() + unique, best) == picked.begin() + unique) {
-        picked[unique++] = best;
-      }
-    }
-    std::sort(picked.begin(), picked.begin() + unique);
-    for (int k = 0; k < unique; ++k) points_[k] = points_[picked[k]];
-    points_.resize(unique);
-  }
+  KeepEightPoints(n);
   memory.normal_W = n;
   memory.points = static_cast<int>(points_.size());
   for (int k = 0; k < memory.points; ++k) {

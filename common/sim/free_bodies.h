@@ -83,6 +83,9 @@ class FreeBodies {
   // other's facing corners that lie over one of the body's. The exact
   // query finds a corner only within the touching tolerance, which a tilt
   // of 1e-8 rad exceeds.
+  // Keeps at most eight of points_, the farthest along eight directions
+  // on the face of normal `n`, in their order.
+  void KeepEightPoints(const Vector3d& n);
   void AddFaceCorners(const Body& body, const SideContact& side, ObjectId other,
                       const SideContact& other_side, const Vector3d& n, double plane, double depth,
                       const Isometry3d& X_WO_other);
