@@ -42,7 +42,9 @@ absl::StatusOr<pb::SceneObject> NewObject(const ObjectsArgs& args) {
     if (!read.ok()) return read.status();
     object = *std::move(read);
   } else {
-    object.set_kind(args.kind == "tool" ? pb::OBJECT_KIND_TOOL : pb::OBJECT_KIND_FIXED);
+    object.set_kind(args.kind == "tool"   ? pb::OBJECT_KIND_TOOL
+                    : args.kind == "free" ? pb::OBJECT_KIND_FREE
+                                          : pb::OBJECT_KIND_FIXED);
     pb::ModelSource* model = object.mutable_model();
     if (!args.box.empty()) {
       absl::StatusOr<Vector3d> size = ParseVector3(args.box);
@@ -149,8 +151,8 @@ void AddObjectsCommand(CLI::App& app, int& exit_code) {
     return cmd;
   };
   CLI::App* add = action(objects->add_subcommand("add", "Add an object to a scene"), "add");
-  add->add_option("--kind", args->kind, "fixed or tool")
-      ->check(CLI::IsMember({"fixed", "tool"}))
+  add->add_option("--kind", args->kind, "fixed, tool or free (moved by the simulation)")
+      ->check(CLI::IsMember({"fixed", "tool", "free"}))
       ->capture_default_str();
   add->add_option("--box", args->box, "A box: full side lengths x,y,z, metres")
       ->check(Vector3Value());

@@ -13,7 +13,16 @@ namespace {
 namespace pb = haptics::v1;
 
 const char* KindName(pb::ObjectKind kind) {
-  return kind == pb::OBJECT_KIND_TOOL ? "tool" : kind == pb::OBJECT_KIND_FIXED ? "fixed" : "?";
+  switch (kind) {
+    case pb::OBJECT_KIND_TOOL:
+      return "tool";
+    case pb::OBJECT_KIND_FIXED:
+      return "fixed";
+    case pb::OBJECT_KIND_FREE:
+      return "free";
+    default:
+      return "?";
+  }
 }
 
 }  // namespace

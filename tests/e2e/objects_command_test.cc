@@ -51,6 +51,19 @@ TEST_F(ObjectsCommandTest, AddUpdateRemove) {
   EXPECT_EQ(server_.Get("s").spec().objects_size(), 2);
 }
 
+// A free body is added as one and listed with its kind.
+TEST_F(ObjectsCommandTest, AddsAFreeBodyAndListsItsKind) {
+  ObjectsArgs add = Args("add", "pebble");
+  add.kind = "free";
+  add.box = "0.02,0.02,0.02";
+  add.pose = "0,0,0.3,0,0,0";
+  ASSERT_EQ(RunObjects(add, out_, err_), kExitOk) << err_.str();
+  const haptics::v1::SceneSpec spec = server_.Get("s").spec();
+  ASSERT_EQ(spec.objects_size(), 3);
+  EXPECT_EQ(spec.objects(2).kind(), haptics::v1::OBJECT_KIND_FREE);
+  EXPECT_NE(out_.str().find("  pebble (free) at (0, 0, 0.3) m\n"), std::string::npos) << out_.str();
+}
+
 // Refusals, unknown names and bad local values each have their exit status.
 TEST_F(ObjectsCommandTest, ExitStatusesOfFailures) {
   ObjectsArgs taken = Args("add", "table");

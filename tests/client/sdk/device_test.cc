@@ -85,13 +85,23 @@ bool Touching(const TickOutput& out) {
 }
 
 // Moves the device from the probe's home (z = 0.1) down to kPressedZ in
-// 100 ticks, then holds it until it touches.
+// 100 ticks, then holds it until it touches and its force has settled: 50
+// ticks in a row within 1 mN of the one before. A model that arrives late
+// (a loaded machine) changes the force by at most 0.25 N a tick (the
+// loop's switch step), so the first touching tick may be on the way.
 TickOutput Press(Device& device) {
   for (int k = 0; k <= 100; ++k) {
     device.Tick(At(0.1 + (kPressedZ - 0.1) * k / 100.0));
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  return TickUntil(device, At(kPressedZ), Touching);
+  double last_force_n = 0;
+  int steady_ticks = 0;
+  return TickUntil(device, At(kPressedZ), [&](const TickOutput& out) {
+    const bool steady = Touching(out) && std::abs(out.force_n[2] - last_force_n) < 1e-3;
+    last_force_n = out.force_n[2];
+    steady_ticks = steady ? steady_ticks + 1 : 0;
+    return steady_ticks >= 50;
+  });
 }
 
 // A session on the server at `port` and a device on the probe, pressed
