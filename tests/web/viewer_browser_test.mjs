@@ -610,7 +610,8 @@ async function main() {
   const pebbleOn = async (page) => vec3((await state(page)).bodies?.pebble?.mesh_p);
   const within = (p, q, tolerance) => p && p.every((v, i) => Math.abs(v - q[i]) <= tolerance);
   let pebble = null;
-  for (const end4 = Date.now() + 5000; Date.now() < end4; await sleep(100)) {
+  // Up to 15 s: on a loaded machine the edit takes seconds to reach page B.
+  for (const end4 = Date.now() + 15000; Date.now() < end4; await sleep(100)) {
     pebble = await pebbleOn(b);
     if (within(pebble, [0.3, 0.3, 0.01], 1e-3)) break;
   }

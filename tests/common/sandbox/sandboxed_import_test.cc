@@ -9,6 +9,7 @@
 
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/common/sanitized_build.h"
 #include "tests/common/scratch_dir.h"
 
 namespace hs {
@@ -153,13 +154,7 @@ TEST(SandboxedImportTest, ReferencesToOtherFilesReadNothing) {
 
 // Too little memory ends the import with a message naming the file.
 TEST(SandboxedImportTest, MemoryLimitEndsTheImport) {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-  GTEST_SKIP() << "sanitized workers take no address-space limit";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-  GTEST_SKIP() << "sanitized workers take no address-space limit";
-#endif
-#endif
+  if (hs::testing::kSanitizedBuild) GTEST_SKIP() << "sanitized workers take no address-space limit";
   const std::string kidney = DataPath("kidney.obj");
   absl::StatusOr<ImportedModel> starved =
       SandboxedImport(kidney, {}, SandboxLimits{.memory_bytes = 16 << 20});
