@@ -460,7 +460,8 @@ TEST(LocalModelBuilderTest, ModelsFromPairsHoldEveryPlaneOfAllPairs) {
       }
     }
   }
-  EXPECT_GT(oracle_planes, 1000);  // the poses came within the radius
+  // The poses came within the radius (a quarter of them under a sanitizer).
+  EXPECT_GT(oracle_planes, hs::testing::kSanitizedBuild ? 250 : 1000);
 }
 
 // Moved bounds the move of any point the pairs hold: a shift counts its
