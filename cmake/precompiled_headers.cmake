@@ -1,7 +1,8 @@
 # Precompiled headers: the heavy headers most translation units include
 # (the standard library, Eigen, gRPC and the service's messages, CLI11,
 # nlohmann-json; GoogleTest for the tests) are parsed once per build
-# instead of once per file, which halves a cold build on two cores.
+# instead of once per file: with line tables only (HS_DEBUG_INFO), a cold
+# build on two cores went from 42.5 to about 27 min (2026-11-28).
 #
 # Each set is built by a host target of its own (cmake/precompiled_headers.cc,
 # an empty translation unit) and reused by the targets that include those
