@@ -20,6 +20,19 @@ namespace {
 namespace pb = haptics::v1;
 using Clock = std::chrono::steady_clock;
 
+// DepthBehindProxy of `tool`'s frame (0 when a pose or normal is not a
+// finite one).
+double ProxyDepth(const pb::ToolState& tool) {
+  const absl::StatusOr<Vector3d> p_WD = VectorFromProto(tool.device_pose().position_m(), "device");
+  const absl::StatusOr<Vector3d> p_WP = VectorFromProto(tool.proxy_pose().position_m(), "proxy");
+  std::vector<Vector3d> normals;
+  for (const pb::Contact& c : tool.contacts()) {
+    const absl::StatusOr<Vector3d> n = VectorFromProto(c.normal_w(), "normal");
+    if (n.ok()) normals.push_back(*n);
+  }
+  return p_WD.ok() && p_WP.ok() ? DepthBehindProxy(*p_WD, *p_WP, normals) : 0;
+}
+
 // What the device reads from `frame` for `tool`.
 ServerFrame ReadFrame(const pb::Frame& frame, const std::string& tool) {
   ServerFrame out;
@@ -36,7 +49,7 @@ ServerFrame ReadFrame(const pb::Frame& frame, const std::string& tool) {
         out.model_rejected = true;
       }
     }
-    for (const pb::Contact& c : t.contacts()) out.depth_m = std::max(out.depth_m, c.depth_m());
+    out.depth_m = ProxyDepth(t);
   }
   return out;
 }

@@ -7,6 +7,13 @@
 
 namespace hs::cli {
 
+double DepthBehindProxy(const Vector3d& p_WD, const Vector3d& p_WP,
+                        std::span<const Vector3d> normals_W) {
+  double depth = 0;
+  for (const Vector3d& n : normals_W) depth = std::max(depth, (p_WP - p_WD).dot(n));
+  return depth;
+}
+
 RemoteRun::RemoteRun(const RemoteRunOptions& options, const Isometry3d& start)
     : options_(options),
       hand_(options.motion, options.hand, start),

@@ -43,9 +43,22 @@ struct ServerFrame {
   std::optional<LocalModel> model;
   /// It carried one that failed the checks (not rendered).
   bool model_rejected = false;
-  /// The deepest contact of the tool at the applied pose, metres.
+  /// How deep the device is in the objects at the applied pose, metres
+  /// (DepthBehindProxy).
   double depth_m = 0;
 };
+
+/// How deep the device at `p_WD` is in the objects whose contacts have the
+/// unit normals `normals_W` (each from the object toward the tool), while
+/// the proxy rests at `p_WP` on their surface: the device's distance behind
+/// the proxy along each normal, the deepest (0 in front of them all). It is
+/// the hand's depth under the surface it touches, whatever the path: the
+/// contact's own depth is measured along the tool's motion since the last
+/// applied pose, which, when a stalled link hands the server poses in a
+/// burst, runs sideways through the object and reads deeper than the hand
+/// is.
+double DepthBehindProxy(const Vector3d& p_WD, const Vector3d& p_WP,
+                        std::span<const Vector3d> normals_W);
 
 struct RemoteRunOptions {
   OperatorMotion motion = OperatorMotion::kPress;
@@ -69,8 +82,8 @@ struct RemoteSummary {
   double energy_j = 0;
   /// The largest change of the rendered force between two ticks, newtons.
   double max_force_step_n = 0;
-  /// How far the device went into the objects (the server's contact depth
-  /// at each applied pose), p99 and largest, metres.
+  /// How far the device went into the objects (DepthBehindProxy at each
+  /// applied pose, as the server's frame gives it), p99 and largest, metres.
   double penetration_p99_m = 0;
   double penetration_max_m = 0;
   /// RMS of the rendered force against a reference run's, tick by tick, N
