@@ -80,6 +80,7 @@ void ToolStage::SeatDevice(ObjectId id, const Isometry3d& X_WD) {
 }
 
 bool ToolStage::NothingToStep() const {
+  if (objects_.obstacles().size() != last_obstacle_count_) return false;
   for (size_t i = 0; i < tools_.size(); ++i) {
     if (tools_[i].moved || scratch_[i].model_wanted) return false;
   }
@@ -130,9 +131,12 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
   // thread.
   const bool contacts = stages.Has(Effect::kCollision) || stages.Has(Effect::kContactSet);
   const bool proxy = stages.Has(Effect::kReversingVector);
+  if (proxy) GroupIslands(stages);
   jobs_.clear();
   for (int i = 0; i < static_cast<int>(tools_.size()); ++i) {
+    if (!proxy) tools_[i].held = tools_[i].alone = false;
     scratch_[i].X_WP_now = tools_[i].X_WP;
+    if (tools_[i].held) continue;
     if (contacts) {
       jobs_.push_back({i, true});
     } else {
@@ -141,19 +145,9 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
     if (!proxy) StepProxy(i, {}, stages, frames[i], scratch_[i]);
   }
   if (proxy) {
-    reach_boxes_.resize(tools_.size());
-    for (size_t i = 0; i < tools_.size(); ++i) {
-      const Tool& tool = tools_[i];
-      const SceneObjects::Object& t = objects_[tool.id];
-      // The proxy only moves toward the device: every pose it takes lies
-      // within the device's distance of the device pose (plus a stand-off
-      // per slide, far under the margin added here).
-      const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
-                           1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
-      reach_boxes_[i] = GrowBox(WorldBox(t.object, tool.X_WD), reach);
+    for (int k = 0; k < islands_.size(); ++k) {
+      if (!tools_[islands_.island(k).front()].held) jobs_.push_back({k, false});
     }
-    islands_.Group(reach_boxes_);
-    for (int k = 0; k < islands_.size(); ++k) jobs_.push_back({k, false});
   }
   workers.ForEach(static_cast<int>(jobs_.size()), [&](int k) { RunJob(jobs_[k], stages, frames); });
   if (stages.Has(Effect::kForce)) AddToolReactions(frames);
@@ -168,6 +162,38 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
     AddStats(stats, scratch_[i].contact_stats);
     AddStats(stats, scratch_[i].proxy_stats);
   }
+  last_stages_ = stages;
+  last_obstacle_count_ = objects_.obstacles().size();
+}
+
+void ToolStage::GroupIslands(EffectSet stages) {
+  reach_boxes_.resize(tools_.size());
+  for (size_t i = 0; i < tools_.size(); ++i) {
+    const Tool& tool = tools_[i];
+    const SceneObjects::Object& t = objects_[tool.id];
+    // The proxy only moves toward the device: every pose it takes lies
+    // within the device's distance of the device pose (plus a stand-off
+    // per slide, far under the margin added here).
+    const double reach = (tool.X_WD.translation() - tool.X_WP.translation()).norm() +
+                         1e-5 * t.object.bounding_box().diagonal().norm() + t.model.margin_m();
+    reach_boxes_[i] = GrowBox(WorldBox(t.object, tool.X_WD), reach);
+  }
+  islands_.Group(reach_boxes_);
+  for (int k = 0; k < islands_.size(); ++k) {
+    const std::span<const int> island = islands_.island(k);
+    for (const int i : island) {
+      const bool alone = island.size() == 1;
+      tools_[i].held = Holds(i, stages, alone);
+      tools_[i].alone = alone;
+    }
+  }
+}
+
+bool ToolStage::Holds(int index, EffectSet stages, bool alone) const {
+  const Tool& tool = tools_[index];
+  return alone && tool.alone && !tool.moved && !tool.seated && !scratch_[index].model_wanted &&
+         stages == last_stages_ && !stages.Has(Effect::kFreeBodyMotion) &&
+         objects_.obstacles().size() == last_obstacle_count_;
 }
 
 void ToolStage::RunJob(StepJob job, EffectSet stages, std::vector<ToolFrame>& frames) {

@@ -44,9 +44,9 @@ class ToolStage {
   /// swept from the last device's pose, and the proxy moves to it from the
   /// tool's home pose (where Add put it).
   void SeatDevice(ObjectId id, const Isometry3d& X_WD);
-  /// No device moved since the last step and no tool wants a fresh local
-  /// model: the step holds the last frame (docs/simulation.md, Still
-  /// devices).
+  /// No device moved since the last step, no tool wants a fresh local
+  /// model and no object was added: the step holds the last frame
+  /// (docs/simulation.md, Still devices).
   bool NothingToStep() const;
   /// Tool `id`'s next step builds a fresh local model (its device went past
   /// the last one's validity sphere); `id` must be a tool.
@@ -84,6 +84,10 @@ class ToolStage {
     Isometry3d X_WO_home;      // where Add put it
     bool moved = true;
     bool seated = false;  // SeatDevice since the last step
+    // Its proxy's island of the last step held no other tool.
+    bool alone = false;
+    // This step holds the tool's last frame (Holds).
+    bool held = false;
   };
   // What one tool's step writes besides its frame, so that tools, and the
   // two halves of a tool's step, can be stepped at once: each half writes
@@ -145,6 +149,15 @@ class ToolStage {
     kEvery,         // every target (options_.broad_phase off)
   };
 
+  // Groups the tools' reach boxes into islands_, and marks each tool that
+  // this step holds (Tool::held).
+  void GroupIslands(EffectSet stages);
+  // A tool whose device sent no changed pose, that wants no fresh model,
+  // whose island held no other tool in the last step nor in this one, in a
+  // step of the same stages and objects without free bodies: its step
+  // would bring no new information (docs/simulation.md, Still devices),
+  // and it keeps its last frame.
+  bool Holds(int index, EffectSet stages, bool alone) const;
   void RunJob(StepJob job, EffectSet stages, std::vector<ToolFrame>& frames);
   // The proxy halves of an island's tools (indices into tools_), in order.
   void StepIsland(std::span<const int> island, EffectSet stages, std::vector<ToolFrame>& frames);
@@ -196,6 +209,10 @@ class ToolStage {
   // islands they make.
   std::vector<AlignedBox3d> reach_boxes_;
   ToolIslands islands_;
+  // The stages of the last step (none before the first), and how many
+  // objects the proxies kept out of then.
+  EffectSet last_stages_;
+  size_t last_obstacle_count_ = 0;
   // The broad phase's pairs at the device poses, once per step that runs
   // the collision stage without continuous collision.
   std::vector<std::pair<ObjectId, ObjectId>> broad_pairs_;

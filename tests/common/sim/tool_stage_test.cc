@@ -236,10 +236,65 @@ TEST(ToolStageTest, StillDevicesCostNoQuery) {
     ExpectSameToolFrames(pressed, still);
   }
   EXPECT_EQ(scene->stats()[static_cast<int>(Effect::kReversingVector)].runs, runs);
+  // An object added under the still probe may change what it touches.
+  (void)*scene->AddObject(*HapticObject::Create("pad", MakeBox(Vector3d::Constant(0.01))),
+                          ObjectKind::kFixed, At(0.1, 0, 0.075));
+  EXPECT_TRUE(scene->Step().stages_run.Has(Effect::kReversingVector));
+  EXPECT_EQ(scene->Step().stages_run, EffectSet());
   ASSERT_TRUE(scene->RequestLocalModel(2).ok());
   EXPECT_TRUE(scene->Step().stages_run.Has(Effect::kLocalModel));
   scene->SetNeeded(EffectSet::All());
   EXPECT_TRUE(scene->Step().stages_run.Has(Effect::kContactSet));
+}
+
+// The organ on its floor and a probe over each side of its crest, 20 cm
+// apart (ids 2 and 3), with a remote device's needs; `both` false leaves
+// the second probe out.
+std::unique_ptr<Scene> ProbesApartScene(bool both) {
+  std::unique_ptr<Scene> scene = *Scene::Create({});
+  (void)*scene->AddObject(*HapticObject::Create("floor", MakeBox(Vector3d(1, 1, 0.05))),
+                          ObjectKind::kFixed, At(0, 0, -0.025));
+  (void)*scene->AddObject(*HapticObject::Create("organ", MakeTorus(0.1, 0.04, 48, 24)),
+                          ObjectKind::kFixed, At(0, 0, 0.04));
+  for (const double x : both ? std::vector{0.1, -0.1} : std::vector{0.1}) {
+    (void)*scene->AddObject(*HapticObject::Create("probe", MakeBox(Vector3d::Constant(0.02))),
+                            ObjectKind::kTool, At(x, 0, 0.1));
+  }
+  scene->SetNeeded(EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel});
+  return scene;
+}
+
+// A still tool costs no query while another tool far from it moves: after
+// pressing into the organ, the first probe's device holds its pose while
+// the second slides on the other side. The oracle: the first probe's
+// frames are those of a scene where it is alone (whose still steps hold
+// the whole frame), and the proxy stage runs once a step, for the second.
+// When the second device comes within the first's reach, both step.
+TEST(ToolStageTest, AStillToolCostsNoQueryWhileAnotherMoves) {
+  std::unique_ptr<Scene> both = ProbesApartScene(true);
+  std::unique_ptr<Scene> alone = ProbesApartScene(false);
+  auto reversing_runs = [&] {
+    return both->stats()[static_cast<int>(Effect::kReversingVector)].runs;
+  };
+  for (int step = 0; step < 30; ++step) {
+    const Isometry3d first = At(0.1, 0, 0.09 - 0.001 * std::min(step, 11));
+    ASSERT_TRUE(both->SetDevicePose(2, first).ok());
+    ASSERT_TRUE(alone->SetDevicePose(2, first).ok());
+    ASSERT_TRUE(both->SetDevicePose(3, At(-0.1 + 0.0005 * step, 0, 0.085)).ok());
+    const int64_t runs = reversing_runs();
+    const StepFrame& b = both->Step();
+    const StepFrame& a = alone->Step();
+    ExpectSameToolFrame(a.tools[0], b.tools[0]);
+    if (step >= 13) {
+      EXPECT_EQ(reversing_runs(), runs + 1) << step;
+      EXPECT_GT(b.tools[0].force_W.norm(), 0);
+    }
+  }
+  // The second device next to the first: they may meet, and both step.
+  ASSERT_TRUE(both->SetDevicePose(3, At(0.1, 0.021, 0.1)).ok());
+  const int64_t runs = reversing_runs();
+  both->Step();
+  EXPECT_EQ(reversing_runs(), runs + 2);
 }
 
 }  // namespace
