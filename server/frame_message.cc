@@ -14,6 +14,15 @@ const ToolHolder* HolderOf(const StepSnapshot& s, size_t i) {
   return holder.sink != nullptr ? &holder : nullptr;
 }
 
+// The tool `stream`'s device holds, -1 for none.
+ObjectId OwnTool(const StepSnapshot& s, const FrameSink* stream) {
+  for (size_t i = 0; i < s.frame.tools.size(); ++i) {
+    const ToolHolder* holder = HolderOf(s, i);
+    if (holder != nullptr && holder->sink == stream) return s.frame.tools[i].tool;
+  }
+  return -1;
+}
+
 }  // namespace
 
 void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const FrameSink* stream,
@@ -24,26 +33,29 @@ void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const Fram
   frame.set_time_s(s.time_s);
   FrameParts without_models = parts;
   without_models.local_model = false;
+  if (sent.own_tool_only) without_models.only_tool = OwnTool(s, stream);
   StepFrameToProto(s.frame, *s.names, without_models, &frame);
   if (sent.scene != s.names.get()) {  // a new scene: its models are new
     sent.scene = s.names.get();
     sent.revisions.clear();
   }
   sent.revisions.resize(s.frame.tools.size(), 0);
+  int k = 0;  // the tool's entry in `frame`
   for (size_t i = 0; i < s.frame.tools.size(); ++i) {
+    if (without_models.only_tool && *without_models.only_tool != s.frame.tools[i].tool) continue;
+    haptics::v1::ToolState& state = *frame.mutable_tools(k++);
     const ToolHolder* holder = HolderOf(s, i);
     const bool own = holder != nullptr && holder->sink == stream;
-    if (holder != nullptr) frame.mutable_tools(i)->set_holder(holder->name);
-    frame.mutable_tools(i)->set_last_pose_sequence(s.applied[i].sequence);
-    frame.mutable_tools(i)->set_last_pose_device_time_ns(s.applied[i].device_time_ns);
+    if (holder != nullptr) state.set_holder(holder->name);
+    state.set_last_pose_sequence(s.applied[i].sequence);
+    state.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
     if (own) {
       frame.set_last_pose_sequence(s.applied[i].sequence);
       frame.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
     }
     const LocalModel& model = s.frame.tools[i].local_model;
-    if (parts.local_model && model.revision != 0 && sent.revisions[i] != model.revision &&
-        (own || !sent.own_tool_only)) {
-      LocalModelToProto(model, *s.names, frame.mutable_tools(i)->mutable_local_model());
+    if (parts.local_model && model.revision != 0 && sent.revisions[i] != model.revision) {
+      LocalModelToProto(model, *s.names, state.mutable_local_model());
       sent.revisions[i] = model.revision;
     }
   }

@@ -18,7 +18,8 @@ namespace hs {
 /// The local models one stream has been sent: each revision goes out once,
 /// and a frame without a tool's model means its last one still holds.
 struct ModelsSent {
-  /// A device stream gets its own tool's model only; a viewer every tool's.
+  /// A device stream gets its own tool's state and model only (all it
+  /// renders from, and the least to send); a viewer every tool's.
   bool own_tool_only = false;
   /// The scene they were sent for (its StepSnapshot::names), and the
   /// revision sent for each of its frame's tools (0: none).
@@ -28,7 +29,8 @@ struct ModelsSent {
 
 /// Writes `s` over `frame` (cleared first). `stream` is the stream the
 /// frame goes to: the tool its device holds (StepSnapshot::holders) gets
-/// the last applied pose. Local models (parts.local_model) go out as
+/// the last applied pose, and is the only tool in the frame when
+/// `sent.own_tool_only`. Local models (parts.local_model) go out as
 /// `sent` says, which it updates. `dropped` the frames the stream dropped
 /// so far, `sent_unix_ns` the wall clock at sending.
 void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const FrameSink* stream,

@@ -49,7 +49,8 @@ class FramePump {
   struct Options {
     /// The parts of each step the stream receives.
     FrameParts parts;
-    /// A device's stream (its own tool's local model only), or a viewer's.
+    /// A device's stream (its own tool's state and local model only), or a
+    /// viewer's (every tool's).
     bool device = false;
     /// Frames waiting at most (>= 1, at most kViewerQueueFrames); 1 is
     /// latest-wins. A stream with a frame rate always has 1.

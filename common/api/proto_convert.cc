@@ -152,6 +152,7 @@ void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& na
   out->clear_stages_run();
   EffectsToProto(frame.stages_run, out->mutable_stages_run());
   for (const ToolFrame& t : frame.tools) {
+    if (parts.only_tool && *parts.only_tool != t.tool) continue;
     pb::ToolState* tool = out->add_tools();
     tool->set_tool(names[t.tool]);
     if (parts.poses) {

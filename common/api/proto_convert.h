@@ -3,6 +3,7 @@
 // proto <-> domain edge. Incoming values are validated here, before they
 // reach the simulation core.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,9 @@ struct FrameParts {
   bool local_model = true;
   /// The free bodies (the stream needs free-body motion).
   bool bodies = true;
+  /// Unset: every tool's state; else the state of the tool of this id only
+  /// (none when no tool has it).
+  std::optional<ObjectId> only_tool;
 };
 
 /// Fills `out`'s tools, stages, clashes and bodies from `frame`, keeping

@@ -151,7 +151,8 @@ TEST(SessionServiceTest, DeviceFramesEqualOfflineScene) {
 
 // Two devices (each its own tool) and a viewer in one scene receive the
 // same frames: every step id seen by more than one stream carries the same
-// tool states, and the streams overlap on most steps.
+// state of each tool, and the streams overlap on most steps. A device's
+// frames carry its own tool only; the viewer's every tool.
 TEST(SessionServiceTest, TwoDevicesAndViewerSeeTheSameSteps) {
   TestServer server;
   server.Create(SmallScene("shared", /*second_tool=*/true));
@@ -162,12 +163,13 @@ TEST(SessionServiceTest, TwoDevicesAndViewerSeeTheSameSteps) {
   Device a(server, "shared", "probe");
   Device b(server, "shared", "stylus");
 
-  std::map<int64_t, std::string> seen[3];
+  // Per stream, per step: each tool's state, serialized, by tool name.
+  std::map<int64_t, std::map<std::string, std::string>> seen[3];
   auto collect = [&](int who, auto read) {
     pb::Frame frame;
     for (int n = 0; n < 200 && read(frame); ++n) {
-      std::string tools;
-      for (const auto& t : frame.tools()) tools += t.SerializeAsString();
+      std::map<std::string, std::string> tools;
+      for (const auto& t : frame.tools()) tools[t.tool()] = t.SerializeAsString();
       if (!seen[who].empty()) {
         EXPECT_GT(frame.step(), seen[who].rbegin()->first);
       }
@@ -188,13 +190,17 @@ TEST(SessionServiceTest, TwoDevicesAndViewerSeeTheSameSteps) {
   ta.join();
   tb.join();
 
+  const std::string own[2] = {"probe", "stylus"};
   int common = 0;
   for (const auto& [step, tools] : seen[2]) {
+    EXPECT_EQ(tools.size(), 2u) << "step " << step;
     for (int who = 0; who < 2; ++who) {
       const auto it = seen[who].find(step);
       if (it == seen[who].end()) continue;
       ++common;
-      EXPECT_EQ(it->second, tools) << "step " << step;
+      ASSERT_EQ(it->second.size(), 1u) << "step " << step;
+      ASSERT_TRUE(it->second.contains(own[who])) << "step " << step;
+      EXPECT_EQ(it->second.at(own[who]), tools.at(own[who])) << "step " << step;
     }
   }
   // Device streams are latest-wins, so on a loaded machine they skip steps.

@@ -72,5 +72,23 @@ TEST(ProtoConvertTest, ClashesByNameWithContacts) {
   EXPECT_EQ(out.clashes_size(), 0);
 }
 
+// Every tool goes out unless one is asked for: then that one alone, and
+// none for an id no tool has.
+TEST(ProtoConvertTest, OnlyTheToolAskedFor) {
+  StepFrame frame;
+  frame.tools.resize(2);
+  frame.tools[0].tool = 1;
+  frame.tools[1].tool = 2;
+  const std::vector<std::string> names = {"box", "left", "right"};
+  pb::Frame out;
+  StepFrameToProto(frame, names, FrameParts{}, &out);
+  ASSERT_EQ(out.tools_size(), 2);
+  StepFrameToProto(frame, names, FrameParts{.only_tool = 2}, &out);
+  ASSERT_EQ(out.tools_size(), 1);
+  EXPECT_EQ(out.tools(0).tool(), "right");
+  StepFrameToProto(frame, names, FrameParts{.only_tool = -1}, &out);
+  EXPECT_EQ(out.tools_size(), 0);
+}
+
 }  // namespace
 }  // namespace hs
