@@ -4,28 +4,13 @@
 
 #include "client/channel.h"
 #include "client/exit_codes.h"
+#include "common/api/object_kind_name.h"
 #include "common/api/scene_file.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 
 namespace hs::cli {
-namespace {
 
 namespace pb = haptics::v1;
-
-const char* KindName(pb::ObjectKind kind) {
-  switch (kind) {
-    case pb::OBJECT_KIND_TOOL:
-      return "tool";
-    case pb::OBJECT_KIND_FIXED:
-      return "fixed";
-    case pb::OBJECT_KIND_FREE:
-      return "free";
-    default:
-      return "?";
-  }
-}
-
-}  // namespace
 
 void PrintSceneInfo(const pb::SceneInfo& info, bool json, bool with_objects, std::ostream& out) {
   if (json) {
@@ -38,8 +23,8 @@ void PrintSceneInfo(const pb::SceneInfo& info, bool json, bool with_objects, std
   if (!with_objects) return;
   for (const pb::SceneObject& object : info.spec().objects()) {
     const pb::Vector3& p = object.pose().position_m();
-    out << "  " << object.name() << " (" << KindName(object.kind()) << ") at (" << p.x() << ", "
-        << p.y() << ", " << p.z() << ") m\n";
+    out << "  " << object.name() << " (" << ObjectKindName(object.kind()) << ") at (" << p.x()
+        << ", " << p.y() << ", " << p.z() << ") m\n";
   }
   for (const std::string& tool : info.claimed_tools())
     out << "  held by a device: " << tool << "\n";

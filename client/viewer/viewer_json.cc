@@ -1,5 +1,7 @@
 #include "client/viewer/viewer_json.h"
 
+#include "common/api/object_kind_name.h"
+
 namespace hs::cli {
 namespace {
 
@@ -43,17 +45,6 @@ json ContactJson(const pb::Contact& c) {
           {"points", points},
           {"tool_side", SideJson(c.tool_side())},
           {"object_side", SideJson(c.object_side())}};
-}
-
-const char* ObjectKindName(pb::ObjectKind kind) {
-  switch (kind) {
-    case pb::OBJECT_KIND_TOOL:
-      return "tool";
-    case pb::OBJECT_KIND_FREE:
-      return "free";
-    default:
-      return "fixed";
-  }
 }
 
 }  // namespace
