@@ -33,7 +33,11 @@ void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const Fram
   frame.set_time_s(s.time_s);
   FrameParts without_models = parts;
   without_models.local_model = false;
-  if (sent.own_tool_only) without_models.only_tool = OwnTool(s, stream);
+  // Until the step names the stream's device as its tool's holder (the
+  // steps between attaching and the first frame of the new holder), its
+  // frames carry every tool, as a viewer's.
+  const ObjectId own_tool = sent.own_tool_only ? OwnTool(s, stream) : -1;
+  if (own_tool >= 0) without_models.only_tool = own_tool;
   StepFrameToProto(s.frame, *s.names, without_models, &frame);
   if (sent.scene != s.names.get()) {  // a new scene: its models are new
     sent.scene = s.names.get();
@@ -54,7 +58,8 @@ void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const Fram
       frame.set_last_pose_device_time_ns(s.applied[i].device_time_ns);
     }
     const LocalModel& model = s.frame.tools[i].local_model;
-    if (parts.local_model && model.revision != 0 && sent.revisions[i] != model.revision) {
+    if (parts.local_model && model.revision != 0 && sent.revisions[i] != model.revision &&
+        (own || !sent.own_tool_only)) {
       LocalModelToProto(model, *s.names, state.mutable_local_model());
       sent.revisions[i] = model.revision;
     }

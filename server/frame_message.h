@@ -30,7 +30,8 @@ struct ModelsSent {
 /// Writes `s` over `frame` (cleared first). `stream` is the stream the
 /// frame goes to: the tool its device holds (StepSnapshot::holders) gets
 /// the last applied pose, and is the only tool in the frame when
-/// `sent.own_tool_only`. Local models (parts.local_model) go out as
+/// `sent.own_tool_only` (every tool while no tool names the stream's
+/// device as its holder). Local models (parts.local_model) go out as
 /// `sent` says, which it updates. `dropped` the frames the stream dropped
 /// so far, `sent_unix_ns` the wall clock at sending.
 void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const FrameSink* stream,

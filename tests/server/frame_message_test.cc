@@ -67,8 +67,9 @@ TEST(FrameMessageTest, HoldersAndTheDevicesLastPose) {
   EXPECT_EQ(frame.last_pose_sequence(), 0u);
 }
 
-// A device stream's frames carry its own tool's state only (none when its
-// device holds no tool); a viewer's carry every tool's.
+// A device stream's frames carry its own tool's state only (every tool's
+// while its device holds none yet, so that a frame always has its tool);
+// a viewer's carry every tool's.
 TEST(FrameMessageTest, ADeviceGetsItsOwnToolOnly) {
   NoSink device, other, viewer;
   auto names = std::make_shared<const std::vector<std::string>>(
@@ -85,7 +86,7 @@ TEST(FrameMessageTest, ADeviceGetsItsOwnToolOnly) {
   EXPECT_EQ(frame.tools(0).last_pose_sequence(), 41u);
   EXPECT_EQ(frame.last_pose_sequence(), 41u);
   FillFrameMessage(*s, FrameParts{}, &other, 0, 0, other_sent, frame);
-  EXPECT_EQ(frame.tools_size(), 0);
+  EXPECT_EQ(frame.tools_size(), 2);
   FillFrameMessage(*s, FrameParts{}, &viewer, 0, 0, viewer_sent, frame);
   EXPECT_EQ(frame.tools_size(), 2);
 }
