@@ -17,15 +17,15 @@
 namespace hs::cli {
 namespace {
 
-// `hapticctl drive --operator OP` for 4 s at `address` (the local model
-// on), its JSON summary.
-nlohmann::json DriveOperator(const std::string& address, const std::string& op) {
+// `hapticctl drive --operator OP` for `duration_s` at `address` (the
+// local model on), its JSON summary (discarded when the run failed).
+nlohmann::json DriveOperator(const std::string& address, const std::string& op, double duration_s) {
   DriveArgs args;
   args.server.address = address;
   args.scene = "probe on torus";
   args.tool = "probe";
   args.operator_motion = op;
-  args.duration_s = 4;
+  args.duration_s = duration_s;
   args.json = true;
   std::ostringstream out, err;
   EXPECT_EQ(RunDrive(args, out, err), kExitOk) << err.str();
@@ -48,9 +48,9 @@ TEST(DriveThroughRelayTest, SlideStaysPassiveAndShallowOverStalls) {
                                                                      .stall_ms = 100,
                                                                      .seed = 1});
   ASSERT_TRUE(relay.ok()) << relay.status();
-  const nlohmann::json reference = DriveOperator(direct, "slide");
+  const nlohmann::json reference = DriveOperator(direct, "slide", 4);
   const nlohmann::json linked =
-      DriveOperator("127.0.0.1:" + std::to_string((*relay)->port()), "slide");
+      DriveOperator("127.0.0.1:" + std::to_string((*relay)->port()), "slide", 4);
   ASSERT_TRUE(reference.is_object() && linked.is_object());
   std::cout << "reference: " << reference.dump() << "\nthrough the relay: " << linked.dump()
             << "\n";
@@ -75,16 +75,9 @@ TEST(DriveThroughRelayTest, PressCompletesAndSeesTheRoundTrip) {
                        .stall_ms = 30,
                        .seed = 1});
   ASSERT_TRUE(relay.ok()) << relay.status();
-  DriveArgs args;
-  args.server.address = "127.0.0.1:" + std::to_string((*relay)->port());
-  args.scene = "probe on torus";
-  args.tool = "probe";
-  args.operator_motion = "press";
-  args.duration_s = 1.5;
-  args.json = true;
-  std::ostringstream out, err;
-  ASSERT_EQ(RunDrive(args, out, err), kExitOk) << err.str();
-  const nlohmann::json summary = nlohmann::json::parse(out.str());
+  const nlohmann::json summary =
+      DriveOperator("127.0.0.1:" + std::to_string((*relay)->port()), "press", 1.5);
+  ASSERT_TRUE(summary.is_object());
   EXPECT_EQ(summary["ticks"], 1500);
   EXPECT_GE(summary["round_trip_p50_ms"].get<double>(), 40);
   EXPECT_GE(summary["round_trip_p99_ms"].get<double>(), summary["round_trip_p50_ms"].get<double>());
