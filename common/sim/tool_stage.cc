@@ -80,7 +80,7 @@ void ToolStage::SeatDevice(ObjectId id, const Isometry3d& X_WD) {
 }
 
 bool ToolStage::NothingToStep() const {
-  if (objects_.obstacles().size() != last_obstacle_count_) return false;
+  if (!SameObstacles()) return false;
   for (size_t i = 0; i < tools_.size(); ++i) {
     if (tools_[i].moved || scratch_[i].model_wanted) return false;
   }
@@ -192,8 +192,11 @@ void ToolStage::GroupIslands(EffectSet stages) {
 bool ToolStage::Holds(int index, EffectSet stages, bool alone) const {
   const Tool& tool = tools_[index];
   return alone && tool.alone && !tool.moved && !tool.seated && !scratch_[index].model_wanted &&
-         stages == last_stages_ && !stages.Has(Effect::kFreeBodyMotion) &&
-         objects_.obstacles().size() == last_obstacle_count_;
+         stages == last_stages_ && !stages.Has(Effect::kFreeBodyMotion) && SameObstacles();
+}
+
+bool ToolStage::SameObstacles() const {
+  return objects_.obstacles().size() == last_obstacle_count_;
 }
 
 void ToolStage::RunJob(StepJob job, EffectSet stages, std::vector<ToolFrame>& frames) {

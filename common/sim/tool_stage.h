@@ -158,6 +158,8 @@ class ToolStage {
   // would bring no new information (docs/simulation.md, Still devices),
   // and it keeps its last frame.
   bool Holds(int index, EffectSet stages, bool alone) const;
+  // No object was added since the last step (objects are only added).
+  bool SameObstacles() const;
   void RunJob(StepJob job, EffectSet stages, std::vector<ToolFrame>& frames);
   // The proxy halves of an island's tools (indices into tools_), in order.
   void StepIsland(std::span<const int> island, EffectSet stages, std::vector<ToolFrame>& frames);
