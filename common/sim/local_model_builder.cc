@@ -659,9 +659,13 @@ struct FreshPairs {
 
 }  // namespace
 
+double MovedBy(const Isometry3d& from, const Isometry3d& to, double lever_m) {
+  const double turn = Eigen::AngleAxisd(from.linear().transpose() * to.linear()).angle();
+  return (to.translation() - from.translation()).norm() + lever_m * turn;
+}
+
 double LocalModelPairs::Moved(const Isometry3d& X_WP_now) const {
-  const double turn = Eigen::AngleAxisd(X_WP.linear().transpose() * X_WP_now.linear()).angle();
-  return (X_WP_now.translation() - X_WP.translation()).norm() + lever_m * turn;
+  return MovedBy(X_WP, X_WP_now, lever_m);
 }
 
 void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,

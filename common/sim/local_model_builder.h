@@ -85,6 +85,11 @@ struct LocalModelPairs {
   double Moved(const Isometry3d& X_WP) const;
 };
 
+/// How far a point at `lever_m` from the origin moves at most when a pose
+/// goes from `from` to `to`: the shift of the origin and the turn's angle
+/// times the lever.
+double MovedBy(const Isometry3d& from, const Isometry3d& to, double lever_m);
+
 /// Fills `pairs` for `tool` (its pose field ignored) at proxy pose X_WP
 /// among `obstacles` (fixed objects, ids `ids`): every pair BuildLocalModel
 /// would take a plane from with the proxy anywhere `Moved` says is within

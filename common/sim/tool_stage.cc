@@ -17,13 +17,24 @@ namespace {
 constexpr int kMaxSubsteps = 256;
 
 // A face search gathers the pairs of features that may give a plane while
-// the proxy moves by this fraction of the validity radius; each step makes
-// its model from them, as a search there would, until the proxy has moved
+// the proxy moves by this fraction of the validity radius; each model is
+// made from them, as a search there would, until the proxy has moved
 // farther or the search is older than the period below (which no
 // correctness needs: the fixed objects do not move, and a scene edit makes
-// a new scene). A quarter: ### measured below.
+// a new scene). 0.1 to 0.15 cost least (docs/benchmarks.md).
 constexpr double kPairMarginFraction = 0.15;
 constexpr double kLongestSearchPeriodS = 1.0;
+
+// A model holds for every point within its validity radius of the proxy it
+// was taken at, and a device's loop keeps its own proxy within that radius
+// of it: a proxy in free space that has moved by less than this fraction
+// of the radius is served by the last model, which leaves the device nine
+// tenths of it.
+// The period bounds how long a device's loop goes without the server's
+// correction of its proxy's drift (client/haptic_loop), a proxy held still
+// on a surface included. Measured in docs/benchmarks.md.
+constexpr double kModelMoveFraction = 0.1;
+constexpr double kLongestModelPeriodS = 0.05;
 
 // The contact ProxiesPenetrate reconstructs, kept from step to step.
 struct StartContact {
@@ -91,6 +102,25 @@ void ToolStage::RequestLocalModel(ObjectId id) { scratch_[index_[id]].model_want
 
 void ToolStage::SetLocalModelRadius(ObjectId id, double radius_m) {
   scratch_[index_[id]].model_radius_m = radius_m;
+}
+
+bool ToolStage::ModelServes(const ProxyState& proxy, const LocalModelOptions& options,
+                            ToolScratch& scratch) const {
+  const LocalModel& model = scratch.model;
+  if (model.revision == 0 || scratch.model_wanted) return false;
+  if (model.validity_radius_m != options.radius_m || model.friction != options.friction) {
+    return false;
+  }
+  // In contact the proxy slides along the faces the planes stand for: the
+  // point it touches (the torque's lever) and the drift a device's loop
+  // corrects change with each move, so a touching proxy that moved gets a
+  // new model; one held still by the surface keeps its own.
+  if (model.touching != proxy.touching) return false;
+  if (proxy.touching && !proxy.X_WP.isApprox(model.X_WP, 0.0)) return false;
+  if (scratch.model_pairs.obstacle_count != objects_.obstacles().size()) return false;
+  if (++scratch.steps_since_model * options_.step_s > kLongestModelPeriodS) return false;
+  return MovedBy(model.X_WP, proxy.X_WP, scratch.model_pairs.lever_m) <=
+         kModelMoveFraction * options.radius_m;
 }
 
 bool ToolStage::PairsServe(const Isometry3d& X_WP, ToolScratch& scratch) const {
@@ -521,13 +551,9 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       scratch.steps_since_search = 0;
       scratch.searched_radius_m = scratch.model_radius_m;
     };
-    const bool search = !PairsServe(proxy.X_WP, scratch);
-    if (search) gather(SearchReach(scratch.model, model_options, margin));
-    // A model changes only with the proxy, the device or the options: a
-    // device's loop takes each revision once.
-    if (search || !proxy.X_WP.isApprox(scratch.model.X_WP, 0.0) ||
-        tool.X_WD.translation() != scratch.model.p_WD ||
-        scratch.model.friction != model_options.friction) {
+    if (!ModelServes(proxy, model_options, scratch)) {
+      if (!PairsServe(proxy.X_WP, scratch))
+        gather(SearchReach(scratch.model, model_options, margin));
       const HapticObject& t = objects_[tool.id].object;
       if (!ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
                           scratch.model)) {
@@ -537,6 +563,7 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
                              scratch.model);  // the whole radius
       }
       ++scratch.model.revision;
+      scratch.steps_since_model = 0;
     }
     scratch.model_wanted = false;
     frame.local_model = scratch.model;

@@ -130,6 +130,7 @@ class ToolStage {
     // each step's proxy.
     LocalModelPairs model_pairs;
     int steps_since_search = 0;
+    int steps_since_model = 0;
     bool model_wanted = false;
     // The validity radius the tool's device asked for (0: the scene's),
     // and the one the pairs were searched with.
@@ -175,6 +176,11 @@ class ToolStage {
   // `island` holds the tool (indices into tools_).
   void StepProxy(int index, std::span<const int> island, EffectSet stages, ToolFrame& frame,
                  ToolScratch& scratch) const;
+  // Whether the tool's last model still serves its proxy at `proxy`, for a
+  // model of `options` (docs/simulation.md, Local models only when
+  // needed); counts the step.
+  bool ModelServes(const ProxyState& proxy, const LocalModelOptions& options,
+                   ToolScratch& scratch) const;
   // Whether the pairs of the last face search still serve the tool's
   // model with its proxy at X_WP (docs/simulation.md, Local models only
   // when needed); counts the step.

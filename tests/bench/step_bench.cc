@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -124,9 +125,11 @@ std::vector<Isometry3d> Resampled(const std::vector<Isometry3d>& path, int per_s
   return out;
 }
 
-// Steps `demo` along its path at `rate_hz` (1,000: the scene's own step).
+// Steps `demo` along its path at `rate_hz` (1,000: the scene's own step),
+// `per_step` of the path's 1 kHz samples a step (0.1: ten steps from one
+// sample to the next).
 void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, int threads,
-             int rate_hz) {
+             int rate_hz, double per_step) {
   const std::string dir = std::string(HS_SCENES_DIR) + "/";
   absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(dir + demo.scene);
   if (!spec.ok()) {
@@ -144,7 +147,8 @@ void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, in
     state.SkipWithError(std::string(s.message()).c_str());
     return;
   }
-  const std::vector<Isometry3d> path = Resampled(ReadPath(dir + demo.path), rate_hz / 1000);
+  const std::vector<Isometry3d> path = Resampled(
+      ReadPath(dir + demo.path), static_cast<int>(std::lround(rate_hz / 1000.0 / per_step)));
   std::vector<double> step_us;
   step_us.reserve(1 << 20);
   size_t i = 0;
@@ -200,17 +204,21 @@ void Register() {
     for (const DemoScene& demo : kScenes) {
       const std::string name = std::string("Step/") + demo.name;
       benchmark::RegisterBenchmark((name + "/all_effects" + suffix).c_str(), BM_Step, demo,
-                                   EffectSet::Default(), threads, 1000);
+                                   EffectSet::Default(), threads, 1000, 1.0);
       benchmark::RegisterBenchmark((name + "/force_only" + suffix).c_str(), BM_Step, demo,
-                                   kHapticDevice, threads, 1000);
+                                   kHapticDevice, threads, 1000, 1.0);
       benchmark::RegisterBenchmark(
           (name + "/remote_device" + suffix).c_str(), BM_Step, demo,
-          EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel}, threads, 1000);
+          EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel}, threads, 1000, 1.0);
+      // A hand's speed: the paths' 1 mm a step slowed to 0.1 mm (0.1 m/s).
+      benchmark::RegisterBenchmark(
+          (name + "/remote_device_hand" + suffix).c_str(), BM_Step, demo,
+          EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel}, threads, 1000, 0.1);
       benchmark::RegisterBenchmark((name + "/collision_only" + suffix).c_str(), BM_Step, demo,
-                                   EffectSet{Effect::kCollision}, threads, 1000);
+                                   EffectSet{Effect::kCollision}, threads, 1000, 1.0);
       if (demo.at_10khz) {
         benchmark::RegisterBenchmark((name + "/force_only_10khz" + suffix).c_str(), BM_Step, demo,
-                                     kHapticDevice, threads, 10000);
+                                     kHapticDevice, threads, 10000, 1.0);
       }
     }
     if (server_threads == 1) break;  // one run is both

@@ -52,6 +52,32 @@ LocalModel Build(const Body& tool, const ProxyState& proxy,
   return model;
 }
 
+// A point at the lever moves at most by the shift plus the turn's arc:
+// the bound holds for every point of a tool within the lever, checked on
+// random poses against the points of a sphere of that radius (brute force).
+TEST(LocalModelBuilderTest, MovedByBoundsEveryPointWithinTheLever) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  constexpr double kLever = 0.05;
+  for (int trial = 0; trial < 200; ++trial) {
+    Isometry3d from = Isometry3d::Identity(), to = Isometry3d::Identity();
+    from.linear() = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
+    to.linear() = (Eigen::AngleAxisd(0.3 * u(rng), Vector3d(u(rng), u(rng), u(rng)).normalized()) *
+                   from.linear());
+    from.translation() = 0.01 * Vector3d(u(rng), u(rng), u(rng));
+    to.translation() = 0.01 * Vector3d(u(rng), u(rng), u(rng));
+    const double bound = MovedBy(from, to, kLever);
+    double worst = 0;
+    for (int k = 0; k < 200; ++k) {
+      const Vector3d p_O = kLever * Vector3d(u(rng), u(rng), u(rng)).normalized();
+      worst = std::max(worst, (to * p_O - from * p_O).norm());
+    }
+    EXPECT_LE(worst, bound + 1e-15) << trial;
+    EXPECT_GE(bound, (to.translation() - from.translation()).norm());
+  }
+  EXPECT_EQ(MovedBy(Isometry3d::Identity(), Isometry3d::Identity(), kLever), 0);
+}
+
 // A tool `gap` above the floor: one plane (its four bottom corners over the
 // floor's top give the same plane), the floor's top, with the floor's id
 // and material; the model carries the proxy, the device and the options.
