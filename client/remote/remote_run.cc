@@ -24,8 +24,12 @@ RemoteRun::RemoteRun(const RemoteRunOptions& options, const Isometry3d& start)
 
 void RemoteRun::Read(const ServerFrame& frame, int64_t tick) {
   if (frame.model_rejected) ++models_rejected_;
-  // An older pose's, or not this run's.
-  if (frame.applied_sequence <= newest_applied_ || frame.applied_sequence > sent_) return;
+  if (frame.applied_sequence > sent_) return;  // not this run's
+  // A model serves whichever of this run's poses the frame applied (none
+  // yet included): the server sends each revision once, and holds it
+  // while it serves.
+  if (frame.model && !loop_.SetModel(*frame.model)) ++models_rejected_;
+  if (frame.applied_sequence <= newest_applied_) return;  // an older pose's
   newest_applied_ = frame.applied_sequence;
   // Pose n went out at tick n - 1.
   round_trips_ms_.push_back(
@@ -34,7 +38,6 @@ void RemoteRun::Read(const ServerFrame& frame, int64_t tick) {
   sizer_.AddRoundTrip(static_cast<double>(tick) * options_.tick_s, round_trips_ms_.back() * 1e-3);
   server_force_ = frame.force_W;
   has_frame_ = true;
-  if (frame.model && !loop_.SetModel(*frame.model)) ++models_rejected_;
 }
 
 void RemoteRun::Tick(int64_t k) {

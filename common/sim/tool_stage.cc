@@ -551,7 +551,9 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       scratch.steps_since_search = 0;
       scratch.searched_radius_m = scratch.model_radius_m;
     };
-    if (!ModelServes(proxy, model_options, scratch)) {
+    // A device that takes the tool gets a model of its first pose: the
+    // last one may be older than its stream.
+    if (tool.seated || !ModelServes(proxy, model_options, scratch)) {
       if (!PairsServe(proxy.X_WP, scratch))
         gather(SearchReach(scratch.model, model_options, margin));
       const HapticObject& t = objects_[tool.id].object;

@@ -43,8 +43,11 @@ RemoteSummary RunOperator(OperatorMotion motion, bool local_model, const LinkCon
   options.link = link;
   RemoteRun run(options, start);
   uint64_t applied = 0;
+  uint64_t revision_sent = 0;
   const int64_t ticks = static_cast<int64_t>(seconds / options.tick_s);
-  for (int64_t k = 0; run.ticks_rendered() < ticks; ++k) {
+  // The device goes live on its first model; a run that never gets one
+  // stops after as long again (and fails on its ticks).
+  for (int64_t k = 0; run.ticks_rendered() < ticks && k < 2 * ticks; ++k) {
     const double now = static_cast<double>(k) * options.tick_s;
     run.Tick(k);
     run.DeliverPoses(now, [&](const PoseMessage& pose) {
@@ -56,12 +59,19 @@ RemoteSummary RunOperator(OperatorMotion motion, bool local_model, const LinkCon
       applied = pose.sequence;
     });
     const ToolFrame& t = scene.Step().tools.front();
-    ServerFrame frame{.applied_sequence = applied, .force_W = t.force_W, .model = t.local_model};
+    // As the server sends them: each model revision once, in the first
+    // frame after it was made (which may have applied no pose yet).
+    ServerFrame frame{.applied_sequence = applied, .force_W = t.force_W, .model = std::nullopt};
+    if (t.local_model.revision != revision_sent) {
+      frame.model = t.local_model;
+      revision_sent = t.local_model.revision;
+    }
     std::vector<Vector3d> normals;
     for (const PairContact& c : t.contacts) normals.push_back(c.contact.normal_W);
     frame.depth_m = DepthBehindProxy(t.X_WD.translation(), t.X_WP.translation(), normals);
     run.FromServer(now, std::move(frame));
   }
+  EXPECT_EQ(run.ticks_rendered(), ticks) << "the device never went live";
   if (forces) *forces = run.forces();
   return run.Summary(reference);
 }
