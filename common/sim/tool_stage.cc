@@ -32,7 +32,7 @@ constexpr double kLongestSearchPeriodS = 1.0;
 // tenths of it.
 // The period bounds how long a device's loop goes without the server's
 // correction of its proxy's drift (client/haptic_loop), a proxy held still
-// on a surface included. Measured in docs/benchmarks.md.
+// on a surface included. What holding saves: docs/benchmarks.md.
 constexpr double kModelMoveFraction = 0.1;
 constexpr double kLongestModelPeriodS = 0.05;
 
