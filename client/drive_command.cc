@@ -80,6 +80,7 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
     remote.run.motion = *motion;
     remote.run.local_model = args.local_model == "on";
     remote.run.link = args.link;
+    remote.run.loop.max_passivity_damping_ns_per_m = args.passivity_damping_ns_per_m;
     std::shared_ptr<grpc::Channel> reference;
     if (!args.reference_server.empty()) {
       ConnectionOptions direct = args.server;
@@ -195,6 +196,11 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
                   "With --operator: render from the local contact model on the device (on) or "
                   "apply the server's forces as they arrive (off)")
       ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--passivity-damping", args->passivity_damping_ns_per_m,
+                  "With --operator and the local model: the most damping, N*s/m, the device "
+                  "loop adds to take back energy the rendering put into the hand (0: off)")
+      ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--latency-ms", args->link.latency_ms,
                   "With --operator: simulated round trip, milliseconds")

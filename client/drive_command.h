@@ -13,6 +13,7 @@
 #include <string>
 
 #include "CLI/CLI.hpp"
+#include "client/haptic_loop/haptic_loop.h"
 #include "client/remote/delay_line.h"
 #include "client/server_call.h"
 
@@ -49,6 +50,9 @@ struct DriveArgs {
   /// "on": render from the local model on the device; "off": apply the
   /// server's forces as they arrive.
   std::string local_model = "on";
+  /// With --operator and the local model: the device loop's passivity
+  /// controller's largest damping, N*s/m (0: off).
+  double passivity_damping_ns_per_m = HapticLoopOptions{}.max_passivity_damping_ns_per_m;
   LinkConditions link;
   /// With --operator: a CSV of the rendered force per tick.
   std::string trace_path;

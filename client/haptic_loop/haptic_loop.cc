@@ -169,6 +169,34 @@ void HapticLoop::SwitchModel(const Vector3d& device, Vector3d kept) {
   for (int i = (then + 1) % n; i != history_next_; i = (i + 1) % n) history_[i].proxy += moved;
 }
 
+void HapticLoop::KeepPassive(HapticOutput& out, const Vector3d& v_WD) {
+  // Free space stores no energy: the credit of what the contact took from
+  // the hand ends with it (a debt stays until it is paid back).
+  if (out.force_W.isZero()) work_on_hand_j_ = std::max(work_on_hand_j_, 0.0);
+  const double dt = options_.tick_s;
+  const double speed2 = v_WD.squaredNorm();
+  const double work_after = work_on_hand_j_ + out.force_W.dot(v_WD) * dt;
+  Vector3d wanted = Vector3d::Zero();
+  if (work_after > 0 && speed2 > 0) {
+    wanted = -std::min(work_after / (speed2 * dt), options_.max_passivity_damping_ns_per_m) * v_WD;
+  }
+  // The damper comes and goes no faster than a model switch may change
+  // the force: a damper switched on at once against a fast hand would be
+  // a kick of its own. What it lags by is observed next tick and paid then.
+  const Vector3d change = wanted - passivity_force_;
+  const double step = options_.max_switch_step_n;
+  passivity_force_ += change.norm() > step ? Vector3d(change * (step / change.norm())) : change;
+  if (passivity_force_.isZero()) return;
+  const Vector3d before = out.force_W;
+  out.force_W += passivity_force_;
+  if (has_model_ && out.force_W.norm() > model_.force_clamp_n) {
+    out.force_W *= model_.force_clamp_n / out.force_W.norm();
+    out.clamped = true;
+  }
+  ++passivity_ticks_;
+  passivity_dissipated_j_ += (before - out.force_W).dot(v_WD) * dt;
+}
+
 Vector3d HapticLoop::InValidity(const Vector3d& point) const {
   const Vector3d P0 = model_.X_WP.translation();
   const Vector3d out = point - P0;
@@ -191,6 +219,8 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
     return last_;
   }
   const Vector3d device = X_WD.translation();
+  // The work last tick's force did on the hand as it moved since.
+  if (has_last_device_) work_on_hand_j_ += last_.force_W.dot(device - last_device_);
   const Vector3d v_WD =
       has_last_device_ ? Vector3d((device - last_device_) / options_.tick_s) : Vector3d::Zero();
   last_device_ = device;
@@ -222,6 +252,7 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
     out.force_W *= model_.force_clamp_n / out.force_W.norm();
     out.clamped = true;
   }
+  KeepPassive(out, v_WD);
   Record(device, proxy_);
   last_ = out;
   return out;

@@ -30,6 +30,21 @@
 // A non-finite pose or model is rejected: the loop holds its last force
 // (or model) and counts the rejection. Nothing is allocated after
 // construction.
+//
+// Time-domain passivity (Hannaford and Ryu 2002): the loop observes the
+// work its force has done on the hand since the hand last touched (each
+// tick's force times the device's move over the next tick). A model a
+// round trip old may switch planes under a moving hand and so hand it
+// energy no surface would; when this tick's force, on the hand's present
+// velocity, would make that work positive, the loop adds a damper against
+// the velocity that takes the excess back, at most
+// `max_passivity_damping_ns_per_m` (a damper a device and a hand hold
+// stably at 1 kHz), its force changing by at most `max_switch_step_n` a
+// tick; what a tick cannot take back is owed by the next. The
+// credit of energy the contact dissipated (friction, dampers) lasts while
+// it touches: in free space the surfaces hold no energy, so the account
+// starts again at zero and earlier dissipation never pays for a later
+// kick. Only the translation is watched: the torque is rendered as it is.
 
 #include <cstdint>
 #include <vector>
@@ -49,6 +64,9 @@ struct HapticLoopOptions {
   /// Ticks of device and proxy positions kept to match a model with the
   /// pose it was taken at: the longest round trip corrected (2 s at 1 kHz).
   int history_ticks = 2048;
+  /// The passivity controller's largest damping, N*s/m; 0 turns it off.
+  /// Its force changes by at most max_switch_step_n a tick.
+  double max_passivity_damping_ns_per_m = 30;
 };
 
 struct HapticOutput {
@@ -86,6 +104,10 @@ class HapticLoop {
   int64_t restarted_models() const { return restarted_models_; }
   /// Ticks whose device lay past the model's validity radius.
   int64_t beyond_validity_ticks() const { return beyond_validity_ticks_; }
+  /// Ticks the passivity controller added damping on, and the work it took
+  /// back from the hand, joules.
+  int64_t passivity_ticks() const { return passivity_ticks_; }
+  double passivity_dissipated_j() const { return passivity_dissipated_j_; }
 
  private:
   // Moves proxy_ toward `target` against the model's planes, sliding
@@ -111,6 +133,10 @@ class HapticLoop {
   // moving at `v_WD`, the proxy at proxy_ or, past the validity sphere,
   // at its edge; `held`: the proxy is past it (normal push only).
   HapticOutput Render(int plane, const Vector3d& device, const Vector3d& v_WD, bool held) const;
+  // The passivity controller: adds to `out` the damping against `v_WD`
+  // that keeps the work done on the hand since it last touched at most 0,
+  // if the hand goes on at `v_WD` over the next tick.
+  void KeepPassive(HapticOutput& out, const Vector3d& v_WD);
 
   HapticLoopOptions options_;
   LocalModel model_;
@@ -137,6 +163,13 @@ class HapticLoop {
   int64_t rejected_poses_ = 0;
   int64_t beyond_validity_ticks_ = 0;
   int64_t restarted_models_ = 0;
+  // Work the force has done on the hand since it last touched, joules
+  // (negative: the contact took energy from the hand).
+  double work_on_hand_j_ = 0;
+  // The passivity controller's damping force of the last tick, N.
+  Vector3d passivity_force_ = Vector3d::Zero();
+  int64_t passivity_ticks_ = 0;
+  double passivity_dissipated_j_ = 0;
 };
 
 }  // namespace hs

@@ -140,7 +140,9 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"frames_stalled", s.frames_stalled},
           {"models_rejected", s.models_rejected},
           {"models_restarted", s.models_restarted},
-          {"beyond_validity_ticks", s.beyond_validity_ticks}};
+          {"beyond_validity_ticks", s.beyond_validity_ticks},
+          {"passivity_ticks", s.passivity_ticks},
+          {"passivity_dissipated_j", s.passivity_dissipated_j}};
 }
 
 }  // namespace

@@ -111,6 +111,8 @@ RemoteSummary RemoteRun::Summary(std::span<const Vector3d> reference) const {
   s.models_rejected = models_rejected_;
   s.models_restarted = loop_.restarted_models();
   s.beyond_validity_ticks = loop_.beyond_validity_ticks();
+  s.passivity_ticks = loop_.passivity_ticks();
+  s.passivity_dissipated_j = loop_.passivity_dissipated_j();
   return s;
 }
 

@@ -108,6 +108,10 @@ struct RemoteSummary {
   /// at the server's).
   int64_t models_restarted = 0;
   int64_t beyond_validity_ticks = 0;
+  /// Ticks the loop's passivity controller damped, and the work it took
+  /// back from the hand, joules (haptic_loop.h).
+  int64_t passivity_ticks = 0;
+  double passivity_dissipated_j = 0;
 };
 
 /// How long a run waits for its device to be live before the hand moves,

@@ -200,6 +200,85 @@ TEST(HapticLoopTest, LostFramesKeepTheModelAndSwitchesAreRateBounded) {
   EXPECT_NEAR(last.force_W.x(), 5.0, 1e-2);  // it got there (a stuck proxy creeps by its stand-off)
 }
 
+// The work a loop's forces do on a device moved along `path` (a tick's
+// force times the move to the next tick's position, as on a hand), with
+// `switch_at` ticks in a model whose floor is 2 mm higher taken at that
+// tick's pose (the server's proxy found above where the loop's was).
+double WorkOnPath(HapticLoop& loop, const std::vector<Vector3d>& path, int switch_at) {
+  double work = 0;
+  Vector3d force = Vector3d::Zero();
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    if (i > 0) work += force.dot(path[i] - path[i - 1]);
+    if (i == switch_at) {
+      LocalModel higher =
+          Model(Vector3d(path[i].x(), path[i].y(), 0.002), {Plane(Vector3d::UnitZ(), 0)});
+      higher.p_WD = path[i];
+      EXPECT_TRUE(loop.SetModel(higher));
+    }
+    force = loop.Tick(At(path[i])).force_W;
+  }
+  return work;
+}
+
+// 2 mm into a floor over 20 ticks, then back out to 5 mm above it over 40.
+std::vector<Vector3d> PressAndLeave() {
+  std::vector<Vector3d> path;
+  for (int i = 0; i <= 20; ++i) path.emplace_back(0, 0, -0.0001 * i);
+  for (int i = 1; i <= 40; ++i) path.emplace_back(0, 0, -0.002 + 0.000175 * i);
+  return path;
+}
+
+// A model that lifts the floor 2 mm while the device is 2 mm in makes the
+// way out harder than the way in: hand-computed, k/2 (4 mm)^2 - k/2 (2 mm)^2
+// = 6 mJ handed to the hand. The passivity controller takes it back (to
+// within what one tick's prediction misses); without it the 6 mJ stay.
+TEST(HapticLoopTest, PassivityControllerTakesBackWhatASwitchGives) {
+  const std::vector<Vector3d> path = PressAndLeave();
+  HapticLoop free_loop({.max_switch_step_n = std::numeric_limits<double>::infinity(),
+                        .max_passivity_damping_ns_per_m = 0});
+  ASSERT_TRUE(free_loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)})));
+  EXPECT_NEAR(WorkOnPath(free_loop, path, 20), 0.006, 0.0015);
+  EXPECT_EQ(free_loop.passivity_ticks(), 0);
+
+  HapticLoop loop({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)})));
+  const double work = WorkOnPath(loop, path, 20);
+  EXPECT_LE(work, 1e-4);
+  EXPECT_GT(loop.passivity_ticks(), 0);
+  EXPECT_GT(loop.passivity_dissipated_j(), 0.004);
+}
+
+// A damped floor with friction that stays where it is is passive: the
+// controller never acts, and the forces are the uncontrolled loop's tick
+// for tick. That slide took energy from the hand; lifted into free space,
+// the credit is gone: a lifting switch on the next press (as above) is
+// still taken back.
+TEST(HapticLoopTest, PassivityControllerLeavesPassiveContactAloneAndKeepsNoCredit) {
+  ConstraintPlane floor = Plane(Vector3d::UnitZ(), 0);
+  floor.damping_ns_per_m = 1;
+  floor.static_friction = floor.dynamic_friction = 0.5;
+  LocalModel model = Model(Vector3d::Zero(), {floor});
+  model.friction = true;
+  HapticLoop controlled;
+  HapticLoop uncontrolled({.max_passivity_damping_ns_per_m = 0});
+  ASSERT_TRUE(controlled.SetModel(model));
+  ASSERT_TRUE(uncontrolled.SetModel(model));
+  // 2 mm down, 1 cm along x, out to 5 mm above.
+  std::vector<Vector3d> slide;
+  for (int i = 0; i <= 20; ++i) slide.emplace_back(0, 0, -0.0001 * i);
+  for (int i = 1; i <= 100; ++i) slide.emplace_back(0.0001 * i, 0, -0.002);
+  for (int i = 1; i <= 40; ++i) slide.emplace_back(0.01, 0, -0.002 + 0.000175 * i);
+  for (const Vector3d& p : slide) {
+    EXPECT_EQ(controlled.Tick(At(p)).force_W, uncontrolled.Tick(At(p)).force_W);
+  }
+  EXPECT_EQ(controlled.passivity_ticks(), 0);
+
+  std::vector<Vector3d> press = PressAndLeave();
+  for (Vector3d& p : press) p.x() = 0.01;
+  EXPECT_LE(WorkOnPath(controlled, press, 20), 1e-4);
+  EXPECT_GT(controlled.passivity_ticks(), 0);
+}
+
 TEST(HapticLoopTest, NonFiniteInputNeverReachesTheForce) {
   HapticLoop loop;
   ASSERT_TRUE(loop.SetModel(Model(Vector3d::Zero(), {Plane(Vector3d::UnitZ(), 0)})));

@@ -45,7 +45,9 @@ const std::vector<std::string> kKeys = {"mode",
                                         "frames_stalled",
                                         "models_rejected",
                                         "models_restarted",
-                                        "beyond_validity_ticks"};
+                                        "beyond_validity_ticks",
+                                        "passivity_ticks",
+                                        "passivity_dissipated_j"};
 
 class RemoteDriveTest : public ::testing::Test {
  protected:
