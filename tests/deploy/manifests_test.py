@@ -629,8 +629,8 @@ def unit_entries(path):
 
 
 class SystemdUnit(unittest.TestCase):
-    """The unit and defaults file the install puts beside haptic-server
-    (packaging/), as configured in the build."""
+    """The unit and defaults file of the Debian packages (written for /usr
+    by packaging/unit_files.cmake when the build is configured)."""
 
     def test_runs_as_haptic_with_its_state_dir(self):
         unit = unit_entries(ARGS.unit)
