@@ -664,11 +664,20 @@ async function main() {
   check(alive(lost.proc), 'the bridge of an unknown scene ended');
 
   step = 'the server goes away';
+  const termAt = Date.now();
+  let exitedAfterMs = null;
+  server.proc.once('exit', () => { exitedAfterMs = Date.now() - termAt; });
   server.proc.kill('SIGTERM');
   await a.waitForFunction(() => !window.viewerState.connected, null, { timeout: 10_000 })
     .catch(() => {});
   const gone = await state(a);
-  check(gone && !gone.connected, `page A still shows a connection: ${brief(gone)}`);
+  // Which side held on, when it does: the server (still running, or how
+  // long it took to exit) or the bridge's view of it.
+  check(gone && !gone.connected,
+        `page A still shows a connection ${Date.now() - termAt} ms after SIGTERM: ${brief(gone)}; ` +
+        `haptic-server ${exitedAfterMs === null ? 'still running' : `exited after ${exitedAfterMs} ms`}` +
+        ` (last lines: ${server.log.slice(-3).join(' | ')}); ` +
+        `bridge's last lines: ${bridge.log.slice(-3).join(' | ')}`);
   check(alive(bridge.proc), 'the bridge ended with the server');
   log(`server gone: page A says "${gone.status}"`);
 
