@@ -55,6 +55,10 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
       return kExitUsage;
     }
   }
+  if (!(args.passivity_damping_ns_per_m >= 0 && args.passivity_damping_ns_per_m <= 1000)) {
+    ReportError("drive", "--passivity-damping must be a number from 0 to 1000", err);
+    return kExitUsage;
+  }
   if (absl::Status link = CheckLinkConditions(args.link); !link.ok()) {
     ReportError("drive", link, err);
     return kExitUsage;

@@ -97,6 +97,10 @@ TEST(HapticctlCliTest, MalformedValuesAreUsageErrors) {
       {"drive --scene s --tool t --operator press --stall-prob 1.5", "--stall-prob: Value 1.5"},
       {"drive --scene s --tool t --operator press --stall-ms -1", "--stall-ms: Value -1"},
       {"drive --scene s --tool t --operator press --stall-ms nan", "stall time must be a number"},
+      {"drive --scene s --tool t --operator press --passivity-damping nan",
+       "--passivity-damping must be a number from 0 to 1000"},
+      {"drive --scene s --tool t --operator press --passivity-damping -1",
+       "--passivity-damping: Value -1"},
       {"--server 1.2.3.4:5 scenes list",
        "options go after the subcommand (hapticctl SUBCOMMAND [OPTIONS]); not expected before "
        "it: --server"},
