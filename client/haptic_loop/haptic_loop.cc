@@ -170,9 +170,11 @@ void HapticLoop::SwitchModel(const Vector3d& device, Vector3d kept) {
 }
 
 void HapticLoop::KeepPassive(HapticOutput& out, const Vector3d& v_WD) {
-  // Free space stores no energy: the credit of what the contact took from
-  // the hand ends with it (a debt stays until it is paid back).
-  if (out.force_W.isZero()) work_on_hand_j_ = std::max(work_on_hand_j_, 0.0);
+  // What the contact may hand back is what its spring holds (and a small
+  // reserve): the energy friction and the dampers took from the hand is
+  // gone, and never pays for a later kick. In free space that is nothing.
+  // A debt stays until it is paid back.
+  work_on_hand_j_ = std::max(work_on_hand_j_, -(stored_j_ + options_.passivity_reserve_j));
   const double dt = options_.tick_s;
   const double speed2 = v_WD.squaredNorm();
   const double work_after = work_on_hand_j_ + out.force_W.dot(v_WD) * dt;
@@ -210,6 +212,15 @@ HapticOutput HapticLoop::Step(const Vector3d& device, const Vector3d& v_WD) {
   const bool held = (proxy_ - P0).norm() > model_.validity_radius_m;
   HapticOutput out = Render(plane, device, v_WD, held);
   out.beyond_validity = (device - P0).norm() > model_.validity_radius_m;
+  // The energy the touched plane's spring holds (past the sphere, its
+  // push along the normal only).
+  stored_j_ = 0;
+  if (plane >= 0) {
+    const Vector3d stretch = out.p_WP - device;
+    const double along = model_.planes[plane].normal_W.dot(stretch);
+    stored_j_ = 0.5 * model_.planes[plane].stiffness_n_per_m *
+                (held ? along * along : stretch.squaredNorm());
+  }
   return out;
 }
 
@@ -239,6 +250,7 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
   } else {
     proxy_ = device;
     out.p_WP = device;
+    stored_j_ = 0;
   }
   if (out.beyond_validity) ++beyond_validity_ticks_;
   const double left = switch_offset_.norm();

@@ -32,19 +32,19 @@
 // construction.
 //
 // Time-domain passivity (Hannaford and Ryu 2002): the loop observes the
-// work its force has done on the hand since the hand last touched (each
-// tick's force times the device's move over the next tick). A model a
-// round trip old may switch planes under a moving hand and so hand it
-// energy no surface would; when this tick's force, on the hand's present
-// velocity, would make that work positive, the loop adds a damper against
-// the velocity that takes the excess back, at most
+// work its force does on the hand (each tick's force times the device's
+// move over the next tick). A model a round trip old may switch planes
+// under a moving hand and so hand it energy no surface would. The contact
+// may hand back what the touched plane's spring holds (and
+// `passivity_reserve_j`), no more: the energy friction and the dampers
+// took from the hand is gone (a long slide's friction never pays for a
+// later kick), and in free space nothing is held. When this tick's force,
+// on the hand's present velocity, would hand back more, the loop adds a
+// damper against the velocity that takes the excess back, at most
 // `max_passivity_damping_ns_per_m` (a damper a device and a hand hold
 // stably at 1 kHz), its force changing by at most `max_switch_step_n` a
-// tick; what a tick cannot take back is owed by the next. The
-// credit of energy the contact dissipated (friction, dampers) lasts while
-// it touches: in free space the surfaces hold no energy, so the account
-// starts again at zero and earlier dissipation never pays for a later
-// kick. Only the translation is watched: the torque is rendered as it is.
+// tick; what a tick cannot take back is owed by the next. Only the
+// translation is watched: the torque is rendered as it is.
 
 #include <cstdint>
 #include <vector>
@@ -67,6 +67,9 @@ struct HapticLoopOptions {
   /// The passivity controller's largest damping, N*s/m; 0 turns it off.
   /// Its force changes by at most max_switch_step_n a tick.
   double max_passivity_damping_ns_per_m = 30;
+  /// The work the controller lets the contact hand the hand beyond what
+  /// its spring holds, joules.
+  double passivity_reserve_j = 2e-4;
 };
 
 struct HapticOutput {
@@ -134,8 +137,8 @@ class HapticLoop {
   // at its edge; `held`: the proxy is past it (normal push only).
   HapticOutput Render(int plane, const Vector3d& device, const Vector3d& v_WD, bool held) const;
   // The passivity controller: adds to `out` the damping against `v_WD`
-  // that keeps the work done on the hand since it last touched at most 0,
-  // if the hand goes on at `v_WD` over the next tick.
+  // that keeps the work done on the hand within what the contact may hand
+  // back, if the hand goes on at `v_WD` over the next tick.
   void KeepPassive(HapticOutput& out, const Vector3d& v_WD);
 
   HapticLoopOptions options_;
@@ -163,9 +166,12 @@ class HapticLoop {
   int64_t rejected_poses_ = 0;
   int64_t beyond_validity_ticks_ = 0;
   int64_t restarted_models_ = 0;
-  // Work the force has done on the hand since it last touched, joules
-  // (negative: the contact took energy from the hand).
+  // Work the force has done on the hand, joules (negative: the contact
+  // took energy from the hand), never below what the contact may hand
+  // back.
   double work_on_hand_j_ = 0;
+  // The energy the touched plane's spring holds this tick, joules.
+  double stored_j_ = 0;
   // The passivity controller's damping force of the last tick, N.
   Vector3d passivity_force_ = Vector3d::Zero();
   int64_t passivity_ticks_ = 0;

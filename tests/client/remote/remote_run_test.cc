@@ -152,7 +152,7 @@ TEST_P(RemoteOperatorTest, LocalModelStaysPassiveOverStalls) {
 // no deeper than twice the zero-latency run; the press and the tap change
 // the force in a tick by no more than the zero-latency run does plus the
 // switch bound (the slide, which switches between the crest's planes, by
-// 0.8 N: docs/remote-haptics.md). The device
+// 0.9 N: docs/remote-haptics.md). The device
 // loop's passivity controller is what keeps the press and the slide so:
 // without it, models a round trip old hand the hand energy (the slide
 // about 0.45 J, the press 4 mJ, on this link's draw).
