@@ -32,11 +32,8 @@ nlohmann::json DriveOperator(const std::string& address, const std::string& op, 
   return nlohmann::json::parse(out.str(), nullptr, false);
 }
 
-struct Link {
-  double one_way_ms, jitter_ms, stall_prob, stall_ms;
-};
-
-class SlideThroughRelayTest : public ::testing::TestWithParam<Link> {};
+// The relay's link; the test fills in where it relays to.
+class SlideThroughRelayTest : public ::testing::TestWithParam<RelayOptions> {};
 
 // The slide across the organ's crest through the relay (links of the study
 // in docs/remote-haptics.md: 50 ms each way, 10 ms jitter and 1 % of
@@ -47,13 +44,9 @@ TEST_P(SlideThroughRelayTest, StaysPassiveAndShallow) {
   hs::testing::ServerProcess server;
   ASSERT_NE(server.port(), 0) << server.startup();
   const std::string direct = "127.0.0.1:" + std::to_string(server.port());
-  const Link link = GetParam();
-  absl::StatusOr<std::unique_ptr<TcpRelay>> relay = TcpRelay::Start({.to = direct,
-                                                                     .one_way_ms = link.one_way_ms,
-                                                                     .jitter_ms = link.jitter_ms,
-                                                                     .stall_prob = link.stall_prob,
-                                                                     .stall_ms = link.stall_ms,
-                                                                     .seed = 1});
+  RelayOptions link = GetParam();
+  link.to = direct;
+  absl::StatusOr<std::unique_ptr<TcpRelay>> relay = TcpRelay::Start(link);
   ASSERT_TRUE(relay.ok()) << relay.status();
   const nlohmann::json reference = DriveOperator(direct, "slide", 4);
   const nlohmann::json linked =
@@ -69,8 +62,12 @@ TEST_P(SlideThroughRelayTest, StaysPassiveAndShallow) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Links, SlideThroughRelayTest,
-                         ::testing::Values(Link{50, 10, 0.01, 100}, Link{150, 20, 0, 0}),
-                         [](const ::testing::TestParamInfo<Link>& info) {
+                         ::testing::Values(RelayOptions{.one_way_ms = 50,
+                                                        .jitter_ms = 10,
+                                                        .stall_prob = 0.01,
+                                                        .stall_ms = 100},
+                                           RelayOptions{.one_way_ms = 150, .jitter_ms = 20}),
+                         [](const ::testing::TestParamInfo<RelayOptions>& info) {
                            return "OneWay" +
                                   std::to_string(static_cast<int>(info.param.one_way_ms)) + "Ms";
                          });
