@@ -39,6 +39,7 @@ class KnownPairs {
         s_(storage()),
         known_(s_.known),
         pairs_(s_.pairs),
+        exact_(s_.exact),
         scratch_(s_.scratch),
         reaching_(s_.reaching) {
     s_.Clear();
@@ -67,8 +68,7 @@ class KnownPairs {
       known_.push_back({.pair = pair,
                         .bounds = SweptPlaneBounds(moving, c_.FixedTriangle(pair.b), c_.direction_F,
                                                    c_.tolerance_m, kAhead),
-                        .computed = false,
-                        .exact = {}});
+                        .computed = false});
     }
     if (known_.size() == old_size) return;
     if (old_size > 0) {
@@ -129,8 +129,7 @@ class KnownPairs {
   struct KnownPair {
     TrianglePair pair;
     SweptIntervals bounds;  // each holds its interval
-    bool computed = false;  // whether `exact` is
-    Interval exact;
+    bool computed = false;  // whether its exact interval is (in exact_)
     bool operator<(const KnownPair& other) const { return pair < other.pair; }
   };
 
@@ -138,9 +137,9 @@ class KnownPairs {
   double Chain(double t_star) {
     std::vector<Interval>& exact = scratch_;
     exact.clear();
-    for (const KnownPair& k : known_) {
+    for (const Interval& interval : exact_) {
       // One that ends by t* cannot extend a run from it.
-      if (k.computed && !k.exact.empty() && k.exact.hi > t_star) exact.push_back(k.exact);
+      if (interval.hi > t_star) exact.push_back(interval);
     }
     std::sort(exact.begin(), exact.end(),
               [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
@@ -150,10 +149,11 @@ class KnownPairs {
     return t_star;
   }
 
-  void Compute(KnownPair& k) const {
-    k.exact = SweptIntersection(c_.MovingTriangle(k.pair.a), c_.FixedTriangle(k.pair.b),
-                                c_.direction_F, 0.0, kAhead);
+  void Compute(KnownPair& k) {
+    const Interval exact = SweptIntersection(
+        c_.MovingTriangle(k.pair.a), c_.FixedTriangle(k.pair.b), c_.direction_F, 0.0, kAhead);
     k.computed = true;
+    if (!exact.empty()) exact_.push_back(exact);
   }
 
   // Buffers kept from one query to the next (common/core/scratch.h) so
@@ -162,12 +162,16 @@ class KnownPairs {
     std::vector<KnownPair> known;
     std::vector<KnownPair> merged;
     std::vector<TrianglePair> pairs;  // known's pairs, for pairs()
+    // The non-empty exact intervals computed, in the order computed: Chain
+    // reads these, not every known pair (most are never computed).
+    std::vector<Interval> exact;
     std::vector<TrianglePair> sorted;
     std::vector<Interval> scratch;
     std::vector<KnownPair*> reaching;
     void Clear() {
       known.clear();
       pairs.clear();
+      exact.clear();
     }
   };
   static Storage& storage() { return Scratch<Storage>(); }
@@ -176,6 +180,7 @@ class KnownPairs {
   Storage& s_;
   std::vector<KnownPair>& known_;
   std::vector<TrianglePair>& pairs_;
+  std::vector<Interval>& exact_;
   std::vector<Interval>& scratch_;
   std::vector<KnownPair*>& reaching_;
 };
