@@ -2,6 +2,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <iostream>
@@ -81,6 +82,11 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
                            .trace_path = args.trace_path,
                            .json = args.json,
                            .frame_rate_hz = args.frame_rate_hz};
+    if (args.rate_given) remote.run.pose_rate_hz = args.rate_hz;
+    // As the SDK's Device: frames at the rate poses go, unless asked.
+    if (remote.frame_rate_hz == 0) {
+      remote.frame_rate_hz = std::clamp(remote.run.pose_rate_hz, kMinFrameRateHz, kMaxFrameRateHz);
+    }
     remote.run.motion = *motion;
     remote.run.local_model = args.local_model == "on";
     remote.run.link = args.link;
@@ -180,9 +186,11 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--amplitude", args->amplitude_m, "How far a sweep goes each side, metres")
       ->capture_default_str();
-  cmd->add_option("--rate", args->rate_hz, "Poses per second")
-      ->check(CLI::Range(1e-3, 1e5))
-      ->capture_default_str();
+  CLI::Option* rate =
+      cmd->add_option("--rate", args->rate_hz,
+                      "Poses per second (with --operator: default 250, as the SDK's device)")
+          ->check(CLI::Range(1e-3, 1e5))
+          ->capture_default_str();
   AddFrameRateOption(*cmd, args->frame_rate_hz);
   cmd->add_flag("--json", args->json, "One JSON object (haptics.v1.Frame) per line");
   cmd->add_flag("--take-over", args->take_over,
@@ -230,12 +238,13 @@ void AddDriveCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--reference-server", args->reference_server,
                   "With --operator: run the zero-latency reference (force_rms_error_n) against "
                   "this address, the server itself when --server is a relay");
-  cmd->callback([args, path, motion, hand, &exit_code] {
+  cmd->callback([args, path, motion, hand, rate, &exit_code] {
     if (path->count() + motion->count() + hand->count() != 1) {
       std::cerr << "hapticctl drive: give --path, --motion or --operator\n";
       exit_code = kExitUsage;
       return;
     }
+    args->rate_given = rate->count() > 0;
     exit_code = RunDrive(*args, std::cout, std::cerr);
   });
 }

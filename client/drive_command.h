@@ -37,8 +37,11 @@ struct DriveArgs {
   /// The motion's depth and sweep amplitude, metres.
   double depth_m = 0.02;
   double amplitude_m = 0.05;
-  /// Poses sent per second (CSV paths and motions).
+  /// Poses sent per second (CSV paths, motions and --operator).
   double rate_hz = 1000;
+  /// Whether --rate was given: --operator sends poses at the SDK Device's
+  /// rate (250 a second) unless it was.
+  bool rate_given = false;
   /// Frames a second asked of the server (frame_rate_args.h); 0: its own.
   double frame_rate_hz = 0;
   /// One JSON object (haptics.v1.Frame) per line instead of a table.

@@ -122,6 +122,8 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"stall_prob", link.stall_prob},
           {"stall_ms", link.stall_ms},
           {"seed", link.seed},
+          {"pose_rate_hz", args.run.pose_rate_hz},
+          {"frame_rate_hz", args.frame_rate_hz},
           {"ticks", s.ticks},
           {"energy_j", s.energy_j},
           {"max_force_step_n", s.max_force_step_n},

@@ -20,7 +20,11 @@ RemoteRun::RemoteRun(const RemoteRunOptions& options, const Isometry3d& start)
       loop_(options.loop),
       sizer_(options.sizer),
       up_(options.link, 0),
-      down_(options.link, 1) {}
+      down_(options.link, 1) {
+  if (options.pose_rate_hz > 0 && options.pose_rate_hz * options.tick_s < 1) {
+    pose_period_ticks_ = std::llround(1 / (options.pose_rate_hz * options.tick_s));
+  }
+}
 
 void RemoteRun::Read(const ServerFrame& frame, int64_t tick) {
   if (frame.model_rejected) ++models_rejected_;
@@ -54,6 +58,7 @@ void RemoteRun::Tick(int64_t k) {
     positions_.push_back(X_WD.translation());
     hand_.Step(now_s - engaged_at_s_, options_.tick_s, rendered);
   }
+  if (k % pose_period_ticks_ != 0) return;
   PoseMessage pose{.sequence = static_cast<uint64_t>(k) + 1, .X_WD = hand_.DevicePose()};
   if (options_.local_model) {
     pose.model_stale = loop_.beyond_validity_ticks() > beyond_validity_sent_;

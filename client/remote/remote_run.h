@@ -67,6 +67,10 @@ struct RemoteRunOptions {
   bool local_model = true;
   LinkConditions link;
   double tick_s = 1e-3;
+  /// Poses sent a second: the newest pose every 1 / pose_rate_hz, as the
+  /// SDK's Device sends them (its default rate); the device's loop renders
+  /// every tick all the same. At or above 1 / tick_s, one a tick.
+  double pose_rate_hz = 250;
   HapticLoopOptions loop;
   /// With the local model: ask for a validity radius sized from the round
   /// trip and the hand's speed (validity_sizer.h); false keeps the scene's.
@@ -124,10 +128,10 @@ class RemoteRun {
   RemoteRun(const RemoteRunOptions& options, const Isometry3d& start);
 
   /// Tick `k`, at k * tick_s: reads the frames the link delivers by then,
-  /// renders the force, moves the hand under it and sends the device's
-  /// pose (sequence k + 1). The hand holds still until the device is live
-  /// (its first model, or with the local model off its first frame), as an
-  /// operator waits for the device to say so; its motion starts then.
+  /// renders the force, moves the hand under it and, on the ticks of the
+  /// pose rate, sends the device's pose (sequence k + 1). The hand holds still until the device is
+  /// live (its first model, or with the local model off its first frame), as an operator waits for
+  /// the device to say so; its motion starts then.
   void Tick(int64_t k);
   /// Ticks the hand has moved through (those after the device was live).
   int64_t ticks_rendered() const { return static_cast<int64_t>(forces_.size()); }
@@ -156,6 +160,8 @@ class RemoteRun {
   HandOperator hand_;
   HapticLoop loop_;
   ValiditySizer sizer_;
+  // A pose goes every this many ticks (pose_rate_hz).
+  int64_t pose_period_ticks_ = 1;
   // The loop's ticks past its validity sphere when the last pose went.
   int64_t beyond_validity_sent_ = 0;
   DelayLine<PoseMessage> up_;
