@@ -27,6 +27,8 @@ const std::vector<std::string> kKeys = {"mode",
                                         "stall_prob",
                                         "stall_ms",
                                         "seed",
+                                        "pose_rate_hz",
+                                        "frame_rate_hz",
                                         "ticks",
                                         "reference_force_rms_n",
                                         "energy_j",
@@ -87,6 +89,8 @@ TEST_F(RemoteDriveTest, IdealLinkSummaryAndTrace) {
   EXPECT_EQ(keys, sorted_keys);  // nlohmann::json keeps its keys sorted
   EXPECT_EQ(summary["mode"], "local_model");
   EXPECT_EQ(summary["operator"], "press");
+  EXPECT_EQ(summary["pose_rate_hz"], RemoteRunOptions{}.pose_rate_hz);  // the SDK device's
+  EXPECT_EQ(summary["frame_rate_hz"], 0);                               // the server's
   EXPECT_EQ(summary["ticks"], 800);
   EXPECT_GT(summary["max_force_n"].get<double>(), 0);
   EXPECT_EQ(summary["force_rms_error_n"], 0);
@@ -112,6 +116,8 @@ TEST_F(RemoteDriveTest, LossyLinkAgainstAReference) {
   args_.json = false;
   args_.run.local_model = false;
   args_.run.link = {.latency_ms = 5, .loss = 0.2, .seed = 7};
+  args_.run.pose_rate_hz = 500;
+  args_.frame_rate_hz = 500;
   ASSERT_EQ(Drive(), kExitOk) << err_.str();
   std::istringstream lines(out_.str());
   std::string line;
@@ -126,6 +132,8 @@ TEST_F(RemoteDriveTest, LossyLinkAgainstAReference) {
   EXPECT_EQ(std::stod(figures["latency_ms"]), 5);
   EXPECT_EQ(std::stod(figures["loss"]), 0.2);
   EXPECT_EQ(figures["seed"], "7");
+  EXPECT_EQ(std::stod(figures["pose_rate_hz"]), 500);
+  EXPECT_EQ(std::stod(figures["frame_rate_hz"]), 500);
   EXPECT_GT(std::stod(figures["force_rms_error_n"]), 0);
   EXPECT_GT(std::stoi(figures["poses_lost"]), 0);
 }

@@ -100,6 +100,30 @@ TEST(DepthBehindProxyTest, IsTheDevicesDistanceUnderTheTouchedFaces) {
   EXPECT_EQ(DepthBehindProxy(device, Vector3d(0.1, 0.2, 0), {}), 0);
 }
 
+// The device sends its newest pose once every 1 / pose_rate_hz, as the
+// SDK's Device does (the first at tick 0, each numbered by its tick + 1),
+// and one a tick at the tick rate or above; over an ideal link each
+// reaches the server at the tick it went.
+TEST(RemoteRunTest, SendsPosesAtThePoseRate) {
+  for (const auto& [rate_hz, every] : {std::pair{250.0, 4}, {1000.0, 1}, {5000.0, 1}}) {
+    RemoteRunOptions options;
+    options.pose_rate_hz = rate_hz;
+    RemoteRun run(options, Isometry3d::Identity());
+    std::vector<uint64_t> sequences;
+    for (int64_t k = 0; k < 100; ++k) {
+      run.Tick(k);
+      run.DeliverPoses(static_cast<double>(k) * options.tick_s, [&](const PoseMessage& pose) {
+        EXPECT_EQ(pose.sequence, static_cast<uint64_t>(k) + 1) << rate_hz << " poses/s";
+        sequences.push_back(pose.sequence);
+      });
+    }
+    EXPECT_EQ(sequences.size(), 100u / every) << rate_hz << " poses/s";
+    for (size_t i = 0; i < sequences.size(); ++i) {
+      EXPECT_EQ(sequences[i], i * every + 1) << rate_hz << " poses/s";
+    }
+  }
+}
+
 class RemoteOperatorTest : public testing::TestWithParam<OperatorMotion> {};
 
 // At 100 ms round trip the device rendering from the local model keeps the
