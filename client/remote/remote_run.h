@@ -129,9 +129,10 @@ class RemoteRun {
 
   /// Tick `k`, at k * tick_s: reads the frames the link delivers by then,
   /// renders the force, moves the hand under it and, on the ticks of the
-  /// pose rate, sends the device's pose (sequence k + 1). The hand holds still until the device is
-  /// live (its first model, or with the local model off its first frame), as an operator waits for
-  /// the device to say so; its motion starts then.
+  /// pose rate, sends the device's pose (sequence k + 1). The hand holds
+  /// still until the device is live (its first model, or with the local
+  /// model off its first frame), as an operator waits for the device to
+  /// say so; its motion starts then.
   void Tick(int64_t k);
   /// Ticks the hand has moved through (those after the device was live).
   int64_t ticks_rendered() const { return static_cast<int64_t>(forces_.size()); }
