@@ -190,30 +190,6 @@ bool SamePlane(const ConstraintPlane& a, const ConstraintPlane& b, double size) 
          std::abs(a.normal_W.dot(a.point_W - b.point_W)) <= kSameOffset * size;
 }
 
-// Nearest first; ties in a fixed order, so that the model does not depend
-// on the order the pairs were found in.
-bool Nearer(const ConstraintPlane& x, const ConstraintPlane& y) {
-  if (x.gap_m != y.gap_m) return x.gap_m < y.gap_m;
-  for (int i = 0; i < 3; ++i) {
-    if (x.normal_W[i] != y.normal_W[i]) return x.normal_W[i] < y.normal_W[i];
-  }
-  for (int i = 0; i < 3; ++i) {
-    if (x.tool_point_W[i] != y.tool_point_W[i]) return x.tool_point_W[i] < y.tool_point_W[i];
-  }
-  for (int i = 0; i < 3; ++i) {
-    if (x.point_W[i] != y.point_W[i]) return x.point_W[i] < y.point_W[i];
-  }
-  if (x.object != y.object) return x.object < y.object;
-  // Two faces' pairs may give one plane with different materials: the
-  // order of the pairs must not choose between them.
-  if (x.stiffness_n_per_m != y.stiffness_n_per_m) {
-    return x.stiffness_n_per_m < y.stiffness_n_per_m;
-  }
-  if (x.damping_ns_per_m != y.damping_ns_per_m) return x.damping_ns_per_m < y.damping_ns_per_m;
-  if (x.static_friction != y.static_friction) return x.static_friction < y.static_friction;
-  return x.dynamic_friction < y.dynamic_friction;
-}
-
 // The tool's `near` features at X_WP in the world frame.
 void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures& near,
                NormalCache& normals, PlacedTool& placed) {
@@ -521,11 +497,6 @@ double BoundSlack(const Isometry3d& X_WP, double lever_m) {
   return 1e-9 * (1 + X_WP.translation().cwiseAbs().maxCoeff() + lever_m);
 }
 
-// How far behind its plane a pair may be and still count as touching: the
-// proxy's stand-off is 1e-6 of the tool's size in front, so a pair farther
-// behind is not one the tool rests on.
-double Behind(const HapticObject& t) { return 1e-6 * t.bounding_box().diagonal().norm(); }
-
 // The farthest corner of the tool's box from its origin.
 double Reach(const HapticObject& t) {
   const AlignedBox3d box = t.bounding_box();
@@ -630,7 +601,7 @@ void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelP
 // (`order` is scratch).
 void NearestDistinct(const std::vector<ConstraintPlane>& candidates, int max_planes, double size,
                      std::vector<int>& order, std::vector<ConstraintPlane>& planes) {
-  auto nearer = [&](int x, int y) { return Nearer(candidates[x], candidates[y]); };
+  auto nearer = [&](int x, int y) { return NearerPlane(candidates[x], candidates[y]); };
   order.resize(candidates.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   // Most models take their planes from the nearest few candidates.
@@ -664,6 +635,32 @@ double MovedBy(const Isometry3d& from, const Isometry3d& to, double lever_m) {
   return (to.translation() - from.translation()).norm() + lever_m * turn;
 }
 
+bool NearerPlane(const ConstraintPlane& x, const ConstraintPlane& y) {
+  if (x.gap_m != y.gap_m) return x.gap_m < y.gap_m;
+  for (int i = 0; i < 3; ++i) {
+    if (x.normal_W[i] != y.normal_W[i]) return x.normal_W[i] < y.normal_W[i];
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (x.tool_point_W[i] != y.tool_point_W[i]) return x.tool_point_W[i] < y.tool_point_W[i];
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (x.point_W[i] != y.point_W[i]) return x.point_W[i] < y.point_W[i];
+  }
+  if (x.object != y.object) return x.object < y.object;
+  // Two faces' pairs may give one plane with different materials: the
+  // order of the pairs must not choose between them.
+  if (x.stiffness_n_per_m != y.stiffness_n_per_m) {
+    return x.stiffness_n_per_m < y.stiffness_n_per_m;
+  }
+  if (x.damping_ns_per_m != y.damping_ns_per_m) return x.damping_ns_per_m < y.damping_ns_per_m;
+  if (x.static_friction != y.static_friction) return x.static_friction < y.static_friction;
+  return x.dynamic_friction < y.dynamic_friction;
+}
+
+double PlaneTouchTolerance(const HapticObject& tool) {
+  return 1e-6 * tool.bounding_box().diagonal().norm();
+}
+
 double LocalModelPairs::Moved(const Isometry3d& X_WP_now) const {
   return MovedBy(X_WP, X_WP_now, lever_m);
 }
@@ -680,7 +677,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            const LocalModelOptions& options, double margin_m, double reach_m,
                            LocalModelPairs& pairs) {
   const HapticObject& t = *tool.object;
-  const double behind = Behind(t);
+  const double behind = PlaneTouchTolerance(t);
   // The gap the pairs are gathered for: the radius, or less.
   const double radius_m = std::min(reach_m, options.radius_m);
   // How far a pair's features may be apart now and still meet the tests
@@ -818,7 +815,7 @@ bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
   model.touching = proxy.touching;
   model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
   const double size = tool.bounding_box().diagonal().norm();
-  const double behind = Behind(tool);
+  const double behind = PlaneTouchTolerance(tool);
   CandidatePlanes& candidate_planes = Scratch<CandidatePlanes>();
   std::vector<ConstraintPlane>& candidates = candidate_planes.planes;
   candidates.clear();

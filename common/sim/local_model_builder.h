@@ -90,6 +90,16 @@ struct LocalModelPairs {
 /// times the lever.
 double MovedBy(const Isometry3d& from, const Isometry3d& to, double lever_m);
 
+/// The order of a model's planes: nearest first (by gap); ties in a fixed
+/// order, so that a model does not depend on the order its pairs were
+/// found in.
+bool NearerPlane(const ConstraintPlane& x, const ConstraintPlane& y);
+
+/// How far behind a plane a tool may lie and still count as resting on it:
+/// the proxy stands 1e-6 of the tool's size in front of what it touches,
+/// so a pair farther behind is not one the tool rests on.
+double PlaneTouchTolerance(const HapticObject& tool);
+
 /// Fills `pairs` for `tool` (its pose field ignored) at proxy pose X_WP
 /// among `obstacles` (fixed objects, ids `ids`): every pair BuildLocalModel
 /// would take a plane from with the proxy anywhere `Moved` says is within

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/sim/frame_storage.h"
+#include "common/sim/local_model_anchor.h"
 #include "common/sim/local_model_builder.h"
 #include "common/sim/motion_bounds.h"
 #include "common/sim/proxy.h"
@@ -35,6 +36,10 @@ constexpr double kLongestSearchPeriodS = 1.0;
 // on a surface included. What holding saves: docs/benchmarks.md.
 constexpr double kModelMoveFraction = 0.1;
 constexpr double kLongestModelPeriodS = 0.05;
+// A touching proxy that has slid by less than this fraction of the radius
+// since the last model built gets that model anchored where it is
+// (local_model_anchor.h): the same planes, a radius less by the slide.
+constexpr double kAnchorMoveFraction = 0.25;
 
 // The contact ProxiesPenetrate reconstructs, kept from step to step.
 struct StartContact {
@@ -104,23 +109,34 @@ void ToolStage::SetLocalModelRadius(ObjectId id, double radius_m) {
   scratch_[index_[id]].model_radius_m = radius_m;
 }
 
-bool ToolStage::ModelServes(const ProxyState& proxy, const LocalModelOptions& options,
-                            ToolScratch& scratch) const {
-  const LocalModel& model = scratch.model;
-  if (model.revision == 0 || scratch.model_wanted) return false;
-  if (model.validity_radius_m != options.radius_m || model.friction != options.friction) {
-    return false;
+ToolStage::ModelUpdate ToolStage::ModelUpdateFor(const ProxyState& proxy,
+                                                 const LocalModelOptions& options,
+                                                 ToolScratch& scratch) const {
+  const LocalModel& built = scratch.built_model;
+  if (scratch.model.revision == 0 || scratch.model_wanted) return ModelUpdate::kBuild;
+  if (built.validity_radius_m != options.radius_m || built.friction != options.friction) {
+    return ModelUpdate::kBuild;
+  }
+  if (built.touching != proxy.touching) return ModelUpdate::kBuild;
+  if (scratch.model_pairs.obstacle_count != objects_.obstacles().size()) {
+    return ModelUpdate::kBuild;
+  }
+  if (++scratch.steps_since_model * options_.step_s > kLongestModelPeriodS) {
+    return ModelUpdate::kBuild;
+  }
+  const double moved = MovedBy(built.X_WP, proxy.X_WP, scratch.model_pairs.lever_m);
+  if (!proxy.touching) {
+    return moved <= kModelMoveFraction * options.radius_m ? ModelUpdate::kKeep
+                                                          : ModelUpdate::kBuild;
   }
   // In contact the proxy slides along the faces the planes stand for: the
   // point it touches (the torque's lever) and the drift a device's loop
-  // corrects change with each move, so a touching proxy that moved gets a
-  // new model; one held still by the surface keeps its own.
-  if (model.touching != proxy.touching) return false;
-  if (proxy.touching && !proxy.X_WP.isApprox(model.X_WP, 0.0)) return false;
-  if (scratch.model_pairs.obstacle_count != objects_.obstacles().size()) return false;
-  if (++scratch.steps_since_model * options_.step_s > kLongestModelPeriodS) return false;
-  return MovedBy(model.X_WP, proxy.X_WP, scratch.model_pairs.lever_m) <=
-         kModelMoveFraction * options.radius_m;
+  // corrects change with each move, so a touching proxy that moved gets
+  // the last model anchored where it is now; one held still by the
+  // surface keeps its own.
+  if (proxy.X_WP.isApprox(scratch.model.X_WP, 0.0)) return ModelUpdate::kKeep;
+  return moved <= kAnchorMoveFraction * options.radius_m ? ModelUpdate::kAnchor
+                                                         : ModelUpdate::kBuild;
 }
 
 bool ToolStage::PairsServe(const Isometry3d& X_WP, ToolScratch& scratch) const {
@@ -551,22 +567,32 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       scratch.steps_since_search = 0;
       scratch.searched_radius_m = scratch.model_radius_m;
     };
+    const HapticObject& t = objects_[tool.id].object;
     // A device that takes the tool gets a model of its first pose: the
     // last one may be older than its stream.
-    if (tool.seated || !ModelServes(proxy, model_options, scratch)) {
+    ModelUpdate update =
+        tool.seated ? ModelUpdate::kBuild : ModelUpdateFor(proxy, model_options, scratch);
+    if (update == ModelUpdate::kAnchor &&
+        !AnchorLocalModel(scratch.built_model, proxy, tool.X_WD.translation(),
+                          PlaneTouchTolerance(t), scratch.model)) {
+      update = ModelUpdate::kBuild;
+    }
+    if (update == ModelUpdate::kBuild) {
       if (!PairsServe(proxy.X_WP, scratch))
-        gather(SearchReach(scratch.model, model_options, margin));
-      const HapticObject& t = objects_[tool.id].object;
+        gather(SearchReach(scratch.built_model, model_options, margin));
       if (!ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
-                          scratch.model)) {
+                          scratch.built_model)) {
         // The model's farthest plane lies beyond a short search's pairs.
         gather(model_options.radius_m);
         (void)ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
-                             scratch.model);  // the whole radius
+                             scratch.built_model);  // the whole radius
       }
+      scratch.built_model.revision = scratch.model.revision + 1;
+      scratch.model = scratch.built_model;
+    } else if (update == ModelUpdate::kAnchor) {
       ++scratch.model.revision;
-      scratch.steps_since_model = 0;
     }
+    if (update != ModelUpdate::kKeep) scratch.steps_since_model = 0;
     scratch.model_wanted = false;
     frame.local_model = scratch.model;
   }

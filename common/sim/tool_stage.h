@@ -126,8 +126,9 @@ class ToolStage {
     // The proxy half, with the local model stage: the feature pairs of the
     // last face search, which serve until the proxy moves past their
     // margin (PairsServe), the steps since, whether a device asked for a
-    // fresh model, and the model the frames carry, made from the pairs at
-    // each step's proxy.
+    // fresh model, the model last made from the pairs at a step's proxy,
+    // and the one the frames carry: that one, or it anchored at a touching
+    // proxy that has slid since (local_model_anchor.h).
     LocalModelPairs model_pairs;
     int steps_since_search = 0;
     int steps_since_model = 0;
@@ -136,6 +137,7 @@ class ToolStage {
     // and the one the pairs were searched with.
     double model_radius_m = 0;
     double searched_radius_m = 0;
+    LocalModel built_model;
     LocalModel model;
   };
   // A piece of a step for one worker: the contacts half of tool `index`
@@ -176,11 +178,16 @@ class ToolStage {
   // `island` holds the tool (indices into tools_).
   void StepProxy(int index, std::span<const int> island, EffectSet stages, ToolFrame& frame,
                  ToolScratch& scratch) const;
-  // Whether the tool's last model still serves its proxy at `proxy`, for a
+  // What the tool's last model needs to serve its proxy at `proxy`, for a
   // model of `options` (docs/simulation.md, Local models only when
   // needed); counts the step.
-  bool ModelServes(const ProxyState& proxy, const LocalModelOptions& options,
-                   ToolScratch& scratch) const;
+  enum class ModelUpdate {
+    kKeep,    // it serves as it is
+    kAnchor,  // the last one built, anchored at the proxy
+    kBuild,   // a new one
+  };
+  ModelUpdate ModelUpdateFor(const ProxyState& proxy, const LocalModelOptions& options,
+                             ToolScratch& scratch) const;
   // Whether the pairs of the last face search still serve the tool's
   // model with its proxy at X_WP (docs/simulation.md, Local models only
   // when needed); counts the step.

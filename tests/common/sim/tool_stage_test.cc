@@ -135,18 +135,27 @@ std::unique_ptr<Scene> RemoteDeviceScene() {
 
 // A tool gets a new model only when the last one no longer serves
 // (docs/simulation.md, Local models only when needed), and each new one is
-// the model a fresh search makes there: the pairs of the last search serve
-// while the proxy stays within their margin
-// (common/sim/local_model_builder.h). The oracle: the same poses in a scene
+// either the model a fresh search makes there, or, for a touching proxy
+// that slid a little, the last such model anchored where the proxy is now
+// (common/sim/local_model_anchor.h). The oracles: the same poses in a scene
 // asked for a fresh search every step give the same model, plane for
-// plane, at each new revision. Between revisions the proxy stays within a
-// tenth of the 1 cm radius of the model's and, touching, where it was.
+// plane, at each revision built (the pairs of the last search serve while
+// the proxy stays within their margin, common/sim/local_model_builder.h);
+// an anchored one holds the half-spaces of the last one built, by hand
+// (each gap grows by its normal times the slide), within the radius less
+// the slide, and the proxy rests on one of them. Between revisions the
+// proxy stays within a tenth of the 1 cm radius of the model's and,
+// touching, where it was.
 TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
+  constexpr double kRadius = 0.01;
   std::unique_ptr<Scene> kept = RemoteDeviceScene();
   std::unique_ptr<Scene> searched = RemoteDeviceScene();
   int pressing = 0;
   int held = 0;
+  int anchored = 0;
+  int built = 0;
   uint64_t last_revision = 0;
+  LocalModel last_built;
   Vector3d last_proxy = Vector3d::Constant(1);
   // Down onto the crest and 5 mm into it, then 15 mm along it, then still.
   for (int step = 0; step < 70; ++step) {
@@ -180,8 +189,31 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
     }
     EXPECT_TRUE(model.X_WP.isApprox(b.local_model.X_WP, 0.0)) << step;
     EXPECT_EQ(model.p_WD, b.local_model.p_WD) << step;
-    EXPECT_EQ(model.validity_radius_m, b.local_model.validity_radius_m) << step;
     EXPECT_EQ(model.touching, b.local_model.touching) << step;
+    if (model.validity_radius_m < kRadius) {  // anchored
+      ++anchored;
+      ASSERT_TRUE(model.touching) << step;
+      const Vector3d slide = model.X_WP.translation() - last_built.X_WP.translation();
+      EXPECT_LE(slide.norm(), 0.25 * kRadius) << step;
+      EXPECT_DOUBLE_EQ(model.validity_radius_m, kRadius - slide.norm()) << step;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const ConstraintPlane& plane : model.planes) {
+        // The same plane (parallel ones differ in their gaps).
+        EXPECT_TRUE(std::any_of(last_built.planes.begin(), last_built.planes.end(),
+                                [&](const ConstraintPlane& p) {
+                                  return p.normal_W == plane.normal_W &&
+                                         std::abs(std::max(p.gap_m + p.normal_W.dot(slide), 0.0) -
+                                                  plane.gap_m) <= 1e-15;
+                                }))
+            << step;
+        nearest = std::min(nearest, plane.gap_m);
+      }
+      EXPECT_LE(nearest, 1e-7) << "the proxy rests on a plane, step " << step;
+      continue;
+    }
+    ++built;
+    last_built = model;
+    EXPECT_EQ(model.validity_radius_m, b.local_model.validity_radius_m) << step;
     ASSERT_EQ(model.planes.size(), b.local_model.planes.size()) << step;
     for (size_t i = 0; i < model.planes.size(); ++i) {
       EXPECT_EQ(model.planes[i].normal_W, b.local_model.planes[i].normal_W) << step;
@@ -191,6 +223,8 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   }
   EXPECT_GT(held, 5) << "the path must hold models between revisions";
   EXPECT_GT(pressing, 5) << "the path must press with the proxy held";
+  EXPECT_GT(anchored, 5) << "the slide must anchor models";
+  EXPECT_GT(built, 3) << "the slide must build models";
   EXPECT_EQ(kept->RequestLocalModel(0).code(), absl::StatusCode::kFailedPrecondition);
 }
 
