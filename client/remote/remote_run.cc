@@ -18,7 +18,7 @@ RemoteRun::RemoteRun(const RemoteRunOptions& options, const Isometry3d& start)
     : options_(options),
       hand_(options.motion, options.hand, start),
       loop_(options.loop),
-      sizer_(options.sizer),
+      model_requester_(options.sizer),
       up_(options.link, 0),
       down_(options.link, 1) {
   if (options.pose_rate_hz > 0 && options.pose_rate_hz * options.tick_s < 1) {
@@ -39,7 +39,8 @@ void RemoteRun::Read(const ServerFrame& frame, int64_t tick) {
   round_trips_ms_.push_back(
       static_cast<double>(tick - static_cast<int64_t>(frame.applied_sequence) + 1) *
       options_.tick_s * 1e3);
-  sizer_.AddRoundTrip(static_cast<double>(tick) * options_.tick_s, round_trips_ms_.back() * 1e-3);
+  model_requester_.AddRoundTrip(static_cast<double>(tick) * options_.tick_s,
+                                round_trips_ms_.back() * 1e-3);
   server_force_ = frame.force_W;
   has_frame_ = true;
 }
@@ -61,12 +62,10 @@ void RemoteRun::Tick(int64_t k) {
   if (k % pose_period_ticks_ != 0) return;
   PoseMessage pose{.sequence = static_cast<uint64_t>(k) + 1, .X_WD = hand_.DevicePose()};
   if (options_.local_model) {
-    pose.model_stale = loop_.beyond_validity_ticks() > beyond_validity_sent_;
-    beyond_validity_sent_ = loop_.beyond_validity_ticks();
-    if (options_.size_validity) {
-      sizer_.AddDevicePosition(now_s + options_.tick_s, pose.X_WD.translation());
-      pose.validity_radius_m = sizer_.WantedRadius();
-    }
+    const ModelRequest request = model_requester_.ForPose(
+        now_s + options_.tick_s, pose.X_WD.translation(), loop_.beyond_validity_ticks());
+    pose.model_stale = request.model_stale;
+    if (options_.size_validity) pose.validity_radius_m = request.validity_radius_m;
   }
   up_.Push(now_s, pose);
   sent_ = static_cast<uint64_t>(k) + 1;

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "client/haptic_loop/haptic_loop.h"
-#include "client/haptic_loop/validity_sizer.h"
+#include "client/haptic_loop/model_request.h"
 #include "client/remote/delay_line.h"
 #include "client/remote/hand_operator.h"
 
@@ -160,11 +160,9 @@ class RemoteRun {
   RemoteRunOptions options_;
   HandOperator hand_;
   HapticLoop loop_;
-  ValiditySizer sizer_;
+  ModelRequester model_requester_;
   // A pose goes every this many ticks (pose_rate_hz).
   int64_t pose_period_ticks_ = 1;
-  // The loop's ticks past its validity sphere when the last pose went.
-  int64_t beyond_validity_sent_ = 0;
   DelayLine<PoseMessage> up_;
   DelayLine<ServerFrame> down_;
   Vector3d server_force_ = Vector3d::Zero();

@@ -186,14 +186,16 @@ bool DeviceLink::SendPose(InteractStream& writer, uint64_t& sequence) {
   q->set_x(sample.orientation_wxyz[1]);
   q->set_y(sample.orientation_wxyz[2]);
   q->set_z(sample.orientation_wxyz[3]);
-  pose->set_model_stale(sample.beyond_validity_ticks > sent_beyond_validity_);
   const double now_s = static_cast<double>(sample.time_ns) * 1e-9;
   const int64_t round_trip_ns = round_trip_peak_ns_.exchange(-1);
-  if (round_trip_ns >= 0) sizer_.AddRoundTrip(now_s, static_cast<double>(round_trip_ns) * 1e-9);
-  sizer_.AddDevicePosition(
-      now_s, Vector3d(sample.position_m[0], sample.position_m[1], sample.position_m[2]));
-  pose->set_validity_radius_m(sizer_.WantedRadius());
-  sent_beyond_validity_ = sample.beyond_validity_ticks;
+  if (round_trip_ns >= 0) {
+    model_requester_.AddRoundTrip(now_s, static_cast<double>(round_trip_ns) * 1e-9);
+  }
+  const ModelRequest model = model_requester_.ForPose(
+      now_s, Vector3d(sample.position_m[0], sample.position_m[1], sample.position_m[2]),
+      sample.beyond_validity_ticks);
+  pose->set_model_stale(model.model_stale);
+  pose->set_validity_radius_m(model.validity_radius_m);
   return writer.Write(request);
 }
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <thread>
 
-#include "client/haptic_loop/validity_sizer.h"
+#include "client/haptic_loop/model_request.h"
 #include "client/sdk/device_feed.h"
 #include "client/sdk/interact_stream.h"
 #include "client/sdk/triple_buffer.h"
@@ -73,10 +73,8 @@ class DeviceLink {
   // The state the feeds copy: the reader thread writes it while a stream
   // runs, the network thread between streams.
   Feed feed_;
-  int64_t sent_beyond_validity_ = 0;
-  // The validity radius each pose asks for, from the device's speed and
-  // the round trips (network thread only).
-  ValiditySizer sizer_;
+  // What each pose asks of the model (network thread only).
+  ModelRequester model_requester_;
 
   std::thread thread_;
   mutable std::mutex mutex_;
