@@ -133,6 +133,28 @@ std::unique_ptr<Scene> RemoteDeviceScene() {
   return scene;
 }
 
+// Points of the organ's faces in the world (its vertices, its faces'
+// centroids and edges' midpoints), as MakeScene places it.
+const std::vector<Vector3d>& OrganSamples() {
+  static const std::vector<Vector3d> samples = [] {
+    const MeshInput organ = MakeTorus(0.1, 0.04, 48, 24);
+    const Vector3d offset(0, 0, 0.04);
+    std::vector<Vector3d> out;
+    for (const Vector3d& p : organ.positions) out.push_back(p + offset);
+    for (const FaceInput& face : organ.faces) {
+      const Vector3d& a = organ.positions[face.vertices[0]];
+      const Vector3d& b = organ.positions[face.vertices[1]];
+      const Vector3d& c = organ.positions[face.vertices[2]];
+      out.push_back((a + b + c) / 3 + offset);
+      out.push_back((a + b) / 2 + offset);
+      out.push_back((b + c) / 2 + offset);
+      out.push_back((c + a) / 2 + offset);
+    }
+    return out;
+  }();
+  return samples;
+}
+
 // A tool gets a new model only when the last one no longer serves
 // (docs/simulation.md, Local models only when needed), and each new one is
 // either the model a fresh search makes there, or, for a touching proxy
@@ -154,6 +176,7 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   int held = 0;
   int anchored = 0;
   int built = 0;
+  int brute_forced = 0;
   uint64_t last_revision = 0;
   LocalModel last_built;
   Vector3d last_proxy = Vector3d::Constant(1);
@@ -209,6 +232,25 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
         nearest = std::min(nearest, plane.gap_m);
       }
       EXPECT_LE(nearest, 1e-7) << "the proxy rests on a plane, step " << step;
+      // And it holds the organ out, by brute force: every point of its
+      // faces within the radius of the tool lies behind a plane; when the
+      // model built was cut at its most planes, within its farthest
+      // plane's gap less the slide (the nearest faces are the ones kept).
+      double holds_m = model.validity_radius_m;
+      if (last_built.planes.size() == 16) {
+        holds_m = std::min(holds_m, last_built.planes.back().gap_m - slide.norm());
+      }
+      const AlignedBox3d tool(model.X_WP.translation() - Vector3d::Constant(0.01),
+                              model.X_WP.translation() + Vector3d::Constant(0.01));
+      for (const Vector3d& p_W : OrganSamples()) {
+        if (tool.exteriorDistance(p_W) > holds_m) continue;
+        ++brute_forced;
+        EXPECT_TRUE(std::any_of(model.planes.begin(), model.planes.end(),
+                                [&](const ConstraintPlane& plane) {
+                                  return plane.normal_W.dot(p_W - plane.point_W) <= 1e-9;
+                                }))
+            << "step " << step << " point " << p_W.transpose();
+      }
       continue;
     }
     ++built;
@@ -225,6 +267,7 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   EXPECT_GT(pressing, 5) << "the path must press with the proxy held";
   EXPECT_GT(anchored, 5) << "the slide must anchor models";
   EXPECT_GT(built, 3) << "the slide must build models";
+  EXPECT_GT(brute_forced, 20) << "the anchored models must be checked by brute force";
   EXPECT_EQ(kept->RequestLocalModel(0).code(), absl::StatusCode::kFailedPrecondition);
 }
 
