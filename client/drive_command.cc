@@ -2,7 +2,6 @@
 
 #include <grpcpp/grpcpp.h>
 
-#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <iostream>
@@ -83,10 +82,6 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
                            .json = args.json,
                            .frame_rate_hz = args.frame_rate_hz};
     if (args.rate_given) remote.run.pose_rate_hz = args.rate_hz;
-    // As the SDK's Device: frames at the rate poses go, unless asked.
-    if (remote.frame_rate_hz == 0) {
-      remote.frame_rate_hz = std::clamp(remote.run.pose_rate_hz, kMinFrameRateHz, kMaxFrameRateHz);
-    }
     remote.run.motion = *motion;
     remote.run.local_model = args.local_model == "on";
     remote.run.link = args.link;

@@ -1,5 +1,6 @@
 #include "client/remote/remote_drive.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -54,6 +55,12 @@ ServerFrame ReadFrame(const pb::Frame& frame, const std::string& tool) {
   return out;
 }
 
+// The frames a second asked of the server (RemoteDriveArgs::frame_rate_hz).
+double FrameRate(const RemoteDriveArgs& args) {
+  if (args.frame_rate_hz > 0) return args.frame_rate_hz;
+  return std::clamp(args.run.pose_rate_hz, kMinFrameRateHz, kMaxFrameRateHz);
+}
+
 struct RunResult {
   grpc::Status status;
   RemoteSummary summary;
@@ -70,7 +77,7 @@ RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
   EffectSet needs{Effect::kForce, Effect::kFriction, Effect::kContactSet, Effect::kReversingVector};
   if (options.local_model) needs = needs.With(Effect::kLocalModel);
   SetNeeds(needs, open);
-  SetFrameRate(open, args.frame_rate_hz);
+  SetFrameRate(open, FrameRate(args));
   RemoteRun run(options, start);
   const Clock::time_point t0 = Clock::now();
   auto seconds_since_start = [&] {
@@ -123,7 +130,7 @@ nlohmann::json SummaryJson(const RemoteDriveArgs& args, const RemoteSummary& s) 
           {"stall_ms", link.stall_ms},
           {"seed", link.seed},
           {"pose_rate_hz", args.run.pose_rate_hz},
-          {"frame_rate_hz", args.frame_rate_hz},
+          {"frame_rate_hz", FrameRate(args)},
           {"ticks", s.ticks},
           {"energy_j", s.energy_j},
           {"max_force_step_n", s.max_force_step_n},

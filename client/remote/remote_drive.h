@@ -26,7 +26,8 @@ struct RemoteDriveArgs {
   /// device position, m) to this file; empty for none.
   std::string trace_path;
   bool json = false;
-  /// Frames a second asked of the server (frame_rate_args.h); 0: its own.
+  /// Frames a second asked of the server (frame_rate_args.h); 0: as many
+  /// as poses go (run.pose_rate_hz, within the range), as the SDK's Device.
   double frame_rate_hz = 0;
 };
 
