@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -155,6 +157,35 @@ const std::vector<Vector3d>& OrganSamples() {
   return samples;
 }
 
+// Checks by brute force that an anchored `model` holds the organ out: every
+// point of its faces within the model's radius of the tool (a 2 cm cube at
+// the model's proxy) lies behind one of its planes, read as a device's loop
+// reads them (its gap in front of its tool point); when `built`, the
+// model it was anchored from, was cut at its most planes, only within its
+// farthest plane's gap less the `slide` (the nearest faces are the ones
+// kept). Returns how many points it checked.
+int CheckHoldsOrganOut(const LocalModel& model, const LocalModel& built, const Vector3d& slide,
+                       int step) {
+  double holds_m = model.validity_radius_m;
+  if (built.planes.size() == 16) {
+    holds_m = std::min(holds_m, built.planes.back().gap_m - slide.norm());
+  }
+  const AlignedBox3d tool(model.X_WP.translation() - Vector3d::Constant(0.01),
+                          model.X_WP.translation() + Vector3d::Constant(0.01));
+  int checked = 0;
+  for (const Vector3d& p_W : OrganSamples()) {
+    if (tool.exteriorDistance(p_W) > holds_m) continue;
+    ++checked;
+    EXPECT_TRUE(std::any_of(model.planes.begin(), model.planes.end(),
+                            [&](const ConstraintPlane& plane) {
+                              return plane.gap_m + plane.normal_W.dot(p_W - plane.tool_point_W) <=
+                                     1e-9;
+                            }))
+        << "step " << step << " point " << p_W.transpose();
+  }
+  return checked;
+}
+
 // A tool gets a new model only when the last one no longer serves
 // (docs/simulation.md, Local models only when needed), and each new one is
 // either the model a fresh search makes there, or, for a touching proxy
@@ -232,25 +263,7 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
         nearest = std::min(nearest, plane.gap_m);
       }
       EXPECT_LE(nearest, 1e-7) << "the proxy rests on a plane, step " << step;
-      // And it holds the organ out, by brute force: every point of its
-      // faces within the radius of the tool lies behind a plane; when the
-      // model built was cut at its most planes, within its farthest
-      // plane's gap less the slide (the nearest faces are the ones kept).
-      double holds_m = model.validity_radius_m;
-      if (last_built.planes.size() == 16) {
-        holds_m = std::min(holds_m, last_built.planes.back().gap_m - slide.norm());
-      }
-      const AlignedBox3d tool(model.X_WP.translation() - Vector3d::Constant(0.01),
-                              model.X_WP.translation() + Vector3d::Constant(0.01));
-      for (const Vector3d& p_W : OrganSamples()) {
-        if (tool.exteriorDistance(p_W) > holds_m) continue;
-        ++brute_forced;
-        EXPECT_TRUE(std::any_of(model.planes.begin(), model.planes.end(),
-                                [&](const ConstraintPlane& plane) {
-                                  return plane.normal_W.dot(p_W - plane.point_W) <= 1e-9;
-                                }))
-            << "step " << step << " point " << p_W.transpose();
-      }
+      brute_forced += CheckHoldsOrganOut(model, last_built, slide, step);
       continue;
     }
     ++built;
@@ -269,6 +282,43 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   EXPECT_GT(built, 3) << "the slide must build models";
   EXPECT_GT(brute_forced, 20) << "the anchored models must be checked by brute force";
   EXPECT_EQ(kept->RequestLocalModel(0).code(), absl::StatusCode::kFailedPrecondition);
+}
+
+// Random presses and slides over the organ (fixed seeds): each model
+// anchored along them holds the organ out (CheckHoldsOrganOut), whatever
+// the direction and speed of the slide.
+TEST(ToolStageTest, AnchoredModelsHoldTheOrganOutOnRandomSlides) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  int anchored = 0;
+  int checked = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    std::unique_ptr<Scene> scene = RemoteDeviceScene();
+    const double angle = 2 * std::numbers::pi * u(rng);
+    const Vector3d along(std::cos(angle), std::sin(angle), 0);
+    const double speed = 1e-4 + 9e-4 * u(rng);  // 0.1 to 1 mm a step
+    const double depth = 0.001 + 0.004 * u(rng);
+    uint64_t last_revision = 0;
+    LocalModel last_built;
+    for (int step = 0; step < 60; ++step) {
+      const double z = std::max(0.095 - 0.0005 * step, 0.09 - depth);
+      const double slid = step > 30 ? speed * (step - 30) : 0.0;
+      const Vector3d p = Vector3d(0.1, 0, z) + slid * along;
+      ASSERT_TRUE(scene->SetDevicePose(2, At(p.x(), p.y(), p.z())).ok());
+      const LocalModel& model = scene->Step().tools[0].local_model;
+      if (model.revision == last_revision) continue;
+      last_revision = model.revision;
+      if (model.validity_radius_m == 0.01) {
+        last_built = model;
+        continue;
+      }
+      ++anchored;
+      checked += CheckHoldsOrganOut(model, last_built,
+                                    model.X_WP.translation() - last_built.X_WP.translation(), step);
+    }
+  }
+  EXPECT_GT(anchored, 20) << "the slides must anchor models";
+  EXPECT_GT(checked, 100) << "points of the organ must be near the anchored models";
 }
 
 // The radius a device asks for is taken within the scene's bounds (its
