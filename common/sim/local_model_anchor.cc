@@ -15,13 +15,10 @@ bool AnchorLocalModel(const LocalModel& built, const ProxyState& proxy, const Ve
   for (const ConstraintPlane& plane : built.planes) {
     if (plane.gap_m + plane.normal_W.dot(t) < -behind_m) return false;
   }
-  out.X_WP = proxy.X_WP;
-  out.p_WD = p_WD;
+  SetModelProxy(proxy, p_WD, out);
   out.validity_radius_m = radius_m;
   out.force_clamp_n = built.force_clamp_n;
   out.friction = built.friction;
-  out.touching = proxy.touching;
-  out.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
   out.planes.clear();
   for (const ConstraintPlane& plane : built.planes) {
     const double along = plane.normal_W.dot(t);

@@ -657,6 +657,13 @@ bool NearerPlane(const ConstraintPlane& x, const ConstraintPlane& y) {
   return x.dynamic_friction < y.dynamic_friction;
 }
 
+void SetModelProxy(const ProxyState& proxy, const Vector3d& p_WD, LocalModel& model) {
+  model.X_WP = proxy.X_WP;
+  model.p_WD = p_WD;
+  model.touching = proxy.touching;
+  model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
+}
+
 double PlaneTouchTolerance(const HapticObject& tool) {
   return 1e-6 * tool.bounding_box().diagonal().norm();
 }
@@ -807,13 +814,10 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
 bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                     const LocalModelPairs& pairs, const LocalModelOptions& options,
                     LocalModel& model) {
-  model.X_WP = proxy.X_WP;
-  model.p_WD = p_WD;
+  SetModelProxy(proxy, p_WD, model);
   model.validity_radius_m = options.radius_m;
   model.force_clamp_n = options.force_clamp_n;
   model.friction = options.friction;
-  model.touching = proxy.touching;
-  model.touch_point_W = proxy.touching ? proxy.p_WC : proxy.X_WP.translation();
   const double size = tool.bounding_box().diagonal().norm();
   const double behind = PlaneTouchTolerance(tool);
   CandidatePlanes& candidate_planes = Scratch<CandidatePlanes>();

@@ -95,6 +95,11 @@ double MovedBy(const Isometry3d& from, const Isometry3d& to, double lever_m);
 /// found in.
 bool NearerPlane(const ConstraintPlane& x, const ConstraintPlane& y);
 
+/// Sets what `model` says of the proxy it is taken at: its pose, the
+/// device position it moved toward, and its touch (the contact point; the
+/// proxy's origin when it touches nothing).
+void SetModelProxy(const ProxyState& proxy, const Vector3d& p_WD, LocalModel& model);
+
 /// How far behind a plane a tool may lie and still count as resting on it:
 /// the proxy stands 1e-6 of the tool's size in front of what it touches,
 /// so a pair farther behind is not one the tool rests on.
