@@ -85,7 +85,7 @@ int RunDrive(const DriveArgs& args, std::ostream& out, std::ostream& err) {
     remote.run.motion = *motion;
     remote.run.local_model = args.local_model == "on";
     remote.run.link = args.link;
-    remote.run.loop.max_passivity_damping_ns_per_m = args.passivity_damping_ns_per_m;
+    remote.run.max_passivity_damping_ns_per_m = args.passivity_damping_ns_per_m;
     std::shared_ptr<grpc::Channel> reference;
     if (!args.reference_server.empty()) {
       ConnectionOptions direct = args.server;

@@ -72,4 +72,27 @@ class DelayLine {
   int64_t delivered_ = 0;
 };
 
+/// What a link did, both ways.
+struct LinkStats {
+  /// The mean time a message was held, milliseconds.
+  double uplink_mean_ms = 0;
+  double downlink_mean_ms = 0;
+  int64_t poses_lost = 0;
+  int64_t frames_lost = 0;
+  /// Messages held by a stall (and the ones behind them with them).
+  int64_t poses_stalled = 0;
+  int64_t frames_stalled = 0;
+};
+
+/// The stats of a link whose poses go on `up` and frames on `down`.
+template <typename Pose, typename Frame>
+LinkStats StatsOf(const DelayLine<Pose>& up, const DelayLine<Frame>& down) {
+  return {.uplink_mean_ms = up.mean_delay_s() * 1e3,
+          .downlink_mean_ms = down.mean_delay_s() * 1e3,
+          .poses_lost = up.lost(),
+          .frames_lost = down.lost(),
+          .poses_stalled = up.stalled(),
+          .frames_stalled = down.stalled()};
+}
+
 }  // namespace hs::cli

@@ -7,11 +7,10 @@
 
 #include "client/exit_codes.h"
 #include "client/frame_rate_args.h"
-#include "client/needs_args.h"
-#include "client/sdk/interact_stream.h"
+#include "client/remote/shaped_stream.h"
+#include "client/sdk/device_impl.h"
+#include "client/sdk/grpc_error.h"
 #include "client/server_call.h"
-#include "common/api/local_model_convert.h"
-#include "common/api/proto_convert.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "nlohmann/json.hpp"
 
@@ -20,40 +19,6 @@ namespace {
 
 namespace pb = haptics::v1;
 using Clock = std::chrono::steady_clock;
-
-// DepthBehindProxy of `tool`'s frame (0 when a pose or normal is not a
-// finite one).
-double ProxyDepth(const pb::ToolState& tool) {
-  const absl::StatusOr<Vector3d> p_WD = VectorFromProto(tool.device_pose().position_m(), "device");
-  const absl::StatusOr<Vector3d> p_WP = VectorFromProto(tool.proxy_pose().position_m(), "proxy");
-  std::vector<Vector3d> normals;
-  for (const pb::Contact& c : tool.contacts()) {
-    const absl::StatusOr<Vector3d> n = VectorFromProto(c.normal_w(), "normal");
-    if (n.ok()) normals.push_back(*n);
-  }
-  return p_WD.ok() && p_WP.ok() ? DepthBehindProxy(*p_WD, *p_WP, normals) : 0;
-}
-
-// What the device reads from `frame` for `tool`.
-ServerFrame ReadFrame(const pb::Frame& frame, const std::string& tool) {
-  ServerFrame out;
-  out.applied_sequence = frame.last_pose_sequence();
-  for (const pb::ToolState& t : frame.tools()) {
-    if (t.tool() != tool) continue;
-    out.force_W = Vector3d(t.force_w_n().x(), t.force_w_n().y(), t.force_w_n().z());
-    if (!out.force_W.allFinite()) out.force_W.setZero();
-    if (t.has_local_model()) {
-      absl::StatusOr<LocalModel> model = LocalModelFromProto(t.local_model());
-      if (model.ok()) {
-        out.model = *std::move(model);
-      } else {
-        out.model_rejected = true;
-      }
-    }
-    out.depth_m = ProxyDepth(t);
-  }
-  return out;
-}
 
 // The frames a second asked of the server (RemoteDriveArgs::frame_rate_hz).
 double FrameRate(const RemoteDriveArgs& args) {
@@ -67,53 +32,55 @@ struct RunResult {
   std::vector<Vector3d> forces, positions;
 };
 
-// One run of `options` for `duration_s` on its own stream.
+// The loop's counts as the device reports them.
+sdk::LoopCounts CountsOf(const haptics::DeviceState& state) {
+  return {.beyond_validity_ticks = state.beyond_validity_ticks,
+          .rejected_poses = state.rejected_poses,
+          .models_rejected = state.models_rejected,
+          .models_restarted = state.models_restarted,
+          .passivity_ticks = state.passivity_ticks,
+          .passivity_dissipated_j = state.passivity_dissipated_j};
+}
+
+// One run of `options` for `duration_s`: the hand holds a Device of its
+// own, whose streams cross the link of options.link.
 RunResult RunOnce(const RemoteDriveArgs& args, const RemoteRunOptions& options,
                   const std::shared_ptr<grpc::Channel>& channel, const Isometry3d& start,
                   std::span<const Vector3d> reference) {
-  pb::InteractRequest::Open open;
-  open.set_scene(args.scene);
-  open.set_tool(args.tool);
-  EffectSet needs{Effect::kForce, Effect::kFriction, Effect::kContactSet, Effect::kReversingVector};
-  if (options.local_model) needs = needs.With(Effect::kLocalModel);
-  SetNeeds(needs, open);
-  SetFrameRate(open, FrameRate(args));
   RemoteRun run(options, start);
-  const Clock::time_point t0 = Clock::now();
-  auto seconds_since_start = [&] {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
+  SimulatedLink link(options.link);
+  sdk::DeviceConfig config{.scene = args.scene,
+                           .tool = args.tool,
+                           .options = options.Device(),
+                           .open_timeout_s = kLongestWaitForDeviceS,
+                           .extra_needs = {pb::EFFECT_CONTACT_SET, pb::EFFECT_REVERSING_VECTOR}};
+  config.options.frame_rate_hz = FrameRate(args);
+  // The hand's depth and the round trip at each pose the server applied.
+  config.on_frame = [&](const pb::Frame& frame, const sdk::FrameRead& read) {
+    run.Read(frame, read, args.tool);
   };
-  sdk::InteractStream stream(
-      channel, open,
-      {.on_frame =
-           [&](const pb::Frame& frame) {
-             run.FromServer(seconds_since_start(), ReadFrame(frame, args.tool));
-           },
-       .on_end = nullptr},
-      std::chrono::system_clock::now() + std::chrono::seconds(30) +
-          std::chrono::milliseconds(static_cast<int64_t>(args.duration_s * 1e3)));
+  if (!options.link.ideal()) config.open_pipe = link.Opener();
+  RunResult result;
+  haptics::Result<std::unique_ptr<haptics::Device>> opened = sdk::OpenDevice(channel, config);
+  if (!opened.ok()) {
+    result.status = sdk::ToGrpc(opened.error());
+    return result;
+  }
+  std::unique_ptr<haptics::Device> device = *std::move(opened);
   const int64_t ticks = static_cast<int64_t>(args.duration_s / options.tick_s);
-  bool writing = true;
   const int64_t last_tick = ticks + static_cast<int64_t>(kLongestWaitForDeviceS / options.tick_s);
-  for (int64_t k = 0; run.ticks_rendered() < ticks && k < last_tick && writing; ++k) {
+  const Clock::time_point t0 = Clock::now();
+  for (int64_t k = 0; run.ticks_rendered() < ticks && k < last_tick; ++k) {
     const double now_s = static_cast<double>(k) * options.tick_s;
     std::this_thread::sleep_until(
         t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(now_s)));
-    run.Tick(k);
-    run.DeliverPoses(now_s, [&](const PoseMessage& pose) {
-      pb::InteractRequest request;
-      request.mutable_pose()->set_sequence(pose.sequence);
-      request.mutable_pose()->set_device_time_ns(static_cast<int64_t>(now_s * 1e9));
-      PoseToProto(pose.X_WD, request.mutable_pose()->mutable_pose());
-      request.mutable_pose()->set_model_stale(pose.model_stale);
-      request.mutable_pose()->set_validity_radius_m(pose.validity_radius_m);
-      writing = writing && stream.Write(request);
-    });
+    run.Feel(now_s, device->Tick(run.DevicePose()));
+    if (k % 100 == 0 && device->State().closed) break;
   }
-  stream.WritesDone();
-  RunResult result;
-  result.status = stream.Finish();
-  result.summary = run.Summary(reference);
+  const haptics::DeviceState state = device->State();
+  device.reset();  // ends the stream: the link's figures are final
+  if (state.closed) result.status = sdk::ToGrpc(state.last_error);
+  result.summary = run.Summary(reference, CountsOf(state), link.Stats());
   result.forces = run.forces();
   result.positions = run.device_positions();
   return result;

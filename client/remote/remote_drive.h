@@ -1,8 +1,8 @@
 #pragma once
-// `hapticctl drive --operator press|slide|tap`: a closed-loop remote device
-// (remote_run.h) against a scene on a server, over SessionService.Interact,
-// through a simulated link of --latency-ms, --jitter-ms, --loss and
-// --stall-prob/--stall-ms (link_schedule.h). When
+// `hapticctl drive --operator press|slide|tap`: a simulated hand
+// (remote_run.h) holding the SDK's haptics::Device on a tool of a scene,
+// whose streams cross a simulated link of --latency-ms, --jitter-ms,
+// --loss and --stall-prob/--stall-ms (shaped_stream.h). When
 // the link is not ideal, or a reference channel is given (the server
 // itself when `channel` goes through a relay), a run over an ideal link
 // comes first: the reference of force_rms_error_n.

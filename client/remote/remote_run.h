@@ -1,52 +1,29 @@
 #pragma once
-// One closed-loop run of a remote device: a simulated hand (hand_operator.h)
-// holds the device, which ticks at 1 kHz and talks to the server through a
-// simulated link (delay_line.h) both ways. With the local model on, the
-// device renders from the latest local contact model itself
-// (client/haptic_loop); off, it applies the server's forces as they
-// arrive. The run measures what the hand felt. The transport is the
-// caller's: it delivers the poses due to the server and hands back the
-// frames the server sends (`hapticctl drive` over gRPC, tests in process).
+// One closed-loop run of a remote device: a simulated hand
+// (hand_operator.h) holds the device, which ticks at 1 kHz and renders
+// what the SDK's Device renders (with the local model, from its newest
+// model; without, the server's force as it arrives). The run moves the
+// hand under the force, and measures what the hand felt and how deep the
+// device went. The device is the caller's: `hapticctl drive --operator`
+// ticks a haptics::Device over gRPC (remote_drive.h), the in-process tests
+// the same device's parts on a simulated clock.
 
-#include <atomic>
 #include <cstdint>
-#include <optional>
+#include <mutex>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
-#include "client/haptic_loop/haptic_loop.h"
-#include "client/haptic_loop/model_request.h"
-#include "client/remote/delay_line.h"
 #include "client/remote/hand_operator.h"
+#include "client/remote/shaped_stream.h"
+#include "client/sdk/device_config.h"
+#include "client/sdk/tick_renderer.h"
+#include "common/core/types.h"
+#include "haptics/device.h"
+#include "haptics/pose.h"
+#include "haptics/v1/session_service.pb.h"
 
 namespace hs::cli {
-
-/// A pose on its way to the server.
-struct PoseMessage {
-  uint64_t sequence = 0;
-  Isometry3d X_WD = Isometry3d::Identity();
-  /// With the local model: the device went past its model's validity
-  /// sphere since the last pose (ToolPose.model_stale), and the validity
-  /// radius it wants (ToolPose.validity_radius_m; 0: the scene's).
-  bool model_stale = false;
-  double validity_radius_m = 0;
-};
-
-/// What the device reads from a frame of its tool.
-struct ServerFrame {
-  /// The sequence of the last pose the step applied (0 before the first).
-  uint64_t applied_sequence = 0;
-  Vector3d force_W = Vector3d::Zero();
-  /// The frame's local contact model, when it carried a valid one.
-  std::optional<LocalModel> model;
-  /// It carried one that failed the checks (not rendered).
-  bool model_rejected = false;
-  /// How deep the device is in the objects at the applied pose, metres
-  /// (DepthBehindProxy).
-  double depth_m = 0;
-};
 
 /// How deep the device at `p_WD` is in the objects whose contacts have the
 /// unit normals `normals_W` (each from the object toward the tool), while
@@ -60,6 +37,10 @@ struct ServerFrame {
 double DepthBehindProxy(const Vector3d& p_WD, const Vector3d& p_WP,
                         std::span<const Vector3d> normals_W);
 
+/// DepthBehindProxy of a tool's state in a frame: its device and proxy
+/// poses and its contacts' normals (0 when one is not finite).
+double FrameDepth(const haptics::v1::ToolState& tool);
+
 struct RemoteRunOptions {
   OperatorMotion motion = OperatorMotion::kPress;
   HandParams hand;
@@ -67,15 +48,14 @@ struct RemoteRunOptions {
   bool local_model = true;
   LinkConditions link;
   double tick_s = 1e-3;
-  /// Poses sent a second: the newest pose every 1 / pose_rate_hz, as the
-  /// SDK's Device sends them (its default rate); the device's loop renders
-  /// every tick all the same. At or above 1 / tick_s, one a tick.
+  /// Poses sent a second (the SDK Device's rate_hz); the device's loop
+  /// renders every tick all the same.
   double pose_rate_hz = 250;
-  HapticLoopOptions loop;
-  /// With the local model: ask for a validity radius sized from the round
-  /// trip and the hand's speed (validity_sizer.h); false keeps the scene's.
-  bool size_validity = true;
-  ValiditySizerOptions sizer;
+  /// The device loop's passivity controller (DeviceOptions).
+  double max_passivity_damping_ns_per_m = 30;
+
+  /// The Device's options for the run.
+  haptics::DeviceOptions Device() const;
 };
 
 /// What a run measured.
@@ -127,23 +107,22 @@ class RemoteRun {
   /// The hand starts at rest at `start`, the device's pose (world frame).
   RemoteRun(const RemoteRunOptions& options, const Isometry3d& start);
 
-  /// Tick `k`, at k * tick_s: reads the frames the link delivers by then,
-  /// renders the force, moves the hand under it and, on the ticks of the
-  /// pose rate, sends the device's pose (sequence k + 1). The hand holds
-  /// still until the device is live (its first model, or with the local
-  /// model off its first frame), as an operator waits for the device to
-  /// say so; its motion starts then.
-  void Tick(int64_t k);
+  /// Where the hand holds the device now.
+  haptics::Pose DevicePose() const;
+  /// The device rendered `out` at `now_s` (seconds on the ticks' clock)
+  /// for DevicePose. The hand holds still until the device is live (its
+  /// first model, or without the local model its first frame), as an
+  /// operator waits for the device to say so; then it feels the force and
+  /// moves under it.
+  void Feel(double now_s, const haptics::TickOutput& out);
   /// Ticks the hand has moved through (those after the device was live).
   int64_t ticks_rendered() const { return static_cast<int64_t>(forces_.size()); }
-  /// Calls `send(PoseMessage)` for each pose that reaches the server by
-  /// `now_s` (seconds on the ticks' clock), in order.
-  template <typename F>
-  void DeliverPoses(double now_s, F&& send) {
-    up_.PopDue(now_s, send);
-  }
-  /// A frame the server sent at `now_s`, onto the link back.
-  void FromServer(double now_s, ServerFrame frame);
+
+  /// The device read `frame` (sdk::DeviceConfig::on_frame): when it
+  /// applied one of the device's poses, the round trip and how deep the
+  /// device on `tool` was there (FrameDepth). The first frame of each pose
+  /// counts. Any thread.
+  void Read(const haptics::v1::Frame& frame, const sdk::FrameRead& read, const std::string& tool);
 
   /// The rendered force of each tick since the device was live, world
   /// frame, N.
@@ -151,34 +130,24 @@ class RemoteRun {
   /// The device position at each of those ticks, world frame, metres.
   const std::vector<Vector3d>& device_positions() const { return positions_; }
   /// The measures; `reference`: the forces of the zero-latency run of the
-  /// same operator, for force_rms_error_n (empty: 0).
-  RemoteSummary Summary(std::span<const Vector3d> reference) const;
+  /// same operator, for force_rms_error_n (empty: 0); `device` what the
+  /// device's loop counted, `link` what the link did.
+  RemoteSummary Summary(std::span<const Vector3d> reference, const sdk::LoopCounts& device,
+                        const LinkStats& link) const;
 
  private:
-  void Read(const ServerFrame& frame, int64_t tick);
-
   RemoteRunOptions options_;
   HandOperator hand_;
-  HapticLoop loop_;
-  ModelRequester model_requester_;
-  // A pose goes every this many ticks (pose_rate_hz).
-  int64_t pose_period_ticks_ = 1;
-  DelayLine<PoseMessage> up_;
-  DelayLine<ServerFrame> down_;
-  Vector3d server_force_ = Vector3d::Zero();
-  bool has_frame_ = false;
   // When the device was first live, seconds on the ticks' clock (-1: not yet).
   double engaged_at_s_ = -1;
-  uint64_t newest_applied_ = 0;
-  // Poses sent so far: a frame that reports a later one applied is not
-  // this run's (the tool's last device before it), and is not read.
-  std::atomic<uint64_t> sent_{0};
   std::vector<Vector3d> forces_;
   std::vector<Vector3d> positions_;
-  // Depth at each applied pose (by sequence), recorded as the server sent it.
-  std::unordered_map<uint64_t, double> depth_by_sequence_;
+  // What the frames said, by the thread that reads them.
+  mutable std::mutex applied_mutex_;
+  uint64_t newest_applied_ = 0;
+  // At each pose applied.
+  std::vector<double> depths_m_;
   std::vector<double> round_trips_ms_;
-  int64_t models_rejected_ = 0;
 };
 
 }  // namespace hs::cli

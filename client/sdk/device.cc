@@ -4,9 +4,8 @@
 
 namespace haptics {
 
-Device::Impl::Impl(std::shared_ptr<grpc::Channel> channel, hs::sdk::LinkConfig config)
-    : renderer_(config.options.tick_s),
-      link_(std::move(channel), std::move(config), poses_, feeds_) {}
+Device::Impl::Impl(std::shared_ptr<grpc::Channel> channel, hs::sdk::DeviceConfig config)
+    : renderer_(config.options), link_(std::move(channel), std::move(config), poses_, feeds_) {}
 
 TickOutput Device::Impl::Tick(const Pose& pose) {
   feeds_.Take();
@@ -19,8 +18,13 @@ TickOutput Device::Impl::Tick(const Pose& pose) {
     sample.beyond_validity_ticks = renderer_.beyond_validity_ticks();
     poses_.Publish();
   }
-  beyond_validity_ticks_.store(renderer_.beyond_validity_ticks(), std::memory_order_relaxed);
-  rejected_poses_.store(renderer_.rejected_poses(), std::memory_order_relaxed);
+  const hs::sdk::LoopCounts counts = renderer_.counts();
+  beyond_validity_ticks_.store(counts.beyond_validity_ticks, std::memory_order_relaxed);
+  rejected_poses_.store(counts.rejected_poses, std::memory_order_relaxed);
+  models_rejected_.store(counts.models_rejected, std::memory_order_relaxed);
+  models_restarted_.store(counts.models_restarted, std::memory_order_relaxed);
+  passivity_ticks_.store(counts.passivity_ticks, std::memory_order_relaxed);
+  passivity_dissipated_j_.store(counts.passivity_dissipated_j, std::memory_order_relaxed);
   return out;
 }
 
@@ -28,6 +32,10 @@ DeviceState Device::Impl::State() const {
   DeviceState state = link_.State();
   state.beyond_validity_ticks = beyond_validity_ticks_.load(std::memory_order_relaxed);
   state.rejected_poses = rejected_poses_.load(std::memory_order_relaxed);
+  state.models_rejected += models_rejected_.load(std::memory_order_relaxed);
+  state.models_restarted = models_restarted_.load(std::memory_order_relaxed);
+  state.passivity_ticks = passivity_ticks_.load(std::memory_order_relaxed);
+  state.passivity_dissipated_j = passivity_dissipated_j_.load(std::memory_order_relaxed);
   return state;
 }
 
@@ -43,7 +51,7 @@ DeviceState Device::State() const { return impl_->State(); }
 namespace hs::sdk {
 
 haptics::Result<std::unique_ptr<haptics::Device>> OpenDevice(std::shared_ptr<grpc::Channel> channel,
-                                                             LinkConfig config) {
+                                                             DeviceConfig config) {
   auto impl = std::make_unique<haptics::Device::Impl>(std::move(channel), std::move(config));
   if (haptics::Error error = impl->Start(); !error.ok()) return error;
   return std::make_unique<haptics::Device>(std::move(impl));

@@ -39,6 +39,9 @@ struct Feed {
   /// came on this stream.
   LocalModel model;
   uint64_t model_stream = 0;
+  /// The tool's force in the newest frame, world frame, newtons: what a
+  /// device without the local model applies (DeviceOptions::local_model).
+  double force_n[3] = {0, 0, 0};
 };
 
 }  // namespace hs::sdk

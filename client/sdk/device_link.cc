@@ -5,7 +5,6 @@
 
 #include "absl/strings/str_cat.h"
 #include "client/sdk/grpc_error.h"
-#include "common/api/local_model_convert.h"
 
 namespace hs::sdk {
 namespace {
@@ -33,9 +32,13 @@ bool Retried(haptics::Code code) {
   }
 }
 
-DeviceLink::DeviceLink(std::shared_ptr<grpc::Channel> channel, LinkConfig config,
+DeviceLink::DeviceLink(std::shared_ptr<grpc::Channel> channel, DeviceConfig config,
                        TripleBuffer<PoseSample>& poses, TripleBuffer<Feed>& feeds)
-    : channel_(std::move(channel)), config_(std::move(config)), poses_(poses), feeds_(feeds) {}
+    : channel_(std::move(channel)),
+      config_(std::move(config)),
+      poses_(poses),
+      feeds_(feeds),
+      protocol_(config_) {}
 
 DeviceLink::~DeviceLink() {
   {
@@ -67,6 +70,7 @@ haptics::DeviceState DeviceLink::State() const {
   state.reconnects = reconnects_.load();
   state.frames = frames_.load();
   state.models = models_.load();
+  state.models_rejected = models_rejected_.load();
   std::lock_guard lock(mutex_);
   state.last_error = last_error_;
   state.closed = closed_;
@@ -74,7 +78,7 @@ haptics::DeviceState DeviceLink::State() const {
 }
 
 void DeviceLink::Publish() {
-  feeds_.back() = feed_;
+  feeds_.back() = protocol_.feed();
   feeds_.Publish();
 }
 
@@ -84,7 +88,7 @@ void DeviceLink::Run() {
     first_frame_ = false;
     const grpc::Status status = RunStream(stream);
     connected_ = false;
-    feed_.connected = false;
+    protocol_.End();
     Publish();
     const bool opened = first_frame_.load();
     std::unique_lock lock(mutex_);
@@ -112,25 +116,23 @@ void DeviceLink::Run() {
 }
 
 grpc::Status DeviceLink::RunStream(uint64_t stream) {
-  pb::InteractRequest::Open open;
-  open.set_scene(config_.scene);
-  open.set_tool(config_.tool);
-  open.set_take_over(config_.options.take_over);
-  open.set_frame_rate_hz(config_.options.rate_hz);
-  for (pb::Effect effect : {pb::EFFECT_FORCE, pb::EFFECT_FRICTION, pb::EFFECT_LOCAL_MODEL}) {
-    open.add_needs(effect);
-  }
+  const pb::InteractRequest::Open open = protocol_.Open();
+  protocol_.Begin(stream);
   std::atomic<bool> reading{true};
   std::unique_lock lock(mutex_);
   if (stopping_) return grpc::Status(grpc::StatusCode::CANCELLED, "the device was closed");
   lock.unlock();
-  InteractStream rw(channel_, open,
-                    {.on_frame = [&](const pb::Frame& frame) { OnFrame(stream, frame); },
-                     .on_end =
-                         [&] {
-                           reading = false;
-                           changed_.notify_all();
-                         }});
+  InteractStream::Callbacks callbacks{
+      .on_frame = [&](const pb::Frame& frame) { OnFrame(stream, frame); },
+      .on_end =
+          [&] {
+            reading = false;
+            changed_.notify_all();
+          }};
+  std::unique_ptr<InteractPipe> pipe =
+      config_.open_pipe ? config_.open_pipe(channel_, open, std::move(callbacks))
+                        : std::make_unique<InteractStream>(channel_, open, std::move(callbacks));
+  InteractPipe& rw = *pipe;
   lock.lock();
   stream_ = &rw;
   // Stopped between the check and here: the destructor found no stream.
@@ -139,13 +141,12 @@ grpc::Status DeviceLink::RunStream(uint64_t stream) {
   const Clock::time_point opened = Clock::now();
   const Clock::duration period = Seconds(1 / config_.options.rate_hz);
   bool timed_out = false;
-  uint64_t sequence = 0;
   for (Clock::time_point next = opened + period; reading; next += period) {
     if (!first_frame_ && Clock::now() - opened > Seconds(config_.open_timeout_s)) {
       timed_out = true;
       break;
     }
-    if (!SendPose(rw, sequence)) break;
+    if (!SendPose(rw)) break;
     // Behind (a slow write): the next pose goes a period from now, not in
     // a burst.
     next = std::max(next, Clock::now());
@@ -170,46 +171,22 @@ grpc::Status DeviceLink::RunStream(uint64_t stream) {
   return status;
 }
 
-bool DeviceLink::SendPose(InteractStream& writer, uint64_t& sequence) {
+bool DeviceLink::SendPose(InteractPipe& writer) {
   poses_.Take();
   const PoseSample& sample = poses_.front();
   if (sample.time_ns == 0) return true;  // the device has not ticked yet
   pb::InteractRequest request;
-  pb::ToolPose* pose = request.mutable_pose();
-  pose->set_sequence(++sequence);
-  pose->set_device_time_ns(sample.time_ns);
-  pose->mutable_pose()->mutable_position_m()->set_x(sample.position_m[0]);
-  pose->mutable_pose()->mutable_position_m()->set_y(sample.position_m[1]);
-  pose->mutable_pose()->mutable_position_m()->set_z(sample.position_m[2]);
-  pb::Quaternion* q = pose->mutable_pose()->mutable_orientation();
-  q->set_w(sample.orientation_wxyz[0]);
-  q->set_x(sample.orientation_wxyz[1]);
-  q->set_y(sample.orientation_wxyz[2]);
-  q->set_z(sample.orientation_wxyz[3]);
-  const double now_s = static_cast<double>(sample.time_ns) * 1e-9;
-  const int64_t round_trip_ns = round_trip_peak_ns_.exchange(-1);
-  if (round_trip_ns >= 0) {
-    model_requester_.AddRoundTrip(now_s, static_cast<double>(round_trip_ns) * 1e-9);
-  }
-  const ModelRequest model = model_requester_.ForPose(
-      now_s, Vector3d(sample.position_m[0], sample.position_m[1], sample.position_m[2]),
-      sample.beyond_validity_ticks);
-  pose->set_model_stale(model.model_stale);
-  pose->set_validity_radius_m(model.validity_radius_m);
+  protocol_.PoseRequest(sample, request);
   return writer.Write(request);
 }
 
 void DeviceLink::OnFrame(uint64_t stream, const pb::Frame& frame) {
   ++frames_;
   const int64_t now = SteadyNowNs();
-  bool changed = false;
-  if (!first_frame_) {
+  const FrameRead read = protocol_.Read(frame, now);
+  if (read.first_frame) {
     first_frame_ = true;
     connected_ = true;
-    feed_.stream = stream;
-    feed_.connected = true;
-    last_revision_ = 0;
-    changed = true;
     if (stream > 1) ++reconnects_;
     std::lock_guard lock(mutex_);
     if (!started_) {
@@ -217,29 +194,14 @@ void DeviceLink::OnFrame(uint64_t stream, const pb::Frame& frame) {
       changed_.notify_all();
     }
   }
-  if (frame.last_pose_sequence() > 0 && frame.last_pose_device_time_ns() > 0) {
-    const int64_t round_trip_ns = now - frame.last_pose_device_time_ns();
-    round_trip_ns_ = round_trip_ns;
-    int64_t peak = round_trip_peak_ns_.load();
-    while (round_trip_ns > peak &&
-           !round_trip_peak_ns_.compare_exchange_weak(peak, round_trip_ns)) {
-    }
-  }
-  for (const pb::ToolState& tool : frame.tools()) {
-    if (tool.tool() != config_.tool || !tool.has_local_model()) continue;
-    const uint64_t revision = tool.local_model().revision();
-    if (revision != 0 && revision == last_revision_) continue;
-    absl::StatusOr<LocalModel> model = LocalModelFromProto(tool.local_model());
-    if (!model.ok()) continue;  // the loop keeps the last model
-    last_revision_ = revision;
-    feed_.model = *std::move(model);
-    feed_.model_stream = stream;
-    ++feed_.model_serial;
+  if (read.round_trip_ns >= 0) round_trip_ns_ = read.round_trip_ns;
+  if (read.model_rejected) ++models_rejected_;
+  if (read.new_model) {
     ++models_;
     model_arrival_ns_ = now;
-    changed = true;
   }
-  if (changed) Publish();
+  if (read.feed_changed) Publish();
+  if (config_.on_frame) config_.on_frame(frame, read);
 }
 
 }  // namespace hs::sdk

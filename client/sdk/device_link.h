@@ -16,8 +16,9 @@
 #include <string>
 #include <thread>
 
-#include "client/haptic_loop/model_request.h"
+#include "client/sdk/device_config.h"
 #include "client/sdk/device_feed.h"
+#include "client/sdk/device_protocol.h"
 #include "client/sdk/interact_stream.h"
 #include "client/sdk/triple_buffer.h"
 #include "haptics/device.h"
@@ -26,22 +27,13 @@
 
 namespace hs::sdk {
 
-struct LinkConfig {
-  std::string scene;
-  std::string tool;
-  haptics::DeviceOptions options;
-  /// The first frame of a stream comes within this, seconds, or the stream
-  /// is given up.
-  double open_timeout_s = 5;
-};
-
 /// Whether a stream that ended with `code` is opened again.
 bool Retried(haptics::Code code);
 
 class DeviceLink {
  public:
   /// Reads poses from `poses` and writes feeds to `feeds` (both outlive it).
-  DeviceLink(std::shared_ptr<grpc::Channel> channel, LinkConfig config,
+  DeviceLink(std::shared_ptr<grpc::Channel> channel, DeviceConfig config,
              TripleBuffer<PoseSample>& poses, TripleBuffer<Feed>& feeds);
   /// Stops the thread: cancels the stream and joins.
   ~DeviceLink();
@@ -63,18 +55,16 @@ class DeviceLink {
   void OnFrame(uint64_t stream, const haptics::v1::Frame& frame);
   // Sends the newest pose on `writer` if there is one; false when the
   // stream is closed.
-  bool SendPose(InteractStream& writer, uint64_t& sequence);
+  bool SendPose(InteractPipe& writer);
   void Publish();
 
   const std::shared_ptr<grpc::Channel> channel_;
-  const LinkConfig config_;
+  const DeviceConfig config_;
   TripleBuffer<PoseSample>& poses_;
   TripleBuffer<Feed>& feeds_;
-  // The state the feeds copy: the reader thread writes it while a stream
-  // runs, the network thread between streams.
-  Feed feed_;
-  // What each pose asks of the model (network thread only).
-  ModelRequester model_requester_;
+  // The requests and the feed its frames make (protocol_.feed(), which the
+  // feeds copy).
+  DeviceProtocol protocol_;
 
   std::thread thread_;
   mutable std::mutex mutex_;
@@ -86,18 +76,16 @@ class DeviceLink {
   haptics::Error last_error_;
   bool closed_ = false;
   // The running stream, to cancel it on Stop.
-  InteractStream* stream_ = nullptr;
+  InteractPipe* stream_ = nullptr;
 
   std::atomic<bool> first_frame_{false};
   std::atomic<bool> connected_{false};
   std::atomic<int64_t> frames_{0};
   std::atomic<int64_t> models_{0};
+  std::atomic<int64_t> models_rejected_{0};
   std::atomic<int64_t> reconnects_{0};
   std::atomic<int64_t> round_trip_ns_{-1};
-  // The longest round trip seen since the last pose went (-1: none).
-  std::atomic<int64_t> round_trip_peak_ns_{-1};
   std::atomic<int64_t> model_arrival_ns_{-1};
-  uint64_t last_revision_ = 0;
 };
 
 }  // namespace hs::sdk

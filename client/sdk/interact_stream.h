@@ -16,7 +16,25 @@
 
 namespace hs::sdk {
 
-class InteractStream {
+/// What a device's network thread talks through for one stream: the
+/// gRPC stream itself (InteractStream), or one that holds its messages on
+/// a simulated link first (client/remote/shaped_stream.h).
+class InteractPipe {
+ public:
+  virtual ~InteractPipe() = default;
+  /// Sends a request (a pose); false once the stream is closed.
+  virtual bool Write(const haptics::v1::InteractRequest& request) = 0;
+  /// Says no more poses come: the server ends the stream (OK).
+  virtual void WritesDone() = 0;
+  /// Ends the stream from this side (Finish then returns CANCELLED); any
+  /// thread may call it.
+  virtual void Cancel() = 0;
+  /// Waits for the stream's end (after WritesDone, Cancel, the deadline or
+  /// the server's end) and returns its status. Once.
+  virtual grpc::Status Finish() = 0;
+};
+
+class InteractStream : public InteractPipe {
  public:
   /// Called on the reader thread: each frame, then once when the stream
   /// has no more (its end, an error or Cancel).
@@ -32,21 +50,16 @@ class InteractStream {
                  std::chrono::system_clock::time_point deadline =
                      std::chrono::system_clock::time_point::max());
   /// Cancels the stream if it runs and joins the reader.
-  ~InteractStream();
+  ~InteractStream() override;
   InteractStream(const InteractStream&) = delete;
   InteractStream& operator=(const InteractStream&) = delete;
 
-  /// Sends a request (a pose); false once the stream is closed.
-  bool Write(const haptics::v1::InteractRequest& request);
-  /// Says no more poses come: the server ends the stream (OK).
-  void WritesDone();
-  /// Ends the stream from this side (Finish then returns CANCELLED); any
-  /// thread may call it.
-  void Cancel();
-  /// Joins the reader (it returns when the stream has ended: after
-  /// WritesDone, Cancel, the deadline or the server's end) and returns
-  /// the stream's status. Once.
-  grpc::Status Finish();
+  bool Write(const haptics::v1::InteractRequest& request) override;
+  void WritesDone() override;
+  void Cancel() override;
+  /// Joins the reader (it returns when the stream has ended) and returns
+  /// the stream's status.
+  grpc::Status Finish() override;
 
  private:
   grpc::ClientContext context_;

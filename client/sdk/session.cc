@@ -159,12 +159,17 @@ Result<std::unique_ptr<Device>> Session::OpenDevice(const std::string& scene,
                                                     const std::string& tool,
                                                     const DeviceOptions& options) {
   if (!(options.rate_hz >= 1 && options.rate_hz <= 10000) ||
+      !(options.frame_rate_hz == 0 ||
+        (options.frame_rate_hz >= 1 && options.frame_rate_hz <= 10000)) ||
       !(options.tick_s > 0 && options.tick_s <= 1) ||
+      !(options.max_passivity_damping_ns_per_m >= 0 &&
+        options.max_passivity_damping_ns_per_m <= 1000) ||
       !(options.reconnect_initial_s > 0 &&
         options.reconnect_max_s >= options.reconnect_initial_s)) {
     return Error{Code::kInvalidArgument,
-                 "rate_hz must be in [1, 10000], tick_s in (0, 1], and 0 < reconnect_initial_s "
-                 "<= reconnect_max_s"};
+                 "rate_hz must be in [1, 10000], frame_rate_hz 0 or in [1, 10000], tick_s in "
+                 "(0, 1], max_passivity_damping_ns_per_m in [0, 1000], and 0 < "
+                 "reconnect_initial_s <= reconnect_max_s"};
   }
   // The scene's own rate bounds the frames a device may ask for.
   pb::GetSceneRequest request;
@@ -174,8 +179,13 @@ Result<std::unique_ptr<Device>> Session::OpenDevice(const std::string& scene,
       !status.ok()) {
     return hs::sdk::FromGrpc(status);
   }
-  hs::sdk::LinkConfig config{.scene = scene, .tool = tool, .options = options};
-  if (info.step_s() > 0) config.options.rate_hz = std::min(options.rate_hz, 1 / info.step_s());
+  hs::sdk::DeviceConfig config{.scene = scene, .tool = tool, .options = options};
+  if (info.step_s() > 0) {
+    const double frame_rate_hz =
+        options.frame_rate_hz > 0 ? options.frame_rate_hz : options.rate_hz;
+    config.options.rate_hz = std::min(options.rate_hz, 1 / info.step_s());
+    config.options.frame_rate_hz = std::min(frame_rate_hz, 1 / info.step_s());
+  }
   config.open_timeout_s =
       options.open_timeout_s > 0 ? options.open_timeout_s : impl_->options.connect_timeout_s;
   return hs::sdk::OpenDevice(impl_->channel, std::move(config));

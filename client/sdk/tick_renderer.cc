@@ -28,8 +28,12 @@ haptics::TickOutput Zero(uint32_t flags) {
 
 }  // namespace
 
-TickRenderer::TickRenderer(double tick_s)
-    : fresh_(HapticLoopOptions{.tick_s = tick_s}), loop_(fresh_) {
+TickRenderer::TickRenderer(const haptics::DeviceOptions& options)
+    : local_model_(options.local_model),
+      fresh_(HapticLoopOptions{
+          .tick_s = options.tick_s,
+          .max_passivity_damping_ns_per_m = options.max_passivity_damping_ns_per_m}),
+      loop_(fresh_) {
   const LocalModel warm = WarmUpModel();
   for (int i = 0; i < 2; ++i) {
     loop_.SetModel(warm);
@@ -51,6 +55,26 @@ bool TickRenderer::ValidPose(const haptics::Pose& pose) {
   return std::abs(std::sqrt(norm2) - 1) <= 1e-6;
 }
 
+LoopCounts TickRenderer::counts() const {
+  LoopCounts c = earlier_;
+  c.beyond_validity_ticks = beyond_validity_ticks_;
+  c.rejected_poses = rejected_poses_;
+  c.models_rejected += loop_.rejected_models();
+  c.models_restarted += loop_.restarted_models();
+  c.passivity_ticks += loop_.passivity_ticks();
+  c.passivity_dissipated_j += loop_.passivity_dissipated_j();
+  return c;
+}
+
+void TickRenderer::Reseat() {
+  const LoopCounts now = counts();
+  earlier_.models_rejected = now.models_rejected;
+  earlier_.models_restarted = now.models_restarted;
+  earlier_.passivity_ticks = now.passivity_ticks;
+  earlier_.passivity_dissipated_j = now.passivity_dissipated_j;
+  loop_ = fresh_;
+}
+
 haptics::TickOutput TickRenderer::Tick(const haptics::Pose& pose, const Feed& feed) {
   if (!ValidPose(pose)) {
     ++rejected_poses_;
@@ -62,18 +86,27 @@ haptics::TickOutput TickRenderer::Tick(const haptics::Pose& pose, const Feed& fe
     has_model_ = false;
     return last_ = Zero(0);
   }
+  if (!local_model_) {
+    haptics::TickOutput out = Zero(haptics::kConnected);
+    for (int i = 0; i < 3; ++i) out.force_n[i] = feed.force_n[i];
+    return last_ = out;
+  }
   if (feed.stream != stream_) {
     // A new stream seats the device again: the last stream's model is
     // another proxy's.
     stream_ = feed.stream;
     has_model_ = false;
-    loop_ = fresh_;
+    Reseat();
   }
   if (feed.model_serial != model_serial_ && feed.model_stream == stream_) {
     model_serial_ = feed.model_serial;
     if (loop_.SetModel(feed.model)) has_model_ = true;
   }
   if (!has_model_) return last_ = Zero(haptics::kConnected);
+  return last_ = RenderModel(pose);
+}
+
+haptics::TickOutput TickRenderer::RenderModel(const haptics::Pose& pose) {
   const double* q = pose.orientation_wxyz;
   Isometry3d X_WD = Isometry3d::Identity();
   X_WD.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
@@ -91,7 +124,7 @@ haptics::TickOutput TickRenderer::Tick(const haptics::Pose& pose, const Feed& fe
     out.flags |= haptics::kBeyondValidity;
     ++beyond_validity_ticks_;
   }
-  return last_ = out;
+  return out;
 }
 
 }  // namespace hs::sdk

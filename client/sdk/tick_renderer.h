@@ -2,10 +2,10 @@
 // The device's side of a Device: each tick, the force of the newest local
 // model the network thread handed over (a HapticLoop), zero force while
 // the stream is down or has brought no model yet. A new stream starts a
-// new loop (the device is seated again). Wait-free: no lock, no allocation
-// after construction (the loop's model buffers are grown to the server's
-// 16 planes at construction, and a new loop is copied over the old one,
-// which keeps them), no system call.
+// new loop (the device is seated again). Without the local model
+// (DeviceOptions::local_model false) it returns the newest frame's force. Wait-free: no lock, no
+// allocation after construction (the loop's model buffers are grown to the server's 16 planes at
+// construction, and a new loop is copied over the old one, which keeps them), no system call.
 
 #include <cstdint>
 
@@ -16,9 +16,20 @@
 
 namespace hs::sdk {
 
+/// What the loop counted since the renderer was made, over every stream.
+struct LoopCounts {
+  int64_t beyond_validity_ticks = 0;
+  int64_t rejected_poses = 0;
+  int64_t models_rejected = 0;
+  int64_t models_restarted = 0;
+  int64_t passivity_ticks = 0;
+  double passivity_dissipated_j = 0;
+};
+
 class TickRenderer {
  public:
-  explicit TickRenderer(double tick_s);
+  /// Uses options.tick_s, local_model and max_passivity_damping_ns_per_m.
+  explicit TickRenderer(const haptics::DeviceOptions& options);
 
   /// One tick with the device at `pose` and `feed` the newest state of the
   /// stream. A pose with a non-finite number or a quaternion that is not
@@ -29,9 +40,15 @@ class TickRenderer {
   static bool ValidPose(const haptics::Pose& pose);
 
   int64_t beyond_validity_ticks() const { return beyond_validity_ticks_; }
-  int64_t rejected_poses() const { return rejected_poses_; }
+  LoopCounts counts() const;
 
  private:
+  // The local model's tick, the device at `X_WD`.
+  haptics::TickOutput RenderModel(const haptics::Pose& pose);
+  // Starts the loop afresh for a new stream, keeping its counts.
+  void Reseat();
+
+  const bool local_model_;
   // A loop that has not ticked: copied over loop_ for each new stream.
   const HapticLoop fresh_;
   HapticLoop loop_;
@@ -41,6 +58,8 @@ class TickRenderer {
   bool has_model_ = false;
   haptics::TickOutput last_;
   int64_t rejected_poses_ = 0;
+  // The counts of the loops of earlier streams.
+  LoopCounts earlier_;
 };
 
 }  // namespace hs::sdk

@@ -23,8 +23,18 @@
 namespace haptics {
 
 struct DeviceOptions {
-  /// Poses sent, and frames asked for, per second.
+  /// Poses sent per second.
   double rate_hz = 250;
+  /// Frames asked for per second; 0: rate_hz.
+  double frame_rate_hz = 0;
+  /// Render from the local contact model (the default). false: Tick
+  /// returns the force of the newest frame, as the server computed it for
+  /// the last pose it applied; for a link of a few milliseconds only, since
+  /// the force is a round trip old (docs/remote-haptics.md).
+  bool local_model = true;
+  /// The largest damping the loop's passivity controller adds, N*s/m; 0
+  /// turns it off (docs/remote-haptics.md).
+  double max_passivity_damping_ns_per_m = 30;
   /// The period the caller ticks at, seconds (the loop's velocity for the
   /// planes' dampers is taken over it).
   double tick_s = 1e-3;
@@ -88,6 +98,15 @@ struct DeviceState {
   int64_t frames = 0;
   int64_t models = 0;
   int64_t rejected_poses = 0;
+  /// Models that failed the checks (not rendered).
+  int64_t models_rejected = 0;
+  /// Models whose device pose was not among the loop's last ticks' (the
+  /// proxy restarted at the server's).
+  int64_t models_restarted = 0;
+  /// Ticks the passivity controller damped, and the work it took back from
+  /// the hand, joules.
+  int64_t passivity_ticks = 0;
+  double passivity_dissipated_j = 0;
   /// Why the last stream ended (kOk while the first is up). A stream that
   /// ends for good (taken over, a refused token) is not reopened: then
   /// `closed` is set.

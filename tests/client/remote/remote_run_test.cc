@@ -1,21 +1,26 @@
 // Closed-loop runs of a remote device on the demo scene, in process and in
 // simulated time (the scene steps once per 1 ms tick), so they repeat
 // exactly: the hand presses, slides and taps the probe on the organ
-// through a link of 100 ms round trip.
+// through a link of 100 ms round trip and worse. The device is the SDK
+// Device's loop and protocol (simulated_device.h), which `hapticctl drive
+// --operator` runs over gRPC in real time.
 
 #include "client/remote/remote_run.h"
-
-#include "client/haptic_loop/haptic_loop.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
+#include "client/haptic_loop/haptic_loop.h"
+#include "common/api/local_model_convert.h"
 #include "common/api/proto_convert.h"
 #include "common/api/scene_file.h"
+#include "simulated_device.h"
 
 namespace hs::cli {
 namespace {
+
+namespace pb = haptics::v1;
 
 const std::string kScene = std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto";
 
@@ -23,10 +28,34 @@ const std::string kScene = std::string(HS_SCENES_DIR) + "/probe_on_torus.textpro
 // may hand back at most this much work to the hand over a run, joules.
 constexpr double kPassiveBoundJ = 1e-3;
 
+// What the server sends the device for the tool's step `t`, having
+// applied pose `applied` (sent at `applied_ns`): each model revision once,
+// in the first frame after it was made (which may have applied no pose
+// yet). `names`: the objects' by id.
+pb::Frame FrameOf(const ToolFrame& t, const std::vector<std::string>& names, uint64_t applied,
+                  int64_t applied_ns, uint64_t& revision_sent) {
+  pb::Frame frame;
+  frame.set_last_pose_sequence(applied);
+  frame.set_last_pose_device_time_ns(applied_ns);
+  pb::ToolState* tool = frame.add_tools();
+  tool->set_tool("probe");
+  VectorToProto(t.force_W, tool->mutable_force_w_n());
+  PoseToProto(t.X_WD, tool->mutable_device_pose());
+  PoseToProto(t.X_WP, tool->mutable_proxy_pose());
+  for (const PairContact& c : t.contacts) {
+    VectorToProto(c.contact.normal_W, tool->add_contacts()->mutable_normal_w());
+  }
+  if (t.local_model.revision != revision_sent) {
+    LocalModelToProto(t.local_model, names, tool->mutable_local_model());
+    revision_sent = t.local_model.revision;
+  }
+  return frame;
+}
+
 RemoteSummary RunOperator(OperatorMotion motion, bool local_model, const LinkConditions& link,
                           double seconds, std::vector<Vector3d>* forces = nullptr,
                           std::span<const Vector3d> reference = {},
-                          const HapticLoopOptions& loop = {},
+                          double max_passivity_damping_ns_per_m = 30,
                           double pose_rate_hz = RemoteRunOptions{}.pose_rate_hz) {
   absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(kScene);
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(kScene);
@@ -39,45 +68,42 @@ RemoteSummary RunOperator(OperatorMotion motion, bool local_model, const LinkCon
   for (const auto& o : spec->objects()) {
     if (o.name() == "probe") start = *PoseFromProto(o.pose(), "pose");
   }
-  RemoteRunOptions options;
-  options.motion = motion;
-  options.local_model = local_model;
-  options.link = link;
-  options.loop = loop;
-  options.pose_rate_hz = pose_rate_hz;
+  const RemoteRunOptions options{.motion = motion,
+                                 .local_model = local_model,
+                                 .link = link,
+                                 .pose_rate_hz = pose_rate_hz,
+                                 .max_passivity_damping_ns_per_m = max_passivity_damping_ns_per_m};
   RemoteRun run(options, start);
+  sdk::DeviceConfig config{.tool = "probe", .options = options.Device()};
+  config.on_frame = [&](const pb::Frame& frame, const sdk::FrameRead& read) {
+    run.Read(frame, read, "probe");
+  };
+  SimulatedDevice device(config, link);
   uint64_t applied = 0;
+  int64_t applied_ns = 0;
   uint64_t revision_sent = 0;
   const int64_t ticks = static_cast<int64_t>(seconds / options.tick_s);
   // The device goes live on its first model; a run that never gets one
   // stops after as long again (and fails on its ticks).
   for (int64_t k = 0; run.ticks_rendered() < ticks && k < 2 * ticks; ++k) {
     const double now = static_cast<double>(k) * options.tick_s;
-    run.Tick(k);
-    run.DeliverPoses(now, [&](const PoseMessage& pose) {
-      EXPECT_TRUE(scene.SetDevicePose(tool, pose.X_WD).ok());
-      if (pose.model_stale) {
+    run.Feel(now, device.Tick(k, run.DevicePose()));
+    device.DeliverPoses(now, [&](const pb::InteractRequest& request) {
+      const pb::ToolPose& pose = request.pose();
+      EXPECT_TRUE(scene.SetDevicePose(tool, *PoseFromProto(pose.pose(), "pose")).ok());
+      if (pose.model_stale()) {
         EXPECT_TRUE(scene.RequestLocalModel(tool).ok());
       }
-      EXPECT_TRUE(scene.SetLocalModelRadius(tool, pose.validity_radius_m).ok());
-      applied = pose.sequence;
+      EXPECT_TRUE(scene.SetLocalModelRadius(tool, pose.validity_radius_m()).ok());
+      applied = pose.sequence();
+      applied_ns = pose.device_time_ns();
     });
-    const ToolFrame& t = scene.Step().tools.front();
-    // As the server sends them: each model revision once, in the first
-    // frame after it was made (which may have applied no pose yet).
-    ServerFrame frame{.applied_sequence = applied, .force_W = t.force_W, .model = std::nullopt};
-    if (t.local_model.revision != revision_sent) {
-      frame.model = t.local_model;
-      revision_sent = t.local_model.revision;
-    }
-    std::vector<Vector3d> normals;
-    for (const PairContact& c : t.contacts) normals.push_back(c.contact.normal_W);
-    frame.depth_m = DepthBehindProxy(t.X_WD.translation(), t.X_WP.translation(), normals);
-    run.FromServer(now, std::move(frame));
+    device.FromServer(now, FrameOf(scene.Step().tools.front(), loaded->names, applied, applied_ns,
+                                   revision_sent));
   }
   EXPECT_EQ(run.ticks_rendered(), ticks) << "the device never went live";
   if (forces) *forces = run.forces();
-  return run.Summary(reference);
+  return run.Summary(reference, device.counts(), device.link_stats());
 }
 
 // The depth of a device 3 mm under a flat top (normal +z) is 3 mm, whether
@@ -100,28 +126,50 @@ TEST(DepthBehindProxyTest, IsTheDevicesDistanceUnderTheTouchedFaces) {
   EXPECT_EQ(DepthBehindProxy(device, Vector3d(0.1, 0.2, 0), {}), 0);
 }
 
-// The device sends its newest pose once every 1 / pose_rate_hz, as the
-// SDK's Device does (the first at tick 0, each numbered by its tick + 1),
-// and one a tick at the tick rate or above; over an ideal link each
-// reaches the server at the tick it went.
-TEST(RemoteRunTest, SendsPosesAtThePoseRate) {
-  for (const auto& [rate_hz, every] : {std::pair{250.0, 4}, {1000.0, 1}, {5000.0, 1}}) {
-    RemoteRunOptions options;
-    options.pose_rate_hz = rate_hz;
-    RemoteRun run(options, Isometry3d::Identity());
-    std::vector<uint64_t> sequences;
-    for (int64_t k = 0; k < 100; ++k) {
-      run.Tick(k);
-      run.DeliverPoses(static_cast<double>(k) * options.tick_s, [&](const PoseMessage& pose) {
-        EXPECT_EQ(pose.sequence, static_cast<uint64_t>(k) + 1) << rate_hz << " poses/s";
-        sequences.push_back(pose.sequence);
-      });
-    }
-    EXPECT_EQ(sequences.size(), 100u / every) << rate_hz << " poses/s";
-    for (size_t i = 0; i < sequences.size(); ++i) {
-      EXPECT_EQ(sequences[i], i * every + 1) << rate_hz << " poses/s";
-    }
+// A frame's depth is DepthBehindProxy of its tool's device, proxy and
+// contact normals; a pose that is not finite gives 0.
+TEST(FrameDepthTest, IsTheDepthOfTheFramesTool) {
+  pb::ToolState tool;
+  VectorToProto(Vector3d(0.1, 0.2, -0.003), tool.mutable_device_pose()->mutable_position_m());
+  VectorToProto(Vector3d(0.105, 0.2, 0), tool.mutable_proxy_pose()->mutable_position_m());
+  VectorToProto(Vector3d::UnitZ(), tool.add_contacts()->mutable_normal_w());
+  EXPECT_NEAR(FrameDepth(tool), 0.003, 1e-15);
+  tool.mutable_device_pose()->mutable_position_m()->set_x(NAN);
+  EXPECT_EQ(FrameDepth(tool), 0);
+}
+
+// The hand holds still until the device is live (a model; without the
+// local model, the stream), then feels each tick; a frame counts once per
+// pose the device sent, for its own tool.
+TEST(RemoteRunTest, TheHandWaitsForTheDeviceAndReadsEachPoseOnce) {
+  for (const bool local_model : {true, false}) {
+    RemoteRun run({.local_model = local_model}, Isometry3d::Identity());
+    haptics::TickOutput out;
+    out.flags = local_model ? haptics::kConnected : 0;
+    run.Feel(0, out);
+    EXPECT_EQ(run.ticks_rendered(), 0);
+    out.flags |= local_model ? haptics::kHasModel : haptics::kConnected;
+    out.force_n[2] = 0.5;
+    run.Feel(1e-3, out);
+    ASSERT_EQ(run.ticks_rendered(), 1);
+    EXPECT_EQ(run.forces()[0], Vector3d(0, 0, 0.5));
   }
+  RemoteRun run({}, Isometry3d::Identity());
+  pb::Frame frame;
+  pb::ToolState* tool = frame.add_tools();
+  tool->set_tool("probe");
+  VectorToProto(Vector3d(0, 0, -0.002), tool->mutable_device_pose()->mutable_position_m());
+  VectorToProto(Vector3d::Zero(), tool->mutable_proxy_pose()->mutable_position_m());
+  VectorToProto(Vector3d::UnitZ(), tool->add_contacts()->mutable_normal_w());
+  run.Read(frame, {.applied_sequence = 0, .round_trip_ns = -1}, "probe");  // none of its own
+  run.Read(frame, {.applied_sequence = 2, .round_trip_ns = 40'000'000}, "probe");
+  run.Read(frame, {.applied_sequence = 2, .round_trip_ns = 90'000'000}, "probe");  // again
+  run.Read(frame, {.applied_sequence = 1, .round_trip_ns = 90'000'000}, "probe");  // older
+  run.Read(frame, {.applied_sequence = 3, .round_trip_ns = 90'000'000}, "forceps");
+  const RemoteSummary s = run.Summary({}, {}, {});
+  EXPECT_EQ(s.round_trip_p50_ms, 40);
+  EXPECT_EQ(s.round_trip_p99_ms, 40);
+  EXPECT_NEAR(s.penetration_max_m, 0.002, 1e-15);
 }
 
 class RemoteOperatorTest : public testing::TestWithParam<OperatorMotion> {};
@@ -188,9 +236,9 @@ TEST_P(RemoteOperatorTest, LocalModelStaysPassiveAt150MsEachWay) {
   const LinkConditions link{.latency_ms = 300, .jitter_ms = 20, .seed = 1};
   for (const double pose_rate_hz : {250.0, 1000.0}) {
     const RemoteSummary reference =
-        RunOperator(GetParam(), true, {.seed = 1}, 4, nullptr, {}, {}, pose_rate_hz);
+        RunOperator(GetParam(), true, {.seed = 1}, 4, nullptr, {}, 30, pose_rate_hz);
     const RemoteSummary controlled =
-        RunOperator(GetParam(), true, link, 4, nullptr, {}, {}, pose_rate_hz);
+        RunOperator(GetParam(), true, link, 4, nullptr, {}, 30, pose_rate_hz);
     std::cout << pose_rate_hz << " poses/s: energy " << controlled.energy_j
               << " J, penetration p99 " << controlled.penetration_p99_m << " m, max step "
               << controlled.max_force_step_n << " N, passivity controller on "
@@ -205,8 +253,7 @@ TEST_P(RemoteOperatorTest, LocalModelStaysPassiveAt150MsEachWay) {
     }
   }
   if (GetParam() != OperatorMotion::kTap) {
-    const RemoteSummary uncontrolled = RunOperator(GetParam(), true, link, 4, nullptr, {},
-                                                   {.max_passivity_damping_ns_per_m = 0}, 1000);
+    const RemoteSummary uncontrolled = RunOperator(GetParam(), true, link, 4, nullptr, {}, 0, 1000);
     std::cout << "without the controller: energy " << uncontrolled.energy_j << " J\n";
     EXPECT_GT(uncontrolled.energy_j, kPassiveBoundJ);
   }

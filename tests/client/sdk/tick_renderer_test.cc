@@ -58,7 +58,7 @@ void WithModel(Feed& feed, const LocalModel& model) {
 
 TEST(TickRendererTest, NothingIsFeltWithoutALinkOrAModel) {
   // Down: zero force, no flag. Up without a model yet: zero, kConnected.
-  TickRenderer renderer(1e-3);
+  TickRenderer renderer(haptics::DeviceOptions{});
   haptics::TickOutput out = renderer.Tick(At(-0.005), Feed{});
   EXPECT_EQ(out.flags, 0u);
   EXPECT_EQ(out.force_n[2], 0);
@@ -70,7 +70,7 @@ TEST(TickRendererTest, NothingIsFeltWithoutALinkOrAModel) {
 TEST(TickRendererTest, RendersTheModelAsAFreshHapticLoop) {
   // Pressing into the floor: each tick's force and torque are those of a
   // HapticLoop of its own given the same model and poses.
-  TickRenderer renderer(1e-3);
+  TickRenderer renderer(haptics::DeviceOptions{});
   HapticLoop oracle(HapticLoopOptions{.tick_s = 1e-3});
   Feed feed = Connected(1);
   WithModel(feed, Floor());
@@ -93,7 +93,7 @@ TEST(TickRendererTest, RendersTheModelAsAFreshHapticLoop) {
 
 TEST(TickRendererTest, BadPoseHoldsTheLastForce) {
   // NaN, infinite or non-unit: kInvalidPose, the last force, counted.
-  TickRenderer renderer(1e-3);
+  TickRenderer renderer(haptics::DeviceOptions{});
   Feed feed = Connected(1);
   WithModel(feed, Floor());
   haptics::TickOutput last;
@@ -110,7 +110,7 @@ TEST(TickRendererTest, BadPoseHoldsTheLastForce) {
     EXPECT_EQ(out.status, haptics::TickStatus::kInvalidPose);
     for (int i = 0; i < 3; ++i) EXPECT_EQ(out.force_n[i], last.force_n[i]);
   }
-  EXPECT_EQ(renderer.rejected_poses(), 3);
+  EXPECT_EQ(renderer.counts().rejected_poses, 3);
   EXPECT_FALSE(TickRenderer::ValidPose(long_quaternion));
   haptics::Pose turned = At(0);
   turned.orientation_wxyz[0] = std::sqrt(0.5);
@@ -121,7 +121,7 @@ TEST(TickRendererTest, BadPoseHoldsTheLastForce) {
 TEST(TickRendererTest, ANewStreamStartsAFreshLoop) {
   // After a reconnection the old stream's model is not rendered; the new
   // stream's first model renders as a loop that never ticked.
-  TickRenderer renderer(1e-3);
+  TickRenderer renderer(haptics::DeviceOptions{});
   Feed feed = Connected(1);
   WithModel(feed, Floor());
   for (int k = 0; k < 20; ++k) renderer.Tick(At(-2e-4 * k), feed);
@@ -138,10 +138,50 @@ TEST(TickRendererTest, ANewStreamStartsAFreshLoop) {
   EXPECT_EQ(out.force_n[2], oracle.Tick(X_WD).force_W.z());
 }
 
+TEST(TickRendererTest, CountsSpanStreams) {
+  // A model that fails the checks is counted; the count stays when a new
+  // stream starts a fresh loop, and the passivity controller's work adds
+  // up over both.
+  TickRenderer renderer(haptics::DeviceOptions{});
+  Feed feed = Connected(1);
+  LocalModel bad = Floor();
+  bad.validity_radius_m = NAN;
+  WithModel(feed, bad);
+  renderer.Tick(At(0), feed);
+  EXPECT_EQ(renderer.counts().models_rejected, 1);
+  feed.stream = 2;
+  WithModel(feed, Floor());
+  renderer.Tick(At(0), feed);
+  EXPECT_EQ(renderer.counts().models_rejected, 1);
+  WithModel(feed, bad);
+  renderer.Tick(At(0), feed);
+  EXPECT_EQ(renderer.counts().models_rejected, 2);
+}
+
+TEST(TickRendererTest, WithoutTheLocalModelTheFramesForceIsApplied) {
+  // DeviceOptions::local_model false: the newest frame's force as it is,
+  // while connected; a model in the feed is not rendered; zero when down.
+  TickRenderer renderer(haptics::DeviceOptions{.local_model = false});
+  Feed feed = Connected(1);
+  feed.force_n[0] = 0.5;
+  feed.force_n[2] = 1.25;
+  WithModel(feed, Floor());
+  haptics::TickOutput out = renderer.Tick(At(-0.004), feed);
+  EXPECT_EQ(out.flags, haptics::kConnected);
+  EXPECT_EQ(out.force_n[0], 0.5);
+  EXPECT_EQ(out.force_n[1], 0);
+  EXPECT_EQ(out.force_n[2], 1.25);
+  EXPECT_EQ(out.torque_nm[0], 0);
+  feed.connected = false;
+  out = renderer.Tick(At(-0.004), feed);
+  EXPECT_EQ(out.flags, 0u);
+  EXPECT_EQ(out.force_n[2], 0);
+}
+
 TEST(TickRendererTest, BeyondValidityIsFlaggedAndCounted) {
   // Past the validity radius (1 cm from the floor's proxy at the origin):
   // kBeyondValidity, counted.
-  TickRenderer renderer(1e-3);
+  TickRenderer renderer(haptics::DeviceOptions{});
   Feed feed = Connected(1);
   WithModel(feed, Floor());
   int64_t beyond = 0;
@@ -160,7 +200,7 @@ TEST(TickRendererTest, BeyondValidityIsFlaggedAndCounted) {
 TEST(TickRendererTest, TicksAllocateNothing) {
   // Ticks taking new models of up to 16 planes, a new stream, a link down
   // and bad poses allocate nothing once the renderer is built.
-  TickRenderer renderer(1e-3);
+  TickRenderer renderer(haptics::DeviceOptions{});
   Feed feed = Connected(1);
   std::vector<Feed> feeds;
   for (int planes = 0; planes <= 16; ++planes) {
