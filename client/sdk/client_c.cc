@@ -123,6 +123,8 @@ hs_device* hs_device_open(hs_session* session, const char* scene, const char* to
   if (const double s = HS_FIELD(o, tick_s, 0.0); s > 0) options.tick_s = s;
   options.take_over = HS_FIELD(o, take_over, 0) != 0;
   options.open_timeout_s = HS_FIELD(o, open_timeout_s, 0.0);
+  if (const double hz = HS_FIELD(o, frame_rate_hz, 0.0); hz > 0) options.frame_rate_hz = hz;
+  options.local_model = HS_FIELD(o, server_force, 0) == 0;
   haptics::Result<std::unique_ptr<haptics::Device>> device =
       session->session->OpenDevice(scene, tool, options);
   if (!device.ok()) {

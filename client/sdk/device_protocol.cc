@@ -82,6 +82,10 @@ FrameRead DeviceProtocol::Read(const pb::Frame& frame, int64_t now_ns) {
            !round_trip_peak_ns_.compare_exchange_weak(peak, read.round_trip_ns)) {
     }
   }
+  // A frame that applied none of this stream's poses holds the tool's
+  // state for another pose (its last device's, or the scene's): its force
+  // and model are not this device's to render.
+  if (read.applied_sequence == 0) return read;
   for (const pb::ToolState& tool : frame.tools()) {
     if (tool.tool() != config_.tool) continue;
     if (!config_.options.local_model) {

@@ -37,7 +37,9 @@ class DeviceProtocol {
   /// clock `Read`'s `now_ns` is on.
   void PoseRequest(const PoseSample& sample, haptics::v1::InteractRequest& request);
 
-  /// Takes `frame`, read at `now_ns`, into the feed.
+  /// Takes `frame`, read at `now_ns`, into the feed: its force and model
+  /// only once it applied one of this stream's poses (the first model
+  /// comes a round trip after the first pose, built for it).
   FrameRead Read(const haptics::v1::Frame& frame, int64_t now_ns);
 
   const Feed& feed() const { return feed_; }

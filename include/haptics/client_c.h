@@ -49,6 +49,11 @@ typedef struct hs_device_options {
   /* Seconds to wait for the stream's first frame; <= 0: the session's
    * connect timeout. */
   double open_timeout_s;
+  /* Frames asked for per second; <= 0: rate_hz. */
+  double frame_rate_hz;
+  /* Non-zero: no local model; hs_device_tick returns the force of the
+   * newest frame, a round trip old (for a link of a few milliseconds). */
+  int server_force;
 } hs_device_options;
 
 /* hs_device_tick's result and flags. */

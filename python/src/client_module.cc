@@ -283,10 +283,14 @@ PYBIND11_MODULE(_client, m) {
       .def(
           "device",
           [](PySession& self, const std::string& scene, const std::string& tool, double rate_hz,
-             double tick_s, bool take_over, double open_timeout) {
+             double frame_rate_hz, bool local_model, double max_passivity_damping, double tick_s,
+             bool take_over, double open_timeout) {
             haptics::Session& session = self.get();
             haptics::DeviceOptions options;
             options.rate_hz = rate_hz;
+            options.frame_rate_hz = frame_rate_hz;
+            options.local_model = local_model;
+            options.max_passivity_damping_ns_per_m = max_passivity_damping;
             options.tick_s = tick_s;
             options.take_over = take_over;
             options.open_timeout_s = open_timeout;
@@ -294,7 +298,9 @@ PYBIND11_MODULE(_client, m) {
                 Take(WithoutGil([&] { return session.OpenDevice(scene, tool, options); }))};
           },
           py::arg("scene"), py::arg("tool"), py::kw_only(), py::arg("rate_hz") = 250.0,
-          py::arg("tick_s") = 1e-3, py::arg("take_over") = false, py::arg("open_timeout") = 0.0)
+          py::arg("frame_rate_hz") = 0.0, py::arg("local_model") = true,
+          py::arg("max_passivity_damping") = 30.0, py::arg("tick_s") = 1e-3,
+          py::arg("take_over") = false, py::arg("open_timeout") = 0.0)
       .def(
           "watch",
           [](PySession& self, const std::string& scene, bool poses, bool contacts, bool forces,

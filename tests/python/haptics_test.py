@@ -80,6 +80,17 @@ class DeviceTest(unittest.TestCase):
                     device.tick(position=(math.nan, 0, 0))
                 self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
 
+    def test_without_the_local_model_the_servers_force_is_felt(self):
+        # local_model=False: the force of the newest frame, the same 2 N
+        # once the server has held the pressed pose for half a second.
+        with haptics.connect(SERVER) as session:
+            with session.device(SCENE, "probe", local_model=False, frame_rate_hz=100) as device:
+                press(device, max_ticks=500)  # it never says it touches
+                force, _ = device.tick(position=PRESSED)
+                self.assertAlmostEqual(force[2], 2.0, delta=0.32)
+                self.assertTrue(device.flags & haptics.CONNECTED)
+                self.assertEqual(device.state().models, 0)
+
     def test_watch_sees_the_contact(self):
         # A viewer's callback sees the probe's contact with the organ.
         with haptics.connect(SERVER) as session:

@@ -90,7 +90,9 @@ RemoteSummary RunOperator(OperatorMotion motion, bool local_model, const LinkCon
     run.Feel(now, device.Tick(k, run.DevicePose()));
     device.DeliverPoses(now, [&](const pb::InteractRequest& request) {
       const pb::ToolPose& pose = request.pose();
-      EXPECT_TRUE(scene.SetDevicePose(tool, *PoseFromProto(pose.pose(), "pose")).ok());
+      // As the server: the device's first pose seats it.
+      EXPECT_TRUE(
+          ApplyDevicePose(scene, tool, *PoseFromProto(pose.pose(), "pose"), applied == 0).ok());
       if (pose.model_stale()) {
         EXPECT_TRUE(scene.RequestLocalModel(tool).ok());
       }
@@ -228,10 +230,10 @@ TEST_P(RemoteOperatorTest, LocalModelStaysPassiveOverStalls) {
 // the force in a tick by no more than the zero-latency run does plus the
 // switch bound (the slide, which switches between the crest's planes, by
 // 0.9 N: docs/remote-haptics.md). The device loop's passivity controller
-// is what keeps the press and the slide so: without it, models a round
-// trip old hand the hand energy (at one pose a tick, the slide about
-// 0.45 J and the press 4 mJ on this link's draw; at 250 a second this
-// draw's slide stays passive by itself, the press does not).
+// is what keeps the slide so: without it, models a round trip old hand
+// the hand energy on 7 of 16 draws of this link (seeds 1-8 at both rates,
+// 2026-11-29), 0.92 J on seed 4's at a pose a tick. The press and the tap
+// need it not: the device renders their zero-latency force.
 TEST_P(RemoteOperatorTest, LocalModelStaysPassiveAt150MsEachWay) {
   const LinkConditions link{.latency_ms = 300, .jitter_ms = 20, .seed = 1};
   for (const double pose_rate_hz : {250.0, 1000.0}) {
@@ -252,9 +254,13 @@ TEST_P(RemoteOperatorTest, LocalModelStaysPassiveAt150MsEachWay) {
           << pose_rate_hz << " poses/s";
     }
   }
-  if (GetParam() != OperatorMotion::kTap) {
-    const RemoteSummary uncontrolled = RunOperator(GetParam(), true, link, 4, nullptr, {}, 0, 1000);
-    std::cout << "without the controller: energy " << uncontrolled.energy_j << " J\n";
+  if (GetParam() == OperatorMotion::kSlide) {
+    const LinkConditions draw{.latency_ms = 300, .jitter_ms = 20, .seed = 4};
+    const RemoteSummary controlled = RunOperator(GetParam(), true, draw, 4, nullptr, {}, 30, 1000);
+    const RemoteSummary uncontrolled = RunOperator(GetParam(), true, draw, 4, nullptr, {}, 0, 1000);
+    std::cout << "seed 4: energy " << controlled.energy_j << " J, without the controller "
+              << uncontrolled.energy_j << " J\n";
+    EXPECT_LE(controlled.energy_j, kPassiveBoundJ);
     EXPECT_GT(uncontrolled.energy_j, kPassiveBoundJ);
   }
 }

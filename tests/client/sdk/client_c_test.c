@@ -98,6 +98,30 @@ int main(void) {
   CHECK(state.models > 0);
   CHECK(state.rejected_poses == 1);
   hs_device_close(device);
+
+  /* Without the local model: the server's force at the pressed pose, the
+   * same 2 N once it has held it for half a second; no model comes. */
+  hs_device_options server_force;
+  memset(&server_force, 0, sizeof server_force);
+  server_force.struct_size = sizeof server_force;
+  server_force.frame_rate_hz = 100;
+  server_force.server_force = 1;
+  device = hs_device_open(session, "probe on torus", "probe", &server_force);
+  if (device == NULL) {
+    fprintf(stderr, "hs_device_open: %s\n", hs_last_error());
+    return 1;
+  }
+  for (int k = 0; k <= 600; ++k) {
+    p[2] = k <= 100 ? 0.1 - 0.015 * k / 100.0 : 0.085;
+    CHECK(hs_device_tick_flags(device, p, q, force, torque, &flags) == HS_TICK_OK);
+    sleep_ms(1);
+  }
+  printf("server's force %.3f %.3f %.3f N, flags %u\n", force[0], force[1], force[2], flags);
+  CHECK(fabs(force[2] - 2.0) < 0.32);
+  CHECK(flags == HS_FLAG_CONNECTED);
+  CHECK(hs_device_state_get(device, &state) == 0);
+  CHECK(state.models == 0);
+  hs_device_close(device);
   hs_session_close(session);
 
   hs_session_options quick;

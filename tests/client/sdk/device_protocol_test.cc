@@ -132,12 +132,15 @@ TEST(DeviceProtocolTest, FramesConnectAndBringEachModelOnce) {
   EXPECT_FALSE(protocol.feed().connected);
 
   // The tool's last device's pose (sequence 40, at 100 ns): none of this
-  // stream's.
-  FrameRead read = protocol.Read(FrameFor("probe", 40, 100), 500);
+  // stream's, and neither is the model built for it.
+  pb::Frame not_ours = FrameFor("probe", 40, 100);
+  LocalModelToProto(Model(5), {}, not_ours.mutable_tools(0)->mutable_local_model());
+  FrameRead read = protocol.Read(not_ours, 500);
   EXPECT_TRUE(read.first_frame);
   EXPECT_TRUE(read.feed_changed);
   EXPECT_EQ(read.applied_sequence, 0u);
   EXPECT_EQ(read.round_trip_ns, -1);
+  EXPECT_FALSE(read.new_model);
   EXPECT_TRUE(protocol.feed().connected);
   EXPECT_EQ(protocol.feed().stream, 3u);
   EXPECT_EQ(protocol.feed().model_serial, 0u);
@@ -168,6 +171,7 @@ TEST(DeviceProtocolTest, FramesConnectAndBringEachModelOnce) {
   pb::Frame other = FrameFor("forceps", 2, 1000);
   LocalModelToProto(Model(9), {}, other.mutable_tools(0)->mutable_local_model());
   EXPECT_FALSE(protocol.Read(other, 5000).new_model);
+  protocol.PoseRequest(Sample(0, 2000), request);
   pb::Frame broken = FrameFor("probe", 3, 2000);
   LocalModel bad = Model(8);
   LocalModelToProto(bad, {}, broken.mutable_tools(0)->mutable_local_model());
@@ -179,8 +183,12 @@ TEST(DeviceProtocolTest, FramesConnectAndBringEachModelOnce) {
 
   protocol.End();
   EXPECT_FALSE(protocol.feed().connected);
-  // A new stream takes a model of a revision seen on the last one.
+  // A new stream takes a model of a revision seen on the last one, once it
+  // applied the new stream's poses.
   protocol.Begin(4);
+  EXPECT_FALSE(protocol.Read(with_model, 7000).new_model);
+  protocol.PoseRequest(Sample(0, 900), request);
+  protocol.PoseRequest(Sample(0, 1000), request);
   EXPECT_TRUE(protocol.Read(with_model, 7000).new_model);
   EXPECT_EQ(protocol.feed().model_stream, 4u);
 }
@@ -189,6 +197,8 @@ TEST(DeviceProtocolTest, WithoutTheLocalModelEachFrameBringsTheForce) {
   const DeviceConfig config = Config(false);
   DeviceProtocol protocol(config);
   protocol.Begin(1);
+  pb::InteractRequest request;
+  protocol.PoseRequest(Sample(0, 1000), request);
   pb::Frame frame = FrameFor("probe", 1, 1000);
   pb::Vector3* force = frame.mutable_tools(0)->mutable_force_w_n();
   force->set_x(0.5);
