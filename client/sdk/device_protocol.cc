@@ -27,6 +27,7 @@ pb::InteractRequest::Open DeviceProtocol::Open() const {
 void DeviceProtocol::Begin(uint64_t stream) {
   sequence_ = 0;
   first_pose_time_ns_ = 0;
+  has_model_ = false;
   first_frame_ = false;
   last_revision_ = 0;
   feed_.stream = stream;
@@ -58,7 +59,7 @@ void DeviceProtocol::PoseRequest(const PoseSample& sample, pb::InteractRequest& 
   const ModelRequest model = model_requester_.ForPose(
       now_s, Vector3d(sample.position_m[0], sample.position_m[1], sample.position_m[2]),
       sample.beyond_validity_ticks);
-  pose->set_model_stale(model.model_stale);
+  pose->set_model_stale(model.model_stale || !has_model_);
   pose->set_validity_radius_m(model.validity_radius_m);
 }
 
@@ -109,6 +110,7 @@ FrameRead DeviceProtocol::Read(const pb::Frame& frame, int64_t now_ns) {
     feed_.model = *std::move(model);
     feed_.model_stream = feed_.stream;
     ++feed_.model_serial;
+    has_model_ = true;
     read.new_model = true;
     read.feed_changed = true;
   }

@@ -32,9 +32,12 @@ class DeviceProtocol {
   /// The stream ended: the feed says so.
   void End();
 
-  /// Writes over `request` the one carrying `sample`, the device's newest pose, with the
-  /// stream's next sequence. `sample.time_ns` is the pose's time on the
-  /// clock `Read`'s `now_ns` is on.
+  /// Writes over `request` the one carrying `sample`, the device's newest
+  /// pose, with the stream's next sequence. `sample.time_ns` is the pose's
+  /// time on the clock `Read`'s `now_ns` is on. Until a model of the
+  /// stream's own poses comes, each pose asks for one (model_stale): the
+  /// server sends each model once, and a link that loses it would leave the
+  /// device without one while its hand waits.
   void PoseRequest(const PoseSample& sample, haptics::v1::InteractRequest& request);
 
   /// Takes `frame`, read at `now_ns`, into the feed: its force and model
@@ -52,6 +55,8 @@ class DeviceProtocol {
   // written by the sender, read by the reader.
   std::atomic<uint64_t> sequence_{0};
   std::atomic<int64_t> first_pose_time_ns_{0};
+  // A model came on this stream: written by the reader, read by the sender.
+  std::atomic<bool> has_model_{false};
   // The feed: the reading thread's while a stream runs, else the sending
   // thread's (Begin, End).
   Feed feed_;
