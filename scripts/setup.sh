@@ -14,7 +14,7 @@ packages=(
   prometheus-cpp-dev libcli11-dev nlohmann-json3-dev libcgal-dev
   gnuplot-nox clang-14 libclang-rt-14-dev clang-format
   chromium nodejs npm yamllint python3-yaml ccache
-  pybind11-dev python3-dev file lintian
+  pybind11-dev python3-dev file lintian libhwy-dev
 )
 
 missing=()

@@ -7,10 +7,6 @@
 namespace hs {
 namespace {
 
-// Below this (relative to the product of the lengths that formed it) an axis
-// is a rounding artefact of parallel edges or a flat face, and is skipped.
-constexpr double kAxisRelativeFloor = 1e-12;
-
 // Above this sine of the angle between two faces' planes, the in-plane
 // edge normals are not needed (ForEachAxis); far above rounding, far below
 // any angle between faces of a real mesh that matters.

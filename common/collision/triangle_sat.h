@@ -92,6 +92,11 @@ bool SweptPlanesMeet(const Triangle3d& a, const Vector3d& normal_a, const Triang
                      const Vector3d& normal_b, const Vector3d& direction, double margin,
                      Interval within);
 
+/// Below this (relative to the product of the lengths that formed it) a
+/// separating axis is a rounding artefact of parallel edges or a flat face,
+/// and is skipped.
+inline constexpr double kAxisRelativeFloor = 1e-12;
+
 /// Sweep intervals of one pair at zero margin and at a margin.
 struct SweptIntervals {
   Interval exact;          // margin 0

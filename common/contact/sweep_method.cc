@@ -5,6 +5,7 @@
 #include <limits>
 #include <span>
 
+#include "common/collision/plane_bounds_batch.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_features.h"
 #include "common/core/scratch.h"
@@ -56,21 +57,30 @@ class KnownPairs {
     pairs.assign(found.begin(), found.end());
     std::sort(pairs.begin(), pairs.end());
     const size_t old_size = known_.size();
-    Triangle3d moving;  // of the last pair's face of M: pairs sorted by it come in runs
+    // The pairs' faces (M's sorted: one placed per run of its pairs), for
+    // their bounds several at a time. Only t >= 0 can extend the run from
+    // t = 0.
+    std::vector<Triangle3d>& moving = s_.moving;
+    std::vector<Triangle3d>& fixed = s_.fixed;
+    moving.clear();
+    fixed.clear();
+    Triangle3d placed;  // of the last pair's face of M
     FaceId moving_face = -1;
     for (const TrianglePair& pair : pairs) {
       if (std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
       if (pair.a != moving_face) {
-        moving = c_.MovingTriangle(pair.a);
+        placed = c_.MovingTriangle(pair.a);
         moving_face = pair.a;
       }
-      // Only t >= 0 can extend the run from t = 0.
-      known_.push_back({.pair = pair,
-                        .bounds = SweptPlaneBounds(moving, c_.FixedTriangle(pair.b), c_.direction_F,
-                                                   c_.tolerance_m, kAhead),
-                        .computed = false});
+      moving.push_back(placed);
+      fixed.push_back(c_.FixedTriangle(pair.b));
+      known_.push_back({.pair = pair, .computed = false});
     }
     if (known_.size() == old_size) return;
+    std::vector<SweptIntervals>& bounds = s_.bounds;
+    bounds.resize(fixed.size());
+    SweptPlaneBoundsBatch(moving, fixed, c_.direction_F, c_.tolerance_m, kAhead, bounds);
+    for (size_t i = old_size; i < known_.size(); ++i) known_[i].bounds = bounds[i - old_size];
     if (old_size > 0) {
       // Merged through a second buffer: std::inplace_merge would allocate one.
       s_.merged.clear();
@@ -166,6 +176,10 @@ class KnownPairs {
     // reads these, not every known pair (most are never computed).
     std::vector<Interval> exact;
     std::vector<TrianglePair> sorted;
+    // The faces of the pairs Add takes, and their bounds.
+    std::vector<Triangle3d> moving;
+    std::vector<Triangle3d> fixed;
+    std::vector<SweptIntervals> bounds;
     std::vector<Interval> scratch;
     std::vector<KnownPair*> reaching;
     void Clear() {

@@ -21,7 +21,7 @@ depends_on() {  # PACKAGE DEPENDENCY...: the package's Depends names each
     echo "$depends" | grep -q "\b$d\b" || { echo "FAIL: no $d in it" >&2; return 1; }
   done
 }
-depends_on haptic-server adduser libgrpc++1.51 libfcl0.7
+depends_on haptic-server adduser libgrpc++1.51 libfcl0.7 libhwy1
 depends_on hapticctl libgrpc++1.51
 depends_on libhaptics-client-dev libgrpc++1.51 libprotobuf32
 depends_on python3-haptics python3 libhaptics-client-dev
