@@ -12,10 +12,7 @@ TickOutput Device::Impl::Tick(const Pose& pose) {
   const TickOutput out = renderer_.Tick(pose, feeds_.front());
   if (out.ok()) {
     hs::sdk::PoseSample& sample = poses_.back();
-    for (int i = 0; i < 3; ++i) sample.position_m[i] = pose.position_m[i];
-    for (int i = 0; i < 4; ++i) sample.orientation_wxyz[i] = pose.orientation_wxyz[i];
-    sample.time_ns = hs::sdk::SteadyNowNs();
-    sample.beyond_validity_ticks = renderer_.beyond_validity_ticks();
+    sample.Set(pose, hs::sdk::SteadyNowNs(), renderer_.beyond_validity_ticks());
     poses_.Publish();
   }
   const hs::sdk::LoopCounts counts = renderer_.counts();

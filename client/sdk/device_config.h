@@ -49,8 +49,9 @@ struct DeviceConfig {
   /// options.local_model, the local model): an operator run reads the
   /// hand's depth from the contacts.
   std::vector<haptics::v1::Effect> extra_needs;
-  /// Called with each frame the device has taken and what it read there,
-  /// on the thread that reads the stream; null: none.
+  /// Called with each frame the device has taken and what it read there
+  /// (DeviceProtocol::Read), on the thread that reads the stream; null:
+  /// none.
   std::function<void(const haptics::v1::Frame&, const FrameRead&)> on_frame;
   /// How each stream opens; null: an InteractStream on the channel.
   OpenPipe open_pipe;

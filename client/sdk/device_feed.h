@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "common/sim/local_model.h"
+#include "haptics/pose.h"
 
 namespace hs::sdk {
 
@@ -26,6 +27,14 @@ struct PoseSample {
   /// The loop's ticks past the validity sphere so far: when it grew since
   /// the last pose sent, the next says the model is stale.
   int64_t beyond_validity_ticks = 0;
+
+  /// The sample of the device at `pose`, ticked at `time`.
+  void Set(const haptics::Pose& pose, int64_t time, int64_t beyond_validity) {
+    for (int i = 0; i < 3; ++i) position_m[i] = pose.position_m[i];
+    for (int i = 0; i < 4; ++i) orientation_wxyz[i] = pose.orientation_wxyz[i];
+    time_ns = time;
+    beyond_validity_ticks = beyond_validity;
+  }
 };
 
 /// Written by the network thread, read by Tick.

@@ -201,7 +201,6 @@ void DeviceLink::OnFrame(uint64_t stream, const pb::Frame& frame) {
     model_arrival_ns_ = now;
   }
   if (read.feed_changed) Publish();
-  if (config_.on_frame) config_.on_frame(frame, read);
 }
 
 }  // namespace hs::sdk

@@ -64,6 +64,12 @@ void DeviceProtocol::PoseRequest(const PoseSample& sample, pb::InteractRequest& 
 }
 
 FrameRead DeviceProtocol::Read(const pb::Frame& frame, int64_t now_ns) {
+  const FrameRead read = Take(frame, now_ns);
+  if (config_.on_frame) config_.on_frame(frame, read);
+  return read;
+}
+
+FrameRead DeviceProtocol::Take(const pb::Frame& frame, int64_t now_ns) {
   FrameRead read;
   if (!first_frame_) {
     first_frame_ = true;

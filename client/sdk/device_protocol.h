@@ -42,12 +42,16 @@ class DeviceProtocol {
 
   /// Takes `frame`, read at `now_ns`, into the feed: its force and model
   /// only once it applied one of this stream's poses (the first model
-  /// comes a round trip after the first pose, built for it).
+  /// comes a round trip after the first pose, built for it); then calls
+  /// config.on_frame with the frame and what was read.
   FrameRead Read(const haptics::v1::Frame& frame, int64_t now_ns);
 
   const Feed& feed() const { return feed_; }
 
  private:
+  // Read less the call to config.on_frame.
+  FrameRead Take(const haptics::v1::Frame& frame, int64_t now_ns);
+
   const DeviceConfig& config_;
   // Poses and their requests: the sending thread's.
   ModelRequester model_requester_;

@@ -67,11 +67,7 @@ LoopCounts TickRenderer::counts() const {
 }
 
 void TickRenderer::Reseat() {
-  const LoopCounts now = counts();
-  earlier_.models_rejected = now.models_rejected;
-  earlier_.models_restarted = now.models_restarted;
-  earlier_.passivity_ticks = now.passivity_ticks;
-  earlier_.passivity_dissipated_j = now.passivity_dissipated_j;
+  earlier_ = counts();  // counts() takes its own two counts from the renderer
   loop_ = fresh_;
 }
 

@@ -58,7 +58,7 @@ class TickRenderer {
   bool has_model_ = false;
   haptics::TickOutput last_;
   int64_t rejected_poses_ = 0;
-  // The counts of the loops of earlier streams.
+  // The counts as a new stream began (the loop's since are added to them).
   LoopCounts earlier_;
 };
 

@@ -16,17 +16,12 @@ SimulatedDevice::SimulatedDevice(const sdk::DeviceConfig& config, const LinkCond
 haptics::TickOutput SimulatedDevice::Tick(int64_t k, const haptics::Pose& pose) {
   const double now_s = static_cast<double>(k) * config_.options.tick_s;
   const int64_t now_ns = std::llround(now_s * 1e9);
-  down_.PopDue(now_s, [&](const pb::Frame& frame) {
-    const sdk::FrameRead read = protocol_.Read(frame, now_ns);
-    if (config_.on_frame) config_.on_frame(frame, read);
-  });
+  down_.PopDue(now_s, [&](const pb::Frame& frame) { protocol_.Read(frame, now_ns); });
   const haptics::TickOutput out = renderer_.Tick(pose, protocol_.feed());
   if (k % pose_period_ticks_ == 0 && out.ok()) {
     // Device times start at 1 ns: 0 is no pose.
-    sdk::PoseSample sample{.time_ns = now_ns + 1,
-                           .beyond_validity_ticks = renderer_.beyond_validity_ticks()};
-    for (int i = 0; i < 3; ++i) sample.position_m[i] = pose.position_m[i];
-    for (int i = 0; i < 4; ++i) sample.orientation_wxyz[i] = pose.orientation_wxyz[i];
+    sdk::PoseSample sample;
+    sample.Set(pose, now_ns + 1, renderer_.beyond_validity_ticks());
     pb::InteractRequest request;
     protocol_.PoseRequest(sample, request);
     up_.Push(now_s, std::move(request));

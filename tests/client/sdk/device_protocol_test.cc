@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "common/api/local_model_convert.h"
 
@@ -199,7 +200,13 @@ TEST(DeviceProtocolTest, FramesConnectAndBringEachModelOnce) {
 }
 
 TEST(DeviceProtocolTest, WithoutTheLocalModelEachFrameBringsTheForce) {
-  const DeviceConfig config = Config(false);
+  // Each frame read goes on to config.on_frame with what was read there.
+  DeviceConfig config = Config(false);
+  std::vector<uint64_t> seen;
+  config.on_frame = [&](const pb::Frame& frame, const FrameRead& read) {
+    EXPECT_EQ(frame.last_pose_sequence(), read.applied_sequence);
+    seen.push_back(read.applied_sequence);
+  };
   DeviceProtocol protocol(config);
   protocol.Begin(1);
   pb::InteractRequest request;
@@ -218,6 +225,7 @@ TEST(DeviceProtocolTest, WithoutTheLocalModelEachFrameBringsTheForce) {
   force->set_y(INFINITY);
   protocol.Read(frame, 3000);
   for (double f : protocol.feed().force_n) EXPECT_EQ(f, 0);
+  EXPECT_EQ(seen, (std::vector<uint64_t>{1, 1}));
 }
 
 }  // namespace
