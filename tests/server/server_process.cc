@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 namespace hs::testing {
 
@@ -25,7 +26,12 @@ ServerProcess::ServerProcess(const std::vector<std::string>& extra,
                                    scene.c_str()};
   for (const std::string& arg : extra) argv.push_back(arg.c_str());
   argv.push_back(nullptr);
-  std::vector<const char*> envp;
+  std::string temporary = (std::filesystem::temp_directory_path() / "hs-server-XXXXXX").string();
+  EXPECT_NE(mkdtemp(temporary.data()), nullptr);
+  temporary_dir_ = temporary;
+  const std::string tmpdir = "TMPDIR=" + temporary_dir_;
+  // First: getenv takes the first of two entries of one name.
+  std::vector<const char*> envp = {tmpdir.c_str()};
   for (char** e = environ; *e != nullptr; ++e) envp.push_back(*e);
   for (const std::string& e : environment) envp.push_back(e.c_str());
   envp.push_back(nullptr);
@@ -50,6 +56,8 @@ ServerProcess::~ServerProcess() {
     waitpid(pid_, nullptr, 0);
   }
   if (stderr_ != nullptr) fclose(stderr_);
+  std::error_code error;
+  std::filesystem::remove_all(temporary_dir_, error);
 }
 
 std::string ServerProcess::LineWith(const char* text) {

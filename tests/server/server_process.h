@@ -1,7 +1,9 @@
 #pragma once
 // The built haptic-server as a child process of a test: started on a free
 // 127.0.0.1 port with the demo scene, its stderr read line by line, killed
-// when the fixture goes.
+// when the fixture goes. Its temporary folder (TMPDIR) is one of its own,
+// removed once it has ended: a server killed with SIGKILL cannot remove
+// what it made there (the folder for uploaded models without --state-dir).
 
 #include <sys/types.h>
 
@@ -20,7 +22,7 @@ class ServerProcess {
   explicit ServerProcess(const std::vector<std::string>& extra = {},
                          const std::vector<std::string>& environment = {},
                          const std::string& listen = "127.0.0.1:0");
-  /// SIGKILL unless it was ended with StopWith.
+  /// SIGKILL unless it was ended with StopWith; removes its TMPDIR.
   ~ServerProcess();
   ServerProcess(const ServerProcess&) = delete;
   ServerProcess& operator=(const ServerProcess&) = delete;
@@ -40,6 +42,7 @@ class ServerProcess {
   int port_ = 0;
   bool waited_ = false;
   std::string startup_;
+  std::string temporary_dir_;
 };
 
 }  // namespace hs::testing
