@@ -70,6 +70,10 @@ class PlacedFaces {
     }
   }
 
+  /// The faces by id; face f is placed once Get(f) was called in this
+  /// query.
+  const PlacedFace* data() const { return faces_.data(); }
+
   /// Face `f` in the query frame.
   const PlacedFace& Get(int f) {
     PlacedFace& placed = faces_[f];

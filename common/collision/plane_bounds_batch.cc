@@ -15,6 +15,8 @@
 #define HWY_TARGET_INCLUDE "common/collision/plane_bounds_batch.cc"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+// After highway.h: compiled for each target.
+#include "common/collision/scalar_order-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace hs {
@@ -35,15 +37,6 @@ struct Corners {
 struct FaceAxis {
   V nx, ny, nz, norm_sq, longest_edge_sq;
 };
-
-// std::min and std::max as the scalar code calls them.
-V MinOf(V a, V b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
-V MaxOf(V a, V b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }
-
-// Eigen's dot product of 3-vectors, in its order.
-V Dot(V ax, V ay, V az, V bx, V by, V bz) {
-  return hn::Add(hn::Add(hn::Mul(ax, bx), hn::Mul(ay, by)), hn::Mul(az, bz));
-}
 
 FaceAxis FaceAxisOf(const Corners& c) {
   V ex[3], ey[3], ez[3], len[3];

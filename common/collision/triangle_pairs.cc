@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <utility>
 
+#include "common/collision/face_test_batch.h"
 #include "common/collision/fcl_bvh.h"
 #include "common/collision/obb_overlap.h"
 #include "common/collision/placed_faces.h"
@@ -257,13 +259,18 @@ class BucketTest {
   /// Run's own, save those known apart. The region's runs' travel to the
   /// query (Region::to_query) says how far each pair has moved since it
   /// was last tested, and `rounding` (the region's slack beside its skin)
-  /// covers the rounding of what was measured there.
+  /// covers the rounding of what was measured there. The face tests run
+  /// in two passes: the quick test of them all in batches
+  /// (face_test_batch.h: a face's plane keeps them apart, or they cross
+  /// clearly), then the full test of those it leaves.
   void RunCandidates(PairCache::Region& region, double rounding,
                      std::vector<TrianglePair>& pairs) const {
     HS_CHECK(!sweep_A_);
     const std::array<PairCache::Travel, PairCache::kStreams>& to_query = region.to_query;
     const int stream = region.stream;
     const double shifted = to_query[stream].shifted_m, turned = to_query[stream].turned;
+    FaceTests& tests = buffers_.face_tests;
+    tests.Clear();
     for (PairCache::Candidate& candidate : region.candidates) {
       // Apart by more than the motion since it was last tested: its box,
       // plane or edge-cross test would reject it again.
@@ -272,8 +279,6 @@ class BucketTest {
       const int i = candidate.leaf_a;
       const int a = ia_.leaf_faces[i];
       const PlacedFace& b = faces_b_.Get(candidate.face_b);
-      // How far the two faces move per radian of turn.
-      const double reach = std::max(ia_.face_reach[a], ib_.face_reach[candidate.face_b]);
       double box_gap = -std::numeric_limits<double>::infinity();
       for (int d = 0; d < 3; ++d) {
         box_gap = std::max(box_gap, std::max(ia_.leaf_order_lo[d][i] - (b.hi[d] + margin_),
@@ -281,8 +286,8 @@ class BucketTest {
       }
       if (box_gap > 0) {  // BucketBoxes::Meeting rejects the pair
         candidate.stream = stream;
-        candidate.per_turn_m = reach;
-        candidate.apart_until = shifted + reach * turned + box_gap - rounding;
+        candidate.per_turn_m = Reach(a, candidate.face_b);
+        candidate.apart_until = shifted + candidate.per_turn_m * turned + box_gap - rounding;
         continue;
       }
       const std::span<const TrianglePair> skipped = Skipped(a);
@@ -290,17 +295,28 @@ class BucketTest {
           std::ranges::binary_search(skipped, TrianglePair{a, candidate.face_b})) {
         continue;
       }
-      const PlacedFace& face_a = ia_.leaf_order_faces[i];
-      PairHint hint{.edge_pair = candidate.edge_pair};
-      const bool meet =
-          TrianglesIntersect(face_a.triangle, face_a.normal, b.triangle, b.normal, margin_, hint);
+      tests.Add(candidate);
+    }
+    tests.RunQuickTests(ia_.leaf_order_faces.data(), faces_b_.data(), margin_);
+    for (size_t k = 0; k < tests.candidates.size(); ++k) {
+      PairCache::Candidate& candidate = *tests.candidates[k];
+      const int a = ia_.leaf_faces[candidate.leaf_a];
+      // The hint the full test would leave (QuickTrianglesTest), or its own.
+      PairHint hint{.edge_pair = candidate.edge_pair, .gap_m = tests.quick[k].gap_m};
+      bool meet = tests.quick[k].answer == QuickTriangleTest::Answer::kMeet;
+      if (tests.quick[k].answer == QuickTriangleTest::Answer::kUnknown) {
+        const PlacedFace& face_a = ia_.leaf_order_faces[candidate.leaf_a];
+        const PlacedFace& face_b = faces_b_.Get(candidate.face_b);
+        meet = TrianglesIntersect(face_a.triangle, face_a.normal, face_b.triangle, face_b.normal,
+                                  margin_, hint);
+      }
       candidate.edge_pair = hint.edge_pair;
       if (meet) {
         pairs.push_back({a, candidate.face_b});
         candidate.apart_until = -1;  // tested again next time
       } else {
         candidate.stream = stream;
-        candidate.per_turn_m = reach + hint.lever_m;
+        candidate.per_turn_m = Reach(a, candidate.face_b) + hint.lever_m;
         candidate.apart_until = shifted + candidate.per_turn_m * turned + hint.gap_m - rounding;
       }
     }
@@ -344,11 +360,36 @@ class BucketTest {
   };
   static_assert(kBucketFaces <= 32, "one bit per face of a bucket");
 
-  // Run's lists, kept from bucket to bucket.
+  // The candidates of RunCandidates that take a face test, in order, with
+  // their faces (A's by leaf, B's by id) and the quick test's answers.
+  struct FaceTests {
+    std::vector<PairCache::Candidate*> candidates;
+    std::vector<TrianglePair> faces;
+    std::vector<QuickTriangleTest> quick;
+
+    void Clear() {
+      candidates.clear();
+      faces.clear();
+    }
+    void Add(PairCache::Candidate& candidate) {
+      candidates.push_back(&candidate);
+      faces.push_back({candidate.leaf_a, candidate.face_b});
+    }
+    void RunQuickTests(const PlacedFace* faces_a, const PlacedFace* faces_b, double margin) {
+      quick.resize(candidates.size());
+      QuickTrianglesTestBatch(faces_a, faces_b, faces, margin, quick);
+    }
+  };
+
+  // Run's lists, kept from bucket to bucket, and RunCandidates' tests.
   struct RunBuffers {
     std::vector<Entry> list_b;
     BucketBoxes boxes_b;
+    FaceTests face_tests;
   };
+
+  // How far faces `a` of A and `b` of B move per radian of turn.
+  double Reach(int a, int b) const { return std::max(ia_.face_reach[a], ib_.face_reach[b]); }
 
   // Whether face a, moved by -t sweep for some t in [0, 1], meets face b.
   // The plane tests first: SweptIntersection builds every axis before its

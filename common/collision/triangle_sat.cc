@@ -173,11 +173,6 @@ std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array
   return LineCrossing{{end_last, end_next}, edge_last, edge_next, last, lone};
 }
 
-// Relative to the triangles' size, what rounding cannot reach: the fast
-// crossing test below answers only when every quantity it compares stands
-// clear of zero by this much, and leaves every other pair to the SAT.
-constexpr double kClearlyRelative = 1e-9;
-
 enum class Crossing { kYes, kApart, kUnknown };
 
 // Whether the edge cross of edge i of `a` and edge j of `b`, built and
@@ -340,6 +335,20 @@ bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& 
 }
 
 }  // namespace
+
+QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal_a,
+                                     const Triangle3d& b, const Vector3d& normal_b, double margin) {
+  using Answer = QuickTriangleTest::Answer;
+  const std::array<double, 3> db = PlaneDistances(b, a[0], normal_a);
+  if (BeyondPlane(db, normal_a, margin)) return {Answer::kApart, PlaneGap(db, normal_a, margin)};
+  const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
+  if (BeyondPlane(da, normal_b, margin)) return {Answer::kApart, PlaneGap(da, normal_b, margin)};
+  int edge_pair = -1;
+  if (CrossingTest(a, normal_a, da, b, normal_b, db, margin, edge_pair) == Crossing::kYes) {
+    return {Answer::kMeet, 0};
+  }
+  return {};
+}
 
 Vector3d TriangleNormal(const Triangle3d& t) { return (t[1] - t[0]).cross(t[2] - t[1]); }
 

@@ -10,6 +10,7 @@
 // rounding. Near-zero axes (parallel edges, degenerate faces) are skipped.
 
 #include <array>
+#include <cstdint>
 #include <limits>
 
 #include "common/core/types.h"
@@ -61,6 +62,32 @@ struct PairHint {
   /// corners of the pair lie apart.
   double lever_m = 0;
 };
+
+/// Relative to the triangles' size, what rounding cannot reach: the fast
+/// crossing test (Moller's interval test, inside TrianglesIntersect)
+/// answers only when every quantity it compares stands clear of zero by
+/// this much, and leaves every other pair to the SAT.
+inline constexpr double kClearlyRelative = 1e-9;
+
+/// What TrianglesIntersect's first tests (each face's plane, then the fast
+/// crossing test) say of a pair, where they answer alone.
+struct QuickTriangleTest {
+  enum class Answer : uint8_t { kUnknown, kMeet, kApart };
+  Answer answer = Answer::kUnknown;
+  /// kApart: how far beyond the margin the face's plane keeps them.
+  double gap_m = 0;
+};
+
+/// kApart: a face's plane keeps the other face beyond `margin`;
+/// TrianglesIntersect is false, and with a hint it sets gap_m to this
+/// test's and lever_m to 0, and leaves edge_pair as it was. kMeet: neither
+/// plane does and the fast crossing test finds a clear common point;
+/// TrianglesIntersect is true, and with a hint it leaves edge_pair as it
+/// was and sets gap_m and lever_m to 0 (no axis can separate a clear common
+/// point). kUnknown: the full test decides. The oracle of the batched test
+/// (face_test_batch.h).
+QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal_a,
+                                     const Triangle3d& b, const Vector3d& normal_b, double margin);
 
 /// The same answer, for callers that test a pair again and again as it
 /// moves: the edge cross of `hint` is tried right after the face planes,

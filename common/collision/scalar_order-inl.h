@@ -1,0 +1,44 @@
+// The scalar code's arithmetic in SIMD lanes, for the batched kernels that
+// must give its numbers bit for bit (plane_bounds_batch.cc,
+// crossing_batch.cc): std::min and std::max as their comparisons, and
+// Eigen's dot product of 3-vectors in its order. Compiled once per Highway
+// target by each file that includes it after hwy/highway.h (Highway's
+// per-target include guard below); their files are built with
+// -ffp-contract=off, so no product and sum fuse.
+
+#if defined(HS_COLLISION_SCALAR_ORDER_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HS_COLLISION_SCALAR_ORDER_INL_H_
+#undef HS_COLLISION_SCALAR_ORDER_INL_H_
+#else
+#define HS_COLLISION_SCALAR_ORDER_INL_H_
+#endif
+
+#include "hwy/highway.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace hs {
+namespace HWY_NAMESPACE {
+
+/// std::min(a, b) and std::max(a, b), lane by lane, NaNs and signed zeros
+/// included.
+template <class V>
+HWY_INLINE V MinOf(V a, V b) {
+  return hwy::HWY_NAMESPACE::IfThenElse(hwy::HWY_NAMESPACE::Lt(b, a), b, a);
+}
+template <class V>
+HWY_INLINE V MaxOf(V a, V b) {
+  return hwy::HWY_NAMESPACE::IfThenElse(hwy::HWY_NAMESPACE::Lt(a, b), b, a);
+}
+
+/// Eigen's dot product (and squared norm) of 3-vectors, in its order.
+template <class V>
+HWY_INLINE V Dot(V ax, V ay, V az, V bx, V by, V bz) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  return hn::Add(hn::Add(hn::Mul(ax, bx), hn::Mul(ay, by)), hn::Mul(az, bz));
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hs
+HWY_AFTER_NAMESPACE();
+
+#endif  // HS_COLLISION_SCALAR_ORDER_INL_H_

@@ -1,0 +1,154 @@
+#include "common/collision/face_test_batch.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "hwy/targets.h"
+
+namespace hs {
+namespace {
+
+using Answer = QuickTriangleTest::Answer;
+
+bool SameBits(double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; }
+
+// What a coherent query does with a pair the quick test answers: takes its
+// answer, the hint's edge pair as it was, the gap it gives (0 for a
+// meeting) and lever 0. The full test must say the same, whatever edge
+// pair the hint held.
+void ExpectTheFullTestAgrees(const PlacedFace& a, const PlacedFace& b, double margin,
+                             const QuickTriangleTest& quick) {
+  if (quick.answer == Answer::kUnknown) return;
+  for (int edge_pair = -1; edge_pair < 9; ++edge_pair) {
+    PairHint hint{.edge_pair = edge_pair, .gap_m = 7, .lever_m = 7};
+    EXPECT_EQ(TrianglesIntersect(a.triangle, a.normal, b.triangle, b.normal, margin, hint),
+              quick.answer == Answer::kMeet);
+    EXPECT_EQ(hint.edge_pair, edge_pair);
+    EXPECT_TRUE(SameBits(hint.gap_m, quick.gap_m)) << hint.gap_m << " against " << quick.gap_m;
+    EXPECT_EQ(hint.lever_m, 0);
+  }
+}
+
+// Checks the batch against the scalar test, pair by pair and bit for bit,
+// on every SIMD target built in that this machine runs (SSE2 to AVX2 or
+// AVX-512 on x86-64); returns how many pairs each answer got.
+std::array<int, 3> ExpectScalarAnswers(const std::vector<PlacedFace>& a,
+                                       const std::vector<PlacedFace>& b, double margin) {
+  std::vector<TrianglePair> pairs;  // pair i: a[i] and b[i]
+  for (size_t i = 0; i < b.size(); ++i) pairs.push_back({static_cast<int>(i), static_cast<int>(i)});
+  std::array<int, 3> answers = {0, 0, 0};
+  std::vector<QuickTriangleTest> scalar;
+  for (size_t i = 0; i < b.size(); ++i) {
+    scalar.push_back(
+        QuickTrianglesTest(a[i].triangle, a[i].normal, b[i].triangle, b[i].normal, margin));
+    ++answers[static_cast<int>(scalar.back().answer)];
+    ExpectTheFullTestAgrees(a[i], b[i], margin, scalar.back());
+  }
+  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    SCOPED_TRACE(hwy::TargetName(target));
+    std::vector<QuickTriangleTest> out(b.size(), {Answer::kUnknown, 7});
+    QuickTrianglesTestBatch(a.data(), b.data(), pairs, margin, out);
+    for (size_t i = 0; i < b.size(); ++i) {
+      EXPECT_TRUE(out[i].answer == scalar[i].answer && SameBits(out[i].gap_m, scalar[i].gap_m))
+          << "pair " << i << " of " << b.size() << ": batch " << static_cast<int>(out[i].answer)
+          << ", " << out[i].gap_m << "; scalar " << static_cast<int>(scalar[i].answer) << ", "
+          << scalar[i].gap_m;
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  return answers;
+}
+
+PlacedFace RandomFace(std::mt19937& rng, double scale, const Vector3d& offset) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Triangle3d t;
+  for (Vector3d& p : t) p = scale * Vector3d(u(rng), u(rng), u(rng)) + offset;
+  return PlaceFace(t);
+}
+
+// Random pairs of nearby faces (each answer common), every batch size
+// from 1 to 19 (every short last batch of every lane count), some sharing
+// their first face as a region's candidates do, at tiny, unit and huge
+// scales, with and without a margin.
+TEST(FaceTestBatchTest, RandomFacesGiveTheScalarAnswer) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::array<int, 3> answers = {0, 0, 0};
+  for (const double scale : {1e-6, 1.0, 1e4}) {
+    for (size_t n = 1; n <= 19; ++n) {
+      std::vector<PlacedFace> a, b;
+      for (size_t i = 0; i < n; ++i) {
+        a.push_back(i % 3 == 2 ? a.back() : RandomFace(rng, scale, Vector3d::Zero()));
+        const double apart = i % 2 == 0 ? 0.3 : 1.5;  // most cross, or most do not
+        b.push_back(RandomFace(rng, scale, apart * scale * Vector3d(u(rng), u(rng), u(rng))));
+      }
+      for (const double margin : {1e-3 * scale, 0.0}) {
+        const std::array<int, 3> got = ExpectScalarAnswers(a, b, margin);
+        for (int k = 0; k < 3; ++k) answers[k] += got[k];
+      }
+    }
+  }
+  // Each answer at least a tenth of the 1,140 pairs.
+  for (int k = 0; k < 3; ++k) EXPECT_GT(answers[k], 114) << "answer " << k;
+}
+
+// Grid corners make the scalar test's refusals common: coplanar faces,
+// corners on the other's plane, faces that touch at an edge or a corner;
+// degenerate faces (a line, a point) have no usable normal.
+TEST(FaceTestBatchTest, GridAndDegenerateFacesGiveTheScalarAnswer) {
+  std::mt19937 rng(32);
+  std::uniform_int_distribution<int> c(-2, 2);
+  auto grid = [&] {
+    Triangle3d t;
+    for (Vector3d& p : t) p = Vector3d(c(rng), c(rng), c(rng));
+    return PlaceFace(t);
+  };
+  const PlacedFace line = PlaceFace({Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(2, 2, 2)});
+  const PlacedFace point = PlaceFace({Vector3d(1, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 0, 0)});
+  std::array<int, 3> answers = {0, 0, 0};
+  for (int round = 0; round < 300; ++round) {
+    std::vector<PlacedFace> a, b;
+    for (int i = 0; i < 11; ++i) b.push_back(grid());
+    b.push_back(line);
+    b.push_back(point);
+    for (int i = 0; i < 13; ++i) a.push_back(i % 5 == 4 ? line : i % 7 == 6 ? point : grid());
+    for (const double margin : {0.01, 0.0}) {
+      const std::array<int, 3> got = ExpectScalarAnswers(a, b, margin);
+      for (int k = 0; k < 3; ++k) answers[k] += got[k];
+    }
+  }
+  for (int k = 0; k < 3; ++k) EXPECT_GT(answers[k], 0) << "answer " << k;
+}
+
+// Non-finite corners get no answer that the scalar test does not give
+// (the full test then answers for them).
+TEST(FaceTestBatchTest, NonFiniteCornersGiveTheScalarAnswer) {
+  const PlacedFace a = PlaceFace({Vector3d(-1, -1, 0), Vector3d(2, -1, 0), Vector3d(-1, 2, 0)});
+  const PlacedFace crossing =
+      PlaceFace({Vector3d(0, 0, -1), Vector3d(0.5, 0, 1), Vector3d(0, 0.5, 1)});
+  const PlacedFace above = PlaceFace({Vector3d(0, 0, 1), Vector3d(0.5, 0, 1), Vector3d(0, 0.5, 2)});
+  Triangle3d nan_corner = crossing.triangle;
+  nan_corner[1].x() = std::nan("");
+  Triangle3d infinite = above.triangle;
+  infinite[2].z() = std::numeric_limits<double>::infinity();
+  const std::array<int, 3> answers = ExpectScalarAnswers(
+      {a, a, a, a, a}, {crossing, PlaceFace(nan_corner), PlaceFace(infinite), above, crossing},
+      0.01);
+  EXPECT_EQ(answers[static_cast<int>(Answer::kMeet)], 2);
+  EXPECT_GE(answers[static_cast<int>(Answer::kApart)], 1);
+}
+
+// The batch runs on more than one target here (at least SSE2 and the
+// scalar emulation), so that the checks above compare several lane widths.
+TEST(FaceTestBatchTest, SeveralTargetsAreChecked) {
+  EXPECT_GE(hwy::SupportedAndGeneratedTargets().size(), 2u);
+}
+
+}  // namespace
+}  // namespace hs
