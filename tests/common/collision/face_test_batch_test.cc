@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hwy/targets.h"
+#include "sample_triangles.h"
 
 namespace hs {
 namespace {
@@ -66,10 +67,7 @@ std::array<int, 3> ExpectScalarAnswers(const std::vector<PlacedFace>& a,
 }
 
 PlacedFace RandomFace(std::mt19937& rng, double scale, const Vector3d& offset) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  Triangle3d t;
-  for (Vector3d& p : t) p = scale * Vector3d(u(rng), u(rng), u(rng)) + offset;
-  return PlaceFace(t);
+  return PlaceFace(testing::RandomTriangle(rng, scale, offset));
 }
 
 // Random pairs of nearby faces (each answer common), every batch size
@@ -103,21 +101,12 @@ TEST(FaceTestBatchTest, RandomFacesGiveTheScalarAnswer) {
 // degenerate faces (a line, a point) have no usable normal.
 TEST(FaceTestBatchTest, GridAndDegenerateFacesGiveTheScalarAnswer) {
   std::mt19937 rng(32);
-  std::uniform_int_distribution<int> c(-2, 2);
-  auto grid = [&] {
-    Triangle3d t;
-    for (Vector3d& p : t) p = Vector3d(c(rng), c(rng), c(rng));
-    return PlaceFace(t);
-  };
-  const PlacedFace line = PlaceFace({Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(2, 2, 2)});
-  const PlacedFace point = PlaceFace({Vector3d(1, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 0, 0)});
   std::array<int, 3> answers = {0, 0, 0};
   for (int round = 0; round < 300; ++round) {
+    const testing::GridPairs grid = testing::GridAndDegeneratePairs(rng);
     std::vector<PlacedFace> a, b;
-    for (int i = 0; i < 11; ++i) b.push_back(grid());
-    b.push_back(line);
-    b.push_back(point);
-    for (int i = 0; i < 13; ++i) a.push_back(i % 5 == 4 ? line : i % 7 == 6 ? point : grid());
+    for (const Triangle3d& t : grid.a) a.push_back(PlaceFace(t));
+    for (const Triangle3d& t : grid.b) b.push_back(PlaceFace(t));
     for (const double margin : {0.01, 0.0}) {
       const std::array<int, 3> got = ExpectScalarAnswers(a, b, margin);
       for (int k = 0; k < 3; ++k) answers[k] += got[k];

@@ -9,9 +9,12 @@
 #include <vector>
 
 #include "hwy/targets.h"
+#include "sample_triangles.h"
 
 namespace hs {
 namespace {
+
+using testing::RandomTriangle;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -51,13 +54,6 @@ void ExpectScalarBounds(const std::vector<Triangle3d>& a, const std::vector<Tria
   hwy::SetSupportedTargetsForTest(0);
 }
 
-Triangle3d RandomTriangle(std::mt19937& rng, double scale, const Vector3d& offset) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  Triangle3d t;
-  for (Vector3d& p : t) p = scale * Vector3d(u(rng), u(rng), u(rng)) + offset;
-  return t;
-}
-
 // Random pairs of nearby faces, every batch size from 1 to 19 (so that
 // every short last batch of every lane count is met), some pairs sharing
 // their first face as a sweep's runs do, swept along random directions,
@@ -85,19 +81,8 @@ TEST(PlaneBoundsBatchTest, RandomFacesGiveTheScalarBoundsBitForBit) {
 TEST(PlaneBoundsBatchTest, GridAndDegenerateFacesGiveTheScalarBounds) {
   std::mt19937 rng(22);
   std::uniform_int_distribution<int> c(-2, 2);
-  auto grid = [&] {
-    Triangle3d t;
-    for (Vector3d& p : t) p = Vector3d(c(rng), c(rng), c(rng));
-    return t;
-  };
-  const Triangle3d line = {Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(2, 2, 2)};
-  const Triangle3d point = {Vector3d(1, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 0, 0)};
   for (int round = 0; round < 400; ++round) {
-    std::vector<Triangle3d> a, b;
-    for (int i = 0; i < 11; ++i) b.push_back(grid());
-    b.push_back(line);
-    b.push_back(point);
-    for (int i = 0; i < 13; ++i) a.push_back(i % 5 == 4 ? line : i % 7 == 6 ? point : grid());
+    const auto [a, b] = testing::GridAndDegeneratePairs(rng);
     const Vector3d direction(c(rng), c(rng), c(rng));
     ExpectScalarBounds(a, b, direction, 0.01, {0, kInf});
     ExpectScalarBounds(a, b, direction, 0, {0, kInf});
