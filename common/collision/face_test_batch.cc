@@ -11,6 +11,8 @@
 
 #include <algorithm>
 
+#include "common/collision/placed_faces.h"
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "common/collision/face_test_batch.cc"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep

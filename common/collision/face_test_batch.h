@@ -7,11 +7,12 @@
 
 #include <span>
 
-#include "common/collision/placed_faces.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/collision/triangle_sat.h"
 
 namespace hs {
+
+struct PlacedFace;  // common/collision/placed_faces.h, which holds FCL types
 
 /// out[i] = QuickTrianglesTest of faces_a[pairs[i].a] and
 /// faces_b[pairs[i].b] (each face's triangle and normal), at `margin`, for

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "common/collision/placed_faces.h"
 #include "hwy/targets.h"
 #include "sample_triangles.h"
 
