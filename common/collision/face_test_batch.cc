@@ -56,10 +56,10 @@ V Pick(M m, V yes, V no) { return hn::IfThenElse(m, yes, no); }
 // Loads the faces at `offsets` (in doubles from `base`), a lane each. On
 // AVX2, four faces' corners and normals (12 doubles each) are loaded in
 // rows of four and transposed in registers; elsewhere they are copied
-// through `soa` (12 rows of `stride`) a double at a time. (Gathers, a
-// coordinate at a time, took fewer instructions but more time on this
-// project's machine, an AMD EPYC; so did the copy, whose vector loads
-// wait for the stores before them.)
+// through `soa` (12 rows of `stride`) a double at a time. (On this
+// project's machine, an AMD EPYC, gathers a coordinate at a time took
+// about as many instructions as the transpose but more time, and the copy
+// more of both: its vector loads wait for the stores before them.)
 Faces LoadFaces(D d, const double* base, const int64_t* offsets, double* soa, size_t stride) {
   V column[12];
 #if HWY_TARGET == HWY_AVX2

@@ -1,6 +1,6 @@
 // The scalar code's arithmetic in SIMD lanes, for the batched kernels that
 // must give its numbers bit for bit (plane_bounds_batch.cc,
-// crossing_batch.cc): std::min and std::max as their comparisons, and
+// face_test_batch.cc): std::min and std::max as their comparisons, and
 // Eigen's dot product of 3-vectors in its order. Compiled once per Highway
 // target by each file that includes it after hwy/highway.h (Highway's
 // per-target include guard below); their files are built with
