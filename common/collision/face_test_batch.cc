@@ -53,31 +53,65 @@ Point Cross(const Point& p, const Point& q) {
 }
 V Pick(M m, V yes, V no) { return hn::IfThenElse(m, yes, no); }
 
-// Loads the faces at `offsets` (in doubles from `base`), a lane each. On
-// AVX2, four faces' corners and normals (12 doubles each) are loaded in
-// rows of four and transposed in registers; elsewhere they are copied
-// through `soa` (12 rows of `stride`) a double at a time. (On this
-// project's machine, an AMD EPYC, gathers a coordinate at a time took
-// about as many instructions as the transpose but more time, and the copy
-// more of both: its vector loads wait for the stores before them.)
+// Which of LoadFaces' `offsets` lands in lane `lane`: its own, but on
+// AVX3, whose block shuffles leave rows 2-3 and 4-5 swapped.
+size_t RowOfLane(size_t lane) {
+#if HWY_TARGET == HWY_AVX3
+  constexpr size_t kRow[8] = {0, 1, 4, 5, 2, 3, 6, 7};
+  return kRow[lane];
+#else
+  return lane;
+#endif
+}
+
+// Loads the faces at `offsets` (in doubles from `base`), face
+// `offsets[RowOfLane(j)]` in lane j. On AVX2 and AVX3, the faces' corners
+// and normals (12 doubles each) are loaded in rows of four and transposed
+// in registers; elsewhere they are copied through `soa` (12 rows of
+// `stride`) a double at a time. (On this project's machine, an AMD EPYC,
+// gathers a coordinate at a time took about as many instructions as the
+// transpose but more time, and the copy more of both: its vector loads
+// wait for the stores before them.)
 Faces LoadFaces(D d, const double* base, const int64_t* offsets, double* soa, size_t stride) {
   V column[12];
-#if HWY_TARGET == HWY_AVX2
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
   (void)soa;
   (void)stride;
   for (int m = 0; m < 3; ++m) {
+    // Row j: doubles 4m to 4m + 3 of face j (AVX2), of faces j and j + 4
+    // in the two halves (AVX3).
     V row[4];
+#if HWY_TARGET == HWY_AVX2
     for (int j = 0; j < 4; ++j) row[j] = hn::LoadU(d, base + offsets[j] + 4 * m);
+#else
+    const hn::Half<D> half;
+    for (int j = 0; j < 4; ++j) {
+      row[j] = hn::Combine(d, hn::LoadU(half, base + offsets[j + 4] + 4 * m),
+                           hn::LoadU(half, base + offsets[j] + 4 * m));
+    }
+#endif
     // t0 = (r0[0] r1[0] r0[2] r1[2]), t1 = (r0[1] r1[1] r0[3] r1[3]); t2, t3
-    // of r2 and r3; then each column k gathers element k of the four rows.
+    // of r2 and r3 (in each half, on AVX3); then each column k gathers
+    // element k of the rows.
     const V t0 = hn::InterleaveLower(d, row[0], row[1]);
     const V t1 = hn::InterleaveUpper(d, row[0], row[1]);
     const V t2 = hn::InterleaveLower(d, row[2], row[3]);
     const V t3 = hn::InterleaveUpper(d, row[2], row[3]);
+#if HWY_TARGET == HWY_AVX2
     column[4 * m] = hn::ConcatLowerLower(d, t2, t0);
     column[4 * m + 1] = hn::ConcatLowerLower(d, t3, t1);
     column[4 * m + 2] = hn::ConcatUpperUpper(d, t2, t0);
     column[4 * m + 3] = hn::ConcatUpperUpper(d, t3, t1);
+#else
+    // 128-bit blocks 0 and 2 of t0, then of t2 (rows 0 1 4 5 2 3 6 7); 1
+    // and 3 for the odd elements. Highway 1.0 has no such shuffle of two
+    // vectors' blocks.
+    constexpr int kEven = _MM_SHUFFLE(2, 0, 2, 0), kOdd = _MM_SHUFFLE(3, 1, 3, 1);
+    column[4 * m] = V{_mm512_shuffle_f64x2(t0.raw, t2.raw, kEven)};
+    column[4 * m + 1] = V{_mm512_shuffle_f64x2(t1.raw, t3.raw, kEven)};
+    column[4 * m + 2] = V{_mm512_shuffle_f64x2(t0.raw, t2.raw, kOdd)};
+    column[4 * m + 3] = V{_mm512_shuffle_f64x2(t1.raw, t3.raw, kOdd)};
+#endif
   }
 #else
   const size_t lanes = hn::Lanes(d);
@@ -202,8 +236,8 @@ void QuickLanes(const PlacedFace* faces_a, const PlacedFace* faces_b, const Tria
     const size_t count = std::min(lanes, n - first);
     for (size_t j = 0; j < lanes; ++j) {  // a short last batch repeats its last pair
       const size_t i = first + std::min(j, count - 1);
-      offset_a[j] = pairs[i].a * kFaceDoubles;
-      offset_b[j] = pairs[i].b * kFaceDoubles;
+      offset_a[RowOfLane(j)] = pairs[i].a * kFaceDoubles;
+      offset_b[RowOfLane(j)] = pairs[i].b * kFaceDoubles;
     }
     const Faces a = LoadFaces(d, base_a, offset_a, soa, kMaxLanes);
     const Faces b = LoadFaces(d, base_b, offset_b, soa, kMaxLanes);

@@ -30,6 +30,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -46,6 +47,7 @@
 #include "common/hds/haptic_object.h"
 #include "common/model/procedural.h"
 #include "tests/bench/fcl_query.h"
+#include "tests/bench/simd_max_flag.h"
 #include "tests/common/contact/table1_cases.h"
 
 namespace hs {
@@ -560,6 +562,10 @@ void RegisterAll() {
 }  // namespace hs
 
 int main(int argc, char** argv) {
+  if (std::string error; !hs::TakeSimdMaxFlag(argc, argv, error)) {
+    std::cerr << error << "\n";
+    return 2;
+  }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   hs::RegisterAll();

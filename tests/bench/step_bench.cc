@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -31,6 +32,7 @@
 #include "client/pose_args.h"
 #include "common/api/scene_file.h"
 #include "tests/bench/fcl_query.h"
+#include "tests/bench/simd_max_flag.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/common/contact/table1_cases.h"
 
@@ -226,6 +228,10 @@ void Register() {
 }  // namespace hs
 
 int main(int argc, char** argv) {
+  if (std::string error; !hs::TakeSimdMaxFlag(argc, argv, error)) {
+    std::cerr << error << "\n";
+    return 2;
+  }
   hs::Register();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
