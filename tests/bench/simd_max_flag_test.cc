@@ -10,19 +10,30 @@
 namespace hs {
 namespace {
 
-std::vector<std::string> Args(int argc, char** argv) { return {argv, argv + argc}; }
+// A command line as main() gets it, and what TakeSimdMaxFlag leaves of it.
+struct CommandLine {
+  std::vector<std::string> args;
+  std::vector<char*> argv;
+  int argc = 0;
+  std::string error;
+
+  explicit CommandLine(std::vector<std::string> a) : args(std::move(a)) {
+    for (std::string& arg : args) argv.push_back(arg.data());
+    argc = static_cast<int>(argv.size());
+  }
+  bool Take() { return TakeSimdMaxFlag(argc, argv.data(), error); }
+  std::vector<std::string> Left() const { return {argv.begin(), argv.begin() + argc}; }
+};
 
 TEST(SimdMaxFlagTest, CapsDispatchAtTheTargetNamedAndKeepsTheOtherArguments) {
   const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
   ASSERT_FALSE(targets.empty());
   const int64_t worst = targets.back();
-  std::string flag = std::string("--simd_max=") + hwy::TargetName(worst);
-  std::string program = "bench", filter = "--benchmark_filter=x", out = "--benchmark_out=y";
-  char* argv[] = {program.data(), filter.data(), flag.data(), out.data()};
-  int argc = 4;
-  std::string error;
-  ASSERT_TRUE(TakeSimdMaxFlag(argc, argv, error)) << error;
-  EXPECT_EQ(Args(argc, argv), (std::vector<std::string>{"bench", filter, out}));
+  CommandLine line({"bench", "--benchmark_filter=x",
+                    std::string("--simd_max=") + hwy::TargetName(worst), "--benchmark_out=y"});
+  ASSERT_TRUE(line.Take()) << line.error;
+  EXPECT_EQ(line.Left(),
+            (std::vector<std::string>{"bench", "--benchmark_filter=x", "--benchmark_out=y"}));
   EXPECT_EQ(hwy::SupportedAndGeneratedTargets(), std::vector<int64_t>{worst});
   hwy::DisableTargets(0);
   EXPECT_EQ(hwy::SupportedAndGeneratedTargets(), targets);
@@ -30,24 +41,18 @@ TEST(SimdMaxFlagTest, CapsDispatchAtTheTargetNamedAndKeepsTheOtherArguments) {
 
 TEST(SimdMaxFlagTest, RefusesATargetThisMachineDoesNotRunAndNamesThoseItDoes) {
   const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  std::string program = "bench", flag = "--simd_max=NEON";
-  char* argv[] = {program.data(), flag.data()};
-  int argc = 2;
-  std::string error;
-  EXPECT_FALSE(TakeSimdMaxFlag(argc, argv, error));
-  EXPECT_NE(error.find("NEON is not a target"), std::string::npos) << error;
-  EXPECT_NE(error.find(hwy::TargetName(targets.front())), std::string::npos) << error;
+  CommandLine line({"bench", "--simd_max=NEON"});
+  EXPECT_FALSE(line.Take());
+  EXPECT_NE(line.error.find("NEON is not a target"), std::string::npos) << line.error;
+  EXPECT_NE(line.error.find(hwy::TargetName(targets.front())), std::string::npos) << line.error;
   EXPECT_EQ(hwy::SupportedAndGeneratedTargets(), targets);
 }
 
 TEST(SimdMaxFlagTest, WithoutTheFlagChangesNothing) {
   const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  std::string program = "bench", filter = "--benchmark_filter=x";
-  char* argv[] = {program.data(), filter.data()};
-  int argc = 2;
-  std::string error;
-  EXPECT_TRUE(TakeSimdMaxFlag(argc, argv, error));
-  EXPECT_EQ(Args(argc, argv), (std::vector<std::string>{"bench", filter}));
+  CommandLine line({"bench", "--benchmark_filter=x"});
+  EXPECT_TRUE(line.Take());
+  EXPECT_EQ(line.Left(), (std::vector<std::string>{"bench", "--benchmark_filter=x"}));
   EXPECT_EQ(hwy::SupportedAndGeneratedTargets(), targets);
 }
 
