@@ -14,7 +14,9 @@ Usage:
       Writes DIR/<date>.json from the two benchmarks' JSON output (Google
       Benchmark's --benchmark_out) and prints its path.
   bench_ratios.py compare BASELINE CURRENT [--tolerance 0.2]
-      BASELINE is a record or a directory of them (its newest is read).
+      BASELINE is a record or a directory of them: the newest made on the
+      current run's CPU model is read (ratios to the yardstick differ between
+      CPU kinds), else the newest, said so.
       Exit 1, naming each, when a benchmark's ratio grew by more than the
       tolerance; benchmarks in only one of the two are listed, not judged.
 """
@@ -102,14 +104,22 @@ def contact_ratios(run):
     return figures, yardstick_us
 
 
+def cpu_model():
+    """The CPU's model name as lscpu gives it, or "" without lscpu."""
+    if not shutil.which("lscpu"):
+        return ""
+    out = subprocess.run(["lscpu"], capture_output=True, text=True, check=False).stdout
+    for line in out.splitlines():
+        if line.startswith("Model name:"):
+            return line.split(":", 1)[1].strip()
+    return ""
+
+
 def machine(context):
     """The machine as its benchmark context and the system describe it."""
     parts = [f"{context.get('num_cpus', '?')} cores"]
-    if shutil.which("lscpu"):
-        out = subprocess.run(["lscpu"], capture_output=True, text=True, check=False).stdout
-        for line in out.splitlines():
-            if line.startswith("Model name:"):
-                parts.append(line.split(":", 1)[1].strip())
+    if cpu_model():
+        parts.append(cpu_model())
     if "mhz_per_cpu" in context:
         parts.append(f"{context['mhz_per_cpu']} MHz")
     try:
@@ -118,6 +128,17 @@ def machine(context):
     except (ValueError, OSError):
         pass
     return ", ".join(parts)
+
+
+def cpu_of(record):
+    """A record's CPU model: its "cpu", or for a record made before it had
+    one, the part of its "machine" that is not cores, MHz or GiB."""
+    if "cpu" in record:
+        return record["cpu"]
+    for part in record.get("machine", "").split(", "):
+        if not part.endswith((" cores", " MHz", " GiB")):
+            return part
+    return ""
 
 
 def make_record(step_run, contact_run, commit, command):
@@ -129,6 +150,7 @@ def make_record(step_run, contact_run, commit, command):
         "date": date.strftime("%Y-%m-%dT%H:%M:%SZ"),
         "commit": commit,
         "machine": machine(context),
+        "cpu": cpu_model(),
         "command": command,
         "load_avg": {"step_bench": context.get("load_avg"),
                      "contact_bench": contact_run.get("context", {}).get("load_avg")},
@@ -137,13 +159,17 @@ def make_record(step_run, contact_run, commit, command):
     }
 
 
-def newest_record(path):
+def newest_record(path, cpu):
+    """`path` itself, or of the records in directory `path` the newest made
+    on CPU model `cpu` (ratios to the yardstick differ between CPU kinds),
+    else the newest of all; and whether it is from that CPU."""
     if not os.path.isdir(path):
-        return path
+        return path, cpu_of(load_json(path)) == cpu
     records = [os.path.join(path, f) for f in os.listdir(path) if f.endswith(".json")]
     if not records:
         sys.exit(f"no record (*.json) in {path}: scripts/bench.sh --record writes one")
-    return max(records, key=lambda p: (load_json(p)["date"], p))
+    same_cpu = [p for p in records if cpu and cpu_of(load_json(p)) == cpu]
+    return max(same_cpu or records, key=lambda p: (load_json(p)["date"], p)), bool(same_cpu)
 
 
 def compare(baseline, current, tolerance):
@@ -195,8 +221,13 @@ def main(argv):
         print(path)
         return 0
 
-    baseline_path = newest_record(args.baseline)
-    baseline, current = load_json(baseline_path), load_json(args.current)
+    current = load_json(args.current)
+    baseline_path, same_cpu = newest_record(args.baseline, cpu_of(current))
+    baseline = load_json(baseline_path)
+    if not same_cpu:
+        print(f"No record from this CPU ({cpu_of(current) or 'unknown'}): against one from "
+              f"{cpu_of(baseline) or 'an unknown CPU'}, whose ratios may differ by more than "
+              f"the tolerance; scripts/bench.sh --record makes one here.")
     print(f"Ratios to the yardstick (FCL's contact query on Table 1 #4) against "
           f"{baseline_path} ({baseline['date']}, {baseline['commit']}); "
           f"fails above +{args.tolerance * 100:.0f} %:")

@@ -66,6 +66,55 @@ class CompareTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         self.assertIn("a.json", result.stdout)
 
+    def compare_in_records(self, cpus, current_cpu):
+        """compare() of beyond.json, as run on `current_cpu`, with a directory
+        of two records: b.json (record.json, which it is beyond) on cpus[0]
+        and the later a.json (every ratio doubled: within) on cpus[1]."""
+        with open(data("record.json"), encoding="utf-8") as f:
+            old = json.load(f)
+        new = json.loads(json.dumps(old))
+        new["date"] = "2026-11-29T00:00:00Z"
+        for figure in new["benchmarks"].values():
+            figure["ratio"] *= 2
+        old["cpu"], new["cpu"] = cpus
+        with open(data("beyond.json"), encoding="utf-8") as f:
+            current = json.load(f)
+        current["cpu"] = current_cpu
+        with tempfile.TemporaryDirectory() as records:
+            for name, rec in (("b.json", old), ("a.json", new), ("current", current)):
+                with open(os.path.join(records, name), "w", encoding="utf-8") as f:
+                    json.dump(rec, f)
+            return run("compare", records, os.path.join(records, "current"))
+
+    def test_directory_reads_the_newest_record_from_the_runs_cpu(self):
+        # The older record is from the run's CPU: it is the baseline, and fails the run.
+        result = self.compare_in_records(("CPU A", "CPU B"), "CPU A")
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertIn("b.json", result.stdout)
+        self.assertNotIn("No record from this CPU", result.stdout)
+
+    def test_without_a_record_from_the_runs_cpu_the_newest_is_read_and_said(self):
+        result = self.compare_in_records(("CPU A", "CPU B"), "CPU C")
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertIn("a.json", result.stdout)
+        self.assertIn("No record from this CPU (CPU C): against one from CPU B", result.stdout)
+
+    def test_a_record_without_cpu_takes_it_from_its_machine(self):
+        # Records made before "cpu" say it within "machine" only.
+        with open(data("record.json"), encoding="utf-8") as f:
+            old = json.load(f)
+        old["machine"] = "2 cores, Intel(R) Xeon(R) Processor, 2600 MHz, 24 GiB"
+        with open(data("beyond.json"), encoding="utf-8") as f:
+            current = json.load(f)
+        current["cpu"] = "Intel(R) Xeon(R) Processor"
+        with tempfile.TemporaryDirectory() as records:
+            for name, rec in (("old.json", old), ("current", current)):
+                with open(os.path.join(records, name), "w", encoding="utf-8") as f:
+                    json.dump(rec, f)
+            result = run("compare", records, os.path.join(records, "current"))
+        self.assertNotIn("No record from this CPU", result.stdout)
+        self.assertIn("old.json", result.stdout)
+
     def test_benchmarks_in_one_file_only_are_listed_not_judged(self):
         # A benchmark the run left out and one the record lacks do not fail.
         with open(data("within.json"), encoding="utf-8") as f:
@@ -92,6 +141,12 @@ class RecordTest(unittest.TestCase):
             self.assertEqual(os.path.dirname(path), out)
             with open(path, encoding="utf-8") as f:
                 return os.path.basename(path), json.load(f)
+
+    def test_says_the_cpu_within_the_machine_and_alone(self):
+        _, rec = self.record()
+        self.assertIsInstance(rec["cpu"], str)
+        if rec["cpu"]:
+            self.assertIn(f", {rec['cpu']}", rec["machine"])
 
     def test_named_by_the_step_run_date_in_utc(self):
         # 15:04:05+01:00 is 14:04:05Z.
