@@ -12,7 +12,8 @@ fast or busy the machine is.
 Usage:
   bench_ratios.py record STEP_JSON CONTACT_JSON --commit SHA --command CMD --out DIR
       Writes DIR/<date>.json from the two benchmarks' JSON output (Google
-      Benchmark's --benchmark_out) and prints its path.
+      Benchmark's --benchmark_out) and prints its path; refuses (exit 1) a
+      run whose two yardsticks differ by more than 10 %.
   bench_ratios.py compare BASELINE CURRENT [--tolerance 0.2]
       BASELINE is a record or a directory of them: the newest made on the
       current run's CPU model is read (ratios to the yardstick differ between
@@ -35,6 +36,8 @@ CONTACT_YARDSTICK = "Table1/case4/fcl_contacts"
 STEP_YARDSTICK = "Yardstick/fcl_contacts_case4"
 STEP_FIGURE = "p99"  # the step figure that is checked
 CONTACT_PREFIXES = ("Table1/", "Coherent/")
+# How far apart the two benchmarks' yardsticks may be in a record.
+YARDSTICK_SPREAD = 0.1
 
 _MICROS_PER_UNIT = {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}
 
@@ -213,6 +216,16 @@ def main(argv):
     if args.command_name == "record":
         rec = make_record(load_json(args.step_json), load_json(args.contact_json), args.commit,
                           args.command)
+        yardsticks = rec["yardstick_us"]
+        spread = yardsticks["step_bench"] / yardsticks["contact_bench"] - 1
+        if abs(spread) > YARDSTICK_SPREAD:
+            # The same query, timed by each benchmark: the machine's speed
+            # changed between them, and every ratio of one would be off.
+            print(f"no record: the yardstick took {yardsticks['step_bench']:.0f} us in "
+                  f"step_bench and {yardsticks['contact_bench']:.0f} us in contact_bench "
+                  f"({spread * 100:+.0f} %, more than {YARDSTICK_SPREAD * 100:.0f} %): the "
+                  f"machine's speed changed during the run; make it again", file=sys.stderr)
+            return 1
         os.makedirs(args.out, exist_ok=True)
         path = os.path.join(args.out, rec["date"].replace(":", "")[:-3] + "Z.json")
         with open(path, "w", encoding="utf-8") as f:

@@ -164,13 +164,28 @@ class RecordTest(unittest.TestCase):
         self.assertNotIn("Step/fine_organ/all_effects/threads:1", rec["benchmarks"])
 
     def test_contact_ratio_is_cpu_time_over_the_yardstick_median(self):
-        # 600 us over 2,400 us; 0.48 ms over 2,400 us; the yardstick itself left out.
+        # 600 us over 2,000 us; 0.48 ms over 2,000 us; the yardstick itself left out.
         _, rec = self.record()
-        self.assertAlmostEqual(rec["benchmarks"]["Table1/case4/sweep3d"]["ratio"], 0.25)
-        self.assertAlmostEqual(rec["benchmarks"]["Coherent/case4/sweep3d"]["ratio"], 0.2)
+        self.assertAlmostEqual(rec["benchmarks"]["Table1/case4/sweep3d"]["ratio"], 0.3)
+        self.assertAlmostEqual(rec["benchmarks"]["Coherent/case4/sweep3d"]["ratio"], 0.24)
         self.assertAlmostEqual(rec["benchmarks"]["Coherent/case4/sweep3d"]["us"], 480.0)
         self.assertNotIn("Table1/case4/fcl_contacts", rec["benchmarks"])
-        self.assertEqual(rec["yardstick_us"]["contact_bench"], 2400.0)
+        self.assertEqual(rec["yardstick_us"]["contact_bench"], 2000.0)
+
+    def test_refuses_a_run_whose_two_yardsticks_differ_by_more_than_a_tenth(self):
+        # The contact run's yardstick at 2,300 us against the step run's 2,000.
+        with open(data("contact_run.json"), encoding="utf-8") as f:
+            contact = json.load(f)
+        contact["benchmarks"][0]["cpu_time"] = 2300
+        with tempfile.TemporaryDirectory() as out:
+            path = os.path.join(out, "contact.json")
+            with open(path, "w", encoding="utf-8") as f:
+                json.dump(contact, f)
+            result = run("record", data("step_run.json"), path, "--commit", "abc1234",
+                         "--command", "scripts/bench.sh --record", "--out", out)
+            self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+            self.assertIn("2000 us in step_bench and 2300 us in contact_bench", result.stderr)
+            self.assertEqual(sorted(os.listdir(out)), ["contact.json"])
 
 
 if __name__ == "__main__":
