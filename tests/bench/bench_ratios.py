@@ -118,11 +118,12 @@ def cpu_model():
     return ""
 
 
-def machine(context):
-    """The machine as its benchmark context and the system describe it."""
+def machine(context, cpu):
+    """The machine as its benchmark context and the system describe it
+    (`cpu`: its CPU model, cpu_model())."""
     parts = [f"{context.get('num_cpus', '?')} cores"]
-    if cpu_model():
-        parts.append(cpu_model())
+    if cpu:
+        parts.append(cpu)
     if "mhz_per_cpu" in context:
         parts.append(f"{context['mhz_per_cpu']} MHz")
     try:
@@ -149,11 +150,12 @@ def make_record(step_run, contact_run, commit, command):
     contact, contact_yardstick = contact_ratios(contact_run)
     context = step_run.get("context", {})
     date = datetime.datetime.fromisoformat(context["date"]).astimezone(datetime.timezone.utc)
+    cpu = cpu_model()
     return {
         "date": date.strftime("%Y-%m-%dT%H:%M:%SZ"),
         "commit": commit,
-        "machine": machine(context),
-        "cpu": cpu_model(),
+        "machine": machine(context, cpu),
+        "cpu": cpu,
         "command": command,
         "load_avg": {"step_bench": context.get("load_avg"),
                      "contact_bench": contact_run.get("context", {}).get("load_avg")},
@@ -168,11 +170,13 @@ def newest_record(path, cpu):
     else the newest of all; and whether it is from that CPU."""
     if not os.path.isdir(path):
         return path, cpu_of(load_json(path)) == cpu
-    records = [os.path.join(path, f) for f in os.listdir(path) if f.endswith(".json")]
+    records = {os.path.join(path, f): load_json(os.path.join(path, f))
+               for f in os.listdir(path) if f.endswith(".json")}
     if not records:
         sys.exit(f"no record (*.json) in {path}: scripts/bench.sh --record writes one")
-    same_cpu = [p for p in records if cpu and cpu_of(load_json(p)) == cpu]
-    return max(same_cpu or records, key=lambda p: (load_json(p)["date"], p)), bool(same_cpu)
+    same_cpu = [p for p, rec in records.items() if cpu and cpu_of(rec) == cpu]
+    newest = max(same_cpu or records, key=lambda p: (records[p]["date"], p))
+    return newest, bool(same_cpu)
 
 
 def compare(baseline, current, tolerance):
