@@ -47,6 +47,9 @@ absl::StatusOr<std::unique_ptr<Scene>> Scene::Create(const SceneOptions& options
   if (!options.gravity_W.allFinite()) {
     return absl::InvalidArgumentError("gravity_W must be finite");
   }
+  if (!(options.parallel_work_share >= 0 && options.parallel_work_share <= 1)) {
+    return absl::InvalidArgumentError("parallel_work_share must be in [0, 1]");
+  }
   return std::unique_ptr<Scene>(new Scene(options));
 }
 
@@ -74,6 +77,8 @@ absl::Status Scene::SetThreads(int threads, const std::function<void()>& on_work
   }
   if (threads != workers_->threads() || on_worker_start) {
     workers_ = std::make_unique<WorkerPool>(threads, on_worker_start);
+    workers_->set_serial_below(std::chrono::nanoseconds(
+        static_cast<int64_t>(options_.parallel_work_share * options_.step_s * 1e9)));
   }
   return absl::OkStatus();
 }

@@ -69,7 +69,10 @@ class Scene {
   /// included): each tool's contacts apart from its proxy and force, the
   /// proxies of tools that may meet one after the other (tool_stage.h),
   /// and the results are bit-identical whatever the number. Stage times
-  /// are then summed over the threads. Each new worker thread first runs
+  /// are then summed over the threads. A step whose tools took less than
+  /// SceneOptions::parallel_work_share of the step period, summed over the
+  /// threads, is followed by one on the stepping thread alone. Each new
+  /// worker thread first runs
   /// `on_worker_start` when set. INVALID_ARGUMENT outside [1, 64].
   absl::Status SetThreads(int threads, const std::function<void()>& on_worker_start = {});
 

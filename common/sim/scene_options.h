@@ -43,6 +43,15 @@ struct SceneOptions {
   /// step when continuous collision or sub-stepping is on. False tests
   /// every pair (same results, slower: the oracle of the tests).
   bool broad_phase = true;
+  /// The tools of a step run on the scene's worker threads
+  /// (Scene::SetThreads) only after a step whose tools' work, summed over
+  /// the threads, took more than this share of step_s; in [0, 1]. A
+  /// shorter step ends in time on the stepping thread alone, and waking a
+  /// worker (a futex wake and wait on each side, two context switches)
+  /// costs more of a core than it saves: with 16 remote devices on the
+  /// demo scene, about a tenth of a core (docs/scaling.md). 0 hands every
+  /// step of more than one job to the workers.
+  double parallel_work_share = 0.25;
 };
 
 }  // namespace hs

@@ -23,15 +23,22 @@ WorkerPool::~WorkerPool() {
 }
 
 void WorkerPool::Drain(absl::FunctionRef<void(int)> task, int n) {
+  const auto start = std::chrono::steady_clock::now();
   for (int i = next_.fetch_add(1, std::memory_order_relaxed); i < n;
        i = next_.fetch_add(1, std::memory_order_relaxed)) {
     task(i);
   }
+  const auto took = std::chrono::steady_clock::now() - start;
+  work_ns_.fetch_add(std::chrono::duration_cast<std::chrono::nanoseconds>(took).count(),
+                     std::memory_order_relaxed);
 }
 
 void WorkerPool::ForEach(int n, absl::FunctionRef<void(int)> task) {
-  if (workers_.empty() || n <= 1) {
-    for (int i = 0; i < n; ++i) task(i);
+  work_ns_.store(0, std::memory_order_relaxed);
+  if (workers_.empty() || n <= 1 || last_work_ < serial_below_) {
+    next_.store(0, std::memory_order_relaxed);
+    Drain(task, n);
+    last_work_ = std::chrono::nanoseconds(work_ns_.load(std::memory_order_relaxed));
     return;
   }
   {
@@ -49,6 +56,7 @@ void WorkerPool::ForEach(int n, absl::FunctionRef<void(int)> task) {
   std::unique_lock lock(mu_);
   idle_.wait(lock, [this] { return busy_ == 0; });
   task_ = nullptr;
+  last_work_ = std::chrono::nanoseconds(work_ns_.load(std::memory_order_relaxed));
 }
 
 void WorkerPool::Work() {

@@ -8,7 +8,9 @@
 // spin between jobs (OpenMP, oneTBB) take that time from the streams.
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -32,6 +34,14 @@ class WorkerPool {
   /// The most tasks that run at once (>= 1).
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
 
+  /// A job runs on the calling thread alone when the last job's work (its
+  /// tasks' time summed over the threads) was under `work`: handing a
+  /// short job to a worker costs more of a core than it saves (a futex
+  /// wake and wait on each side, two context switches), and the job ends
+  /// in time anyway. Zero (the default) hands every job of more than one
+  /// task to the workers.
+  void set_serial_below(std::chrono::nanoseconds work) { serial_below_ = work; }
+
   /// Runs task(i) for every i in [0, n), on the calling thread and the
   /// workers, and returns when all are done. Which thread runs which i is
   /// not fixed: tasks must not depend on each other or share mutable state.
@@ -40,7 +50,8 @@ class WorkerPool {
 
  private:
   void Work();
-  // Takes indices of the current job until none is left.
+  // Takes indices of the current job until none is left; adds the time it
+  // took to work_ns_.
   void Drain(absl::FunctionRef<void(int)> task, int n);
 
   std::mutex mu_;
@@ -52,6 +63,9 @@ class WorkerPool {
   const absl::FunctionRef<void(int)>* task_ = nullptr;  // guarded by mu_
   int n_ = 0;                                           // guarded by mu_
   std::atomic<int> next_{0};                            // the next index to take
+  std::atomic<int64_t> work_ns_{0};                     // the current job's work so far
+  std::chrono::nanoseconds serial_below_{0};
+  std::chrono::nanoseconds last_work_{0};  // the last job's; the caller's only
   std::vector<std::thread> workers_;
 };
 

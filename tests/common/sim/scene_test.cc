@@ -266,6 +266,11 @@ TEST(SceneTest, RejectsBadInput) {
   const StepFrame& frame = rig.scene->Step();
   EXPECT_TRUE(frame.tools[0].X_WD.isApprox(At(0.1, 0.05, 0.02)));
   EXPECT_EQ(Scene::Create({.step_s = 0}).status().code(), absl::StatusCode::kInvalidArgument);
+  for (const double share : {-0.1, 1.5, std::nan("")}) {
+    EXPECT_EQ(Scene::Create({.parallel_work_share = share}).status().code(),
+              absl::StatusCode::kInvalidArgument)
+        << share;
+  }
 }
 
 // Without continuous collision, the device steps 0.2 m through a 5 mm

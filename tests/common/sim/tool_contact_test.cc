@@ -161,9 +161,9 @@ INSTANTIATE_TEST_SUITE_P(Needs, ClashTest,
 constexpr int kPairs = 2;
 
 // Two pairs of probes, far apart, each pair driven into each other, and a
-// fifth probe alone, with every effect on.
+// fifth probe alone, with every effect on; every step on the threads.
 std::unique_ptr<Scene> MakePairsScene(int threads) {
-  std::unique_ptr<Scene> scene = *Scene::Create({.step_s = kStepS});
+  std::unique_ptr<Scene> scene = *Scene::Create({.step_s = kStepS, .parallel_work_share = 0});
   EXPECT_TRUE(scene->SetThreads(threads).ok());
   for (int p = 0; p < kPairs; ++p) {
     AddProbe(*scene, -0.05, 0.3 * p);

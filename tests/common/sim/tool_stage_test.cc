@@ -23,9 +23,10 @@ namespace {
 constexpr int kTools = 5;
 
 // A floor with a torus "organ" lying on it and `tools` 2 cm cube probes
-// spread around the organ's crest, with every effect on.
+// spread around the organ's crest, with every effect on. Every step with
+// more than one job runs on the threads, however short.
 std::unique_ptr<Scene> MakeScene(int threads, int tools = kTools) {
-  std::unique_ptr<Scene> scene = *Scene::Create({});
+  std::unique_ptr<Scene> scene = *Scene::Create({.parallel_work_share = 0});
   EXPECT_TRUE(scene->SetThreads(threads).ok());
   (void)*scene->AddObject(*HapticObject::Create("floor", MakeBox(Vector3d(1, 1, 0.05))),
                           ObjectKind::kFixed, At(0, 0, -0.025));

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -56,6 +58,46 @@ TEST(WorkerPoolTest, StartHookRunsOnEachWorker) {
   ASSERT_EQ(started.size(), 2u);
   EXPECT_NE(started[0], started[1]);
   for (const std::thread::id id : started) EXPECT_NE(id, std::this_thread::get_id());
+}
+
+// The thread of each task of a job of `n` tasks that each sleep `sleep`.
+// With `meet`, each task then waits (2 s at most) until two have arrived,
+// so that a job the workers take does run on two threads.
+std::vector<std::thread::id> ThreadsOfJob(WorkerPool& pool, int n, std::chrono::microseconds sleep,
+                                          bool meet) {
+  std::vector<std::thread::id> ran_on(n);
+  std::atomic<int> arrived{0};
+  pool.ForEach(n, [&](int i) {
+    ran_on[i] = std::this_thread::get_id();
+    std::this_thread::sleep_for(sleep);
+    arrived.fetch_add(1);
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    while (meet && arrived.load() < 2 && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::yield();
+    }
+  });
+  return ran_on;
+}
+
+bool AllOnCaller(const std::vector<std::thread::id>& ran_on) {
+  return std::all_of(ran_on.begin(), ran_on.end(),
+                     [](std::thread::id id) { return id == std::this_thread::get_id(); });
+}
+
+// With a threshold, jobs run on the calling thread alone until one takes
+// longer than it; the next job is handed to the workers, and after a
+// short one the calling thread is alone again. (A job handed over while
+// it should not be would leave some of its eight 1 ms tasks to the
+// worker.)
+TEST(WorkerPoolTest, ShortJobsStayOnTheCaller) {
+  WorkerPool pool(2);
+  pool.set_serial_below(std::chrono::milliseconds(50));
+  using std::chrono::microseconds;
+  EXPECT_TRUE(AllOnCaller(ThreadsOfJob(pool, 8, microseconds(1000), false)));
+  EXPECT_TRUE(AllOnCaller(ThreadsOfJob(pool, 8, microseconds(1000), false)));
+  EXPECT_TRUE(AllOnCaller(ThreadsOfJob(pool, 2, microseconds(30000), false)));  // 60 ms
+  EXPECT_FALSE(AllOnCaller(ThreadsOfJob(pool, 2, microseconds(0), true)));
+  EXPECT_TRUE(AllOnCaller(ThreadsOfJob(pool, 8, microseconds(1000), false)));
 }
 
 // Fewer than one thread means the calling thread alone.
