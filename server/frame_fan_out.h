@@ -7,7 +7,10 @@
 // same round. No lock is held while a stream is called: a gate (a flag and
 // a count, behind a lock taken only to read or flip them) tells
 // WaitForSinkCalls when a call that may name a detached stream is over.
+// The thread is woken only for a step some stream takes (FrameSink::
+// NextDueS), or when a stream came or an end waits.
 
+#include <atomic>
 #include <boost/circular_buffer.hpp>
 #include <condition_variable>
 #include <cstdint>
@@ -72,6 +75,10 @@ class FrameFanOut {
   uint64_t rounds_ = 0;
   std::vector<FrameSink*> offer_to_;  // the calling round's only
   std::vector<SinkEnd> ends_;         // the calling round's only
+  // Set by each round that offered a frame: the earliest scene time a
+  // stream takes a frame from, and the registry's changes() it saw.
+  std::atomic<double> next_due_s_{0};
+  std::atomic<uint64_t> changes_seen_{0};
 
   std::thread thread_;
 };

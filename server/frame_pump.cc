@@ -10,10 +10,6 @@
 namespace hs {
 namespace {
 
-// A frame's scene time may fall this far short of its due time and still
-// be due: step times are multiples of the step, computed in floating point.
-constexpr double kDueSlackS = 1e-7;
-
 int64_t UnixNanoseconds() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::system_clock::now().time_since_epoch())
@@ -47,12 +43,13 @@ void FramePump::Configure(const Options& options) {
 
 bool FramePump::Due(const StepSnapshot& snapshot) {
   if (options_.frame_rate_hz <= 0) return true;
-  if (snapshot.time_s + kDueSlackS < next_due_s_) return false;
+  if (snapshot.time_s + kFrameDueSlackS < next_due_s_) return false;
+  // The next due time is the next multiple of the period: streams of one
+  // rate take the same steps whenever they began, so the scene's frames
+  // thread wakes once for all of them (FrameFanOut). The first frame goes
+  // at once; after a stall the rate starts again with no burst.
   const double period_s = 1 / options_.frame_rate_hz;
-  next_due_s_ += period_s;
-  // Behind by more than a period (the first frame, a stall): start anew
-  // from this frame rather than sending a burst.
-  if (next_due_s_ + kDueSlackS <= snapshot.time_s) next_due_s_ = snapshot.time_s + period_s;
+  next_due_s_ = (std::floor((snapshot.time_s + kFrameDueSlackS) / period_s) + 1) * period_s;
   return true;
 }
 

@@ -7,7 +7,6 @@
 #include <grpcpp/support/byte_buffer.h>
 
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <mutex>
 
@@ -86,6 +85,9 @@ class FramePump {
     std::lock_guard lock(finish_mu_);
     if (!outbox_.closed()) start_operation();
   }
+  /// The scene time from which a frame is due (FrameSink::NextDueS); 0 when
+  /// every step's is, and before the first frame. Offer's thread only.
+  double next_due_s() const { return options_.frame_rate_hz > 0 ? next_due_s_ : 0; }
   /// Frames dropped because the stream fell behind (not the ones its rate
   /// skips).
   uint64_t dropped() const { return outbox_.dropped(); }
@@ -100,9 +102,9 @@ class FramePump {
   const FrameSink* const stream_;
   Metrics& metrics_;
   Options options_;
-  // Scene time of the next frame due (Offer's thread only); none before
-  // the first.
-  double next_due_s_ = -std::numeric_limits<double>::infinity();
+  // Scene time of the next frame due (Offer's thread only); 0 before the
+  // first.
+  double next_due_s_ = 0;
   FrameOutbox outbox_;
   std::mutex finish_mu_;     // Finish and the writes it must follow
   ModelsSent models_sent_;   // the writing thread's only

@@ -23,6 +23,7 @@ class FrameStream : public Base, public FrameSink, private FrameWriter {
   void Offer(std::shared_ptr<const StepSnapshot> snapshot) override {
     pump_.Offer(std::move(snapshot));
   }
+  double NextDueS() const override { return pump_.next_due_s(); }
   void Close(const absl::Status& status) override { pump_.Close(status); }
   void OnWriteDone(bool ok) override {
     if (!ok) Detach();  // the client is gone: let go of the tool at once

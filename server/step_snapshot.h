@@ -76,12 +76,21 @@ struct StepSnapshot {
 /// StreamRegistry or its FrameFanOut (SceneRunner aborts when it does): a
 /// stream that must end ends its own writes, and detaches when its RPC is
 /// done.
+/// A frame's scene time may fall this far short of a due time and still be
+/// due: step times are multiples of the step, computed in floating point.
+inline constexpr double kFrameDueSlackS = 1e-7;
+
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
   /// Called on the scene's frames thread after each step, in step order;
   /// must not block.
   virtual void Offer(std::shared_ptr<const StepSnapshot> snapshot) = 0;
+  /// The scene time (StepSnapshot::time_s) of the first step whose Offer
+  /// the stream takes (within kFrameDueSlackS); 0 for every step. Called
+  /// on the frames thread after an Offer: the frames thread is not woken
+  /// for steps before the earliest of its streams' (FrameFanOut).
+  virtual double NextDueS() const { return 0; }
   /// The stream is ended (the scene deleted or shutting down, its tool
   /// taken over, its device silent): send what is pending, then end the
   /// stream with `status`. Called at most once; no Offer after.

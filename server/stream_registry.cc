@@ -47,6 +47,7 @@ absl::Status StreamRegistry::AttachDevice(FrameSink* sink, const DeviceClaim& cl
                           .heard = std::chrono::steady_clock::now()};
   ++devices_;
   ++devices_joined_;
+  changes_.fetch_add(1, std::memory_order_release);
   UpdateHoldersLocked();
   return absl::OkStatus();
 }
@@ -59,6 +60,7 @@ void StreamRegistry::DropPendingLocked(ObjectId tool) {
 
 void StreamRegistry::EndDeviceLocked(SinkMap::iterator it, const absl::Status& status) {
   ends_.push_back({it->first, status});
+  changes_.fetch_add(1, std::memory_order_release);
   DropPendingLocked(it->second.tool);
   --devices_;
   sinks_.erase(it);
@@ -95,6 +97,7 @@ absl::Status StreamRegistry::AttachViewer(FrameSink* sink, EffectSet needs) {
   if (closed_) return absl::UnavailableError("the scene is stopping");
   sinks_[sink] = Attached{.needs = needs};
   ++viewers_joined_;
+  changes_.fetch_add(1, std::memory_order_release);
   return absl::OkStatus();
 }
 
@@ -192,6 +195,7 @@ void StreamRegistry::CloseAll(const absl::Status& status) {
   std::lock_guard lock(mu_);
   closed_ = true;
   for (const auto& [sink, attached] : sinks_) ends_.push_back({sink, status});
+  changes_.fetch_add(1, std::memory_order_release);
 }
 
 StreamRegistry::Counts StreamRegistry::counts() const {

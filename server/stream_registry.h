@@ -11,6 +11,7 @@
 // holders are kept by the tool's ObjectId in the scene running now, which
 // RemapTools follows when the scene is replaced.
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -137,6 +138,9 @@ class StreamRegistry {
 
   /// The attached streams, into `out` (cleared first).
   void ListSinks(std::vector<FrameSink*>& out) const;
+  /// Counts the streams attached and the ends queued, ever: the same
+  /// count as before means no stream came and no new end waits.
+  uint64_t changes() const { return changes_.load(std::memory_order_acquire); }
   /// Moves the ends queued (take-overs, silent devices, CloseAll) into
   /// `out` (cleared first), for the caller to hand to their streams.
   void TakeEnds(std::vector<SinkEnd>& out);
@@ -192,6 +196,7 @@ class StreamRegistry {
   bool closed_ = false;
   int64_t devices_joined_ = 0;
   int64_t viewers_joined_ = 0;
+  std::atomic<uint64_t> changes_{0};  // written under mu_
 };
 
 }  // namespace hs

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <condition_variable>
 #include <mutex>
 #include <optional>
@@ -60,11 +61,27 @@ class SlowSink : public FrameSink {
   bool in_sink_call_ = false;
 };
 
+// Step `step` of a 1 kHz scene.
 std::shared_ptr<const StepSnapshot> Step(int64_t step) {
   auto snapshot = std::make_shared<StepSnapshot>();
   snapshot->step = step;
+  snapshot->time_s = 0.001 * static_cast<double>(step);
   return snapshot;
 }
+
+// A stream at 250 frames a second: after a frame, the next is due at the
+// next multiple of 4 ms.
+class PacedSink : public SlowSink {
+ public:
+  void Offer(std::shared_ptr<const StepSnapshot> snapshot) override {
+    last_time_s_ = snapshot->time_s;
+    SlowSink::Offer(std::move(snapshot));
+  }
+  double NextDueS() const override { return (std::floor(last_time_s_ / 0.004 + 1e-6) + 1) * 0.004; }
+
+ private:
+  double last_time_s_ = 0;  // the frames thread's only
+};
 
 // Every frame pushed reaches every stream, in step order, and Stop hands
 // over everything queued before it returns.
@@ -107,6 +124,37 @@ TEST(FrameFanOutTest, StalledHandOverDropsTheOldest) {
   EXPECT_EQ(steps[1], 2 + 6);  // steps 2-7 were dropped
   EXPECT_EQ(steps.back(), 1 + queued);
   EXPECT_NE(metrics.Text().find("hs_frames_dropped_total 6"), std::string::npos) << metrics.Text();
+}
+
+// The frames thread is offered only the steps its streams take: with two
+// streams at 250 frames a second, steps 4, 8, ...; a stream that comes
+// between two of them gets the very next step, and with a viewer that
+// takes every step, every step is offered again.
+TEST(FrameFanOutTest, OnlyStepsAStreamTakesAreOffered) {
+  Metrics metrics;
+  StreamRegistry streams(SceneTools{});
+  PacedSink a, b;
+  SlowSink viewer;
+  ASSERT_TRUE(streams.AttachViewer(&a, EffectSet::All()).ok());
+  ASSERT_TRUE(streams.AttachViewer(&b, EffectSet::All()).ok());
+  FrameFanOut fan_out(streams, metrics, 0);
+  // Pushes `step` and, when the streams take it, waits until its round has
+  // ended: the next push sees when the streams take their next frame.
+  const auto push = [&](int64_t step, SlowSink& taker) {
+    const size_t taken = taker.steps().size();
+    fan_out.Push(Step(step));
+    if (step % 4 != 0 && step != 1) return;
+    taker.WaitForSteps(taken + 1);
+    fan_out.WaitForSinkCalls();
+  };
+  for (int64_t step = 1; step <= 9; ++step) push(step, a);
+  ASSERT_TRUE(streams.AttachViewer(&viewer, EffectSet::All()).ok());
+  fan_out.Push(Step(10));
+  for (int64_t step = 11; step <= 13; ++step) fan_out.Push(Step(step));
+  fan_out.Stop();
+  EXPECT_EQ(a.steps(), (std::vector<int64_t>{1, 4, 8, 10, 11, 12, 13}));
+  EXPECT_EQ(b.steps(), a.steps());
+  EXPECT_EQ(viewer.steps(), (std::vector<int64_t>{10, 11, 12, 13}));
 }
 
 // WaitForSinkCalls returns only once an offer under way has ended: after a

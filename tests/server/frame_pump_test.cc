@@ -107,12 +107,15 @@ TEST(FramePumpTest, FrameRatesOutsideTheirRangeAreRefused) {
   }
 }
 
-// At 250 frames a second on a 1 kHz scene the stream gets every fourth
-// step, from the first; without a rate it gets every step.
+// At 250 frames a second on a 1 kHz scene the stream gets its first step,
+// then every fourth step on the grid of 4 ms (steps 4, 8, ...) that every
+// stream of that rate shares; at 300, the first step at or past each
+// multiple of 1/300 s; without a rate it gets every step.
 TEST(FramePumpTest, AStreamGetsFramesAtItsRate) {
   Metrics metrics;
   for (const auto& [rate, expected] : std::vector<std::pair<double, std::vector<int64_t>>>{
-           {250, {1, 5, 9, 13, 17}},
+           {250, {1, 4, 8, 12, 16, 20}},
+           {300, {1, 4, 7, 10, 14, 17, 20}},
            {0, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20}}}) {
     FakeWriter writer;
     FramePump pump(writer, nullptr, metrics);
@@ -124,8 +127,8 @@ TEST(FramePumpTest, AStreamGetsFramesAtItsRate) {
 }
 
 // A stream whose writes back up gets the newest frame due when it can take
-// one, never a queue of old ones; after a stall it starts its rate anew
-// from the frame it got, with no burst.
+// one, never a queue of old ones; after the stall its rate goes on at the
+// next multiple of its period, with no burst.
 TEST(FramePumpTest, ABackedUpStreamGetsTheNewestFrame) {
   Metrics metrics;
   FakeWriter writer;
@@ -134,10 +137,10 @@ TEST(FramePumpTest, ABackedUpStreamGetsTheNewestFrame) {
   pump.Configure({.frame_rate_hz = 100});
   writer.Hold();
   for (int64_t step = 1; step <= 95; ++step) pump.Offer(Step(step));  // step 1 stuck in flight
-  writer.Release();                                                   // then 91, the newest due
+  writer.Release();                                                   // then 90, the newest due
   for (int64_t step = 96; step <= 120; ++step) pump.Offer(Step(step));
-  EXPECT_EQ(writer.steps(), (std::vector<int64_t>{1, 91, 101, 111}));
-  EXPECT_EQ(pump.dropped(), 8u);  // 11, 21, ..., 81: due, then overtaken
+  EXPECT_EQ(writer.steps(), (std::vector<int64_t>{1, 90, 100, 110, 120}));
+  EXPECT_EQ(pump.dropped(), 8u);  // 10, 20, ..., 80: due, then overtaken
 }
 
 // A frame over the stream's limit ends that stream RESOURCE_EXHAUSTED,

@@ -104,6 +104,38 @@ TEST(StreamRegistryTest, TakeOverQueuesTheHoldersEnd) {
             absl::StatusCode::kNotFound);
 }
 
+// changes() moves with every stream that comes and every end queued (a
+// take-over, a silent device, CloseAll), and not with poses or a stream
+// that leaves: the fan-out then has nothing new to hand over.
+TEST(StreamRegistryTest, ChangesCountComingsAndEnds) {
+  StreamRegistry streams(Tools());
+  UncalledSink trainee, instructor, viewer;
+  uint64_t seen = streams.changes();
+  const auto moved = [&] {
+    const bool changed = streams.changes() != seen;
+    seen = streams.changes();
+    return changed;
+  };
+  ASSERT_TRUE(streams.AttachDevice(&trainee, {"probe", EffectSet::All()}).ok());
+  EXPECT_TRUE(moved());
+  ASSERT_TRUE(streams.AttachViewer(&viewer, EffectSet::All()).ok());
+  EXPECT_TRUE(moved());
+  streams.SetPose(&trainee, At(1), {1, 0});
+  EXPECT_FALSE(moved());
+  const absl::Status taken = absl::AbortedError("taken over");
+  ASSERT_TRUE(streams.AttachDevice(&instructor, {"probe", EffectSet::All()}, &taken).ok());
+  EXPECT_TRUE(moved());
+  streams.Detach(&trainee);
+  EXPECT_FALSE(moved());
+  std::vector<std::string> released;
+  streams.EndSilentDevices(std::chrono::steady_clock::now() + std::chrono::seconds(1),
+                           absl::UnavailableError("silent"), released);
+  EXPECT_EQ(released, std::vector<std::string>{"probe"});
+  EXPECT_TRUE(moved());
+  streams.CloseAll(absl::UnavailableError("bye"));
+  EXPECT_TRUE(moved());
+}
+
 // A stream that detaches before its queued end is handed over is not ended
 // any more: nothing may call a stream that has left.
 TEST(StreamRegistryTest, DetachDropsTheQueuedEnd) {
