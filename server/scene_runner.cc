@@ -113,9 +113,11 @@ void SceneRunner::Run(int realtime_priority) {
     {
       std::unique_lock lock(wake_mu_);
       const auto devices_fresh = [this] { return devices_fresh_since_ >= last_take_; };
-      wake_cv_.wait_until(lock, AtNanoseconds(pacer.earliest_ns()), [this] { return stop_; });
-      wake_cv_.wait_until(lock, AtNanoseconds(pacer.deadline_ns()),
-                          [&] { return stop_ || devices_fresh(); });
+      while (!stop_) {
+        const int64_t start_ns = pacer.start_ns(devices_fresh());
+        if (NowNanoseconds() >= start_ns) break;
+        wake_cv_.wait_until(lock, AtNanoseconds(start_ns));
+      }
       if (stop_) {
         status = stop_status_;
         break;

@@ -91,5 +91,26 @@ TEST(StepPacerTest, DevicesClockTheSteps) {
   EXPECT_EQ(pacer.deadline_ns(), 3050);
 }
 
+// The start: at the deadline while a device has not sent, at 3/4 of a
+// period once all have; never before 3/4 of a period, late or not.
+TEST(StepPacerTest, StartIsTheDeadlineOrEarlierForFreshDevices) {
+  StepPacer pacer(kPeriod, 0, 0);
+  EXPECT_EQ(pacer.start_ns(false), 1000);
+  EXPECT_EQ(pacer.start_ns(true), 750);
+  // Late by 3.5 periods: the next deadline (5000) comes before 3/4 of a
+  // period from this start (5250), which is when the next step starts.
+  pacer.StepStarts(4500, 100, false);
+  EXPECT_EQ(pacer.deadline_ns(), 5000);
+  EXPECT_EQ(pacer.start_ns(false), 5250);
+  EXPECT_EQ(pacer.start_ns(true), 5250);
+  // Then on time, and the devices clock a step: the next deadline is a
+  // period and a quarter after it, the earliest start 3/4 of a period.
+  pacer.StepStarts(5250, 200, false);
+  EXPECT_EQ(pacer.start_ns(false), 6000);
+  pacer.StepStarts(6000, 300, true);
+  EXPECT_EQ(pacer.start_ns(false), 7250);
+  EXPECT_EQ(pacer.start_ns(true), 6750);
+}
+
 }  // namespace
 }  // namespace hs
