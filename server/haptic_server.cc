@@ -3,7 +3,6 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <grpcpp/server_builder.h>
-#include <stdlib.h>
 
 #include <chrono>
 #include <filesystem>
@@ -56,12 +55,10 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
     catalogue = *std::move(opened);
   }
   if (model_dir.empty()) {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / "haptic-models-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-      return absl::UnavailableError("cannot make a folder for uploaded models");
-    }
-    model_dir = server->temporary_model_dir_ = pattern;
+    absl::StatusOr<TemporaryModelDir> made = TemporaryModelDir::Make();
+    if (!made.ok()) return made.status();
+    model_dir = made->path();
+    server->temporary_model_dir_ = *std::move(made);
   }
   if (!options.recording.dir.empty()) {
     if (absl::Status s = PrepareRecordingFolder(options.recording.dir); !s.ok()) return s;
@@ -97,13 +94,7 @@ absl::StatusOr<std::unique_ptr<HapticServer>> HapticServer::Start(const ServerOp
   return server;
 }
 
-HapticServer::~HapticServer() {
-  Shutdown();
-  if (!temporary_model_dir_.empty()) {
-    std::error_code error;
-    std::filesystem::remove_all(temporary_model_dir_, error);
-  }
-}
+HapticServer::~HapticServer() { Shutdown(); }
 
 void HapticServer::Drain() {
   if (drained_ || server_ == nullptr) return;

@@ -5,6 +5,7 @@
 #include <grpcpp/server.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -14,6 +15,7 @@
 #include "server/scene_registry.h"
 #include "server/scene_service.h"
 #include "server/session_service.h"
+#include "server/temporary_model_dir.h"
 
 namespace hs {
 
@@ -75,7 +77,7 @@ class HapticServer {
   HapticServer() = default;
 
   int port_ = 0;
-  std::string temporary_model_dir_;
+  std::optional<TemporaryModelDir> temporary_model_dir_;  // outlives registry_
   std::unique_ptr<AccessPolicy> access_;
   std::unique_ptr<SceneRegistry> registry_;
   std::unique_ptr<SceneServiceImpl> scene_service_;
