@@ -14,10 +14,12 @@
 namespace hs {
 namespace {
 
-// Whether `folder`'s lock file exists and no process holds its lock.
+// Whether `folder`'s lock file exists and no process holds its lock. The
+// temporary folder is everyone's: a "lock file" that is a link (to a
+// device, a pipe) is not followed, nor waited on.
 bool Abandoned(const std::filesystem::path& folder) {
   const std::string lock = (folder / TemporaryModelDir::kLockFile).string();
-  const int fd = open(lock.c_str(), O_RDWR | O_CLOEXEC);
+  const int fd = open(lock.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
   if (fd < 0) return false;
   const bool free = flock(fd, LOCK_EX | LOCK_NB) == 0;
   close(fd);

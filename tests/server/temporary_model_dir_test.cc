@@ -50,8 +50,8 @@ TEST(TemporaryModelDirTest, MadeAndRemoved) {
 }
 
 // Only folders of the prefix whose lock file is free go: one held by an
-// open lock stays, as do one with no lock file (being made), a plain file
-// of the name and others' folders.
+// open lock stays, as do one with no lock file (being made), one whose
+// lock file is a link, a plain file of the name and others' folders.
 TEST(TemporaryModelDirTest, OnlyAbandonedFoldersAreRemoved) {
   const fs::path parent = ScratchDir("abandoned");
   const fs::path dead = LeftFolder(parent, "haptic-models-dead01", true);
@@ -59,13 +59,17 @@ TEST(TemporaryModelDirTest, OnlyAbandonedFoldersAreRemoved) {
   const fs::path making = LeftFolder(parent, "haptic-models-made01", false);
   const fs::path other = LeftFolder(parent, "other-models-dead01", true);
   std::ofstream(parent / "haptic-models-file");
+  // A lock file that is a link to a file nobody locks: not followed.
+  const fs::path linked = LeftFolder(parent, "haptic-models-link01", false);
+  std::ofstream(parent / "free.lock");
+  fs::create_symlink(parent / "free.lock", linked / TemporaryModelDir::kLockFile);
   const int fd = open((held / TemporaryModelDir::kLockFile).c_str(), O_RDWR);
   ASSERT_GE(fd, 0);
   ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
   EXPECT_EQ(RemoveAbandonedModelDirs(parent), 1);
   close(fd);
   EXPECT_FALSE(fs::exists(dead));
-  for (const fs::path& kept : {held, making, other}) {
+  for (const fs::path& kept : {held, making, other, linked}) {
     EXPECT_TRUE(fs::exists(kept / TemporaryModelDir::kModels / "model.stl")) << kept;
   }
   EXPECT_TRUE(fs::exists(parent / "haptic-models-file"));
