@@ -167,16 +167,18 @@ def make_record(step_run, contact_run, commit, command):
 def newest_record(path, cpu):
     """`path` itself, or of the records in directory `path` the newest made
     on CPU model `cpu` (ratios to the yardstick differ between CPU kinds),
-    else the newest of all; and whether it is from that CPU."""
+    else the newest of all: its path, the record, and whether it is from
+    that CPU."""
     if not os.path.isdir(path):
-        return path, cpu_of(load_json(path)) == cpu
+        record = load_json(path)
+        return path, record, cpu_of(record) == cpu
     records = {os.path.join(path, f): load_json(os.path.join(path, f))
                for f in os.listdir(path) if f.endswith(".json")}
     if not records:
         sys.exit(f"no record (*.json) in {path}: scripts/bench.sh --record writes one")
     same_cpu = [p for p, rec in records.items() if cpu and cpu_of(rec) == cpu]
     newest = max(same_cpu or records, key=lambda p: (records[p]["date"], p))
-    return newest, bool(same_cpu)
+    return newest, records[newest], bool(same_cpu)
 
 
 def compare(baseline, current, tolerance):
@@ -239,8 +241,7 @@ def main(argv):
         return 0
 
     current = load_json(args.current)
-    baseline_path, same_cpu = newest_record(args.baseline, cpu_of(current))
-    baseline = load_json(baseline_path)
+    baseline_path, baseline, same_cpu = newest_record(args.baseline, cpu_of(current))
     if not same_cpu:
         print(f"No record from this CPU ({cpu_of(current) or 'unknown'}): against one from "
               f"{cpu_of(baseline) or 'an unknown CPU'}, whose ratios may differ by more than "
