@@ -70,16 +70,16 @@ struct StepSnapshot {
   int64_t missed_steps_off_cpu = 0;
 };
 
+/// A frame's scene time may fall this far short of a due time and still be
+/// due: step times are multiples of the step, computed in floating point.
+inline constexpr double kFrameDueSlackS = 1e-7;
+
 /// A stream's end of a scene: receives every step's snapshot. Only the
 /// scene's FrameFanOut calls it, holding no lock of the runner's
 /// (server/lock_order.h); it must not call back into the SceneRunner, its
 /// StreamRegistry or its FrameFanOut (SceneRunner aborts when it does): a
 /// stream that must end ends its own writes, and detaches when its RPC is
 /// done.
-/// A frame's scene time may fall this far short of a due time and still be
-/// due: step times are multiples of the step, computed in floating point.
-inline constexpr double kFrameDueSlackS = 1e-7;
-
 class FrameSink {
  public:
   virtual ~FrameSink() = default;

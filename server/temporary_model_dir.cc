@@ -62,21 +62,13 @@ absl::StatusOr<TemporaryModelDir> TemporaryModelDir::Make(const std::filesystem:
   return TemporaryModelDir(std::move(pattern), fd);
 }
 
-TemporaryModelDir::TemporaryModelDir(std::string root, int lock_fd)
-    : root_(std::move(root)),
-      models_((std::filesystem::path(root_) / kModels).string()),
-      lock_fd_(lock_fd) {}
-
 TemporaryModelDir::TemporaryModelDir(TemporaryModelDir&& other) noexcept
-    : root_(std::exchange(other.root_, "")),
-      models_(std::exchange(other.models_, "")),
-      lock_fd_(std::exchange(other.lock_fd_, -1)) {}
+    : root_(std::exchange(other.root_, "")), lock_fd_(std::exchange(other.lock_fd_, -1)) {}
 
 TemporaryModelDir& TemporaryModelDir::operator=(TemporaryModelDir&& other) noexcept {
   if (this != &other) {
     Release();
     root_ = std::exchange(other.root_, "");
-    models_ = std::exchange(other.models_, "");
     lock_fd_ = std::exchange(other.lock_fd_, -1);
   }
   return *this;
@@ -89,7 +81,6 @@ void TemporaryModelDir::Release() {
     std::error_code error;
     std::filesystem::remove_all(root_, error);
     root_.clear();
-    models_.clear();
   }
   if (lock_fd_ >= 0) {
     close(lock_fd_);  // after the removal: no other server takes it meanwhile

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "absl/status/statusor.h"
 
@@ -28,7 +29,7 @@ class TemporaryModelDir {
   ~TemporaryModelDir();
 
   /// The models' folder: kModels in the server's own.
-  const std::string& path() const { return models_; }
+  std::string path() const { return (std::filesystem::path(root_) / kModels).string(); }
 
   /// The name every server's folder starts with, and what it holds.
   static constexpr const char* kPrefix = "haptic-models-";
@@ -36,11 +37,10 @@ class TemporaryModelDir {
   static constexpr const char* kModels = "models";
 
  private:
-  TemporaryModelDir(std::string root, int lock_fd);
+  TemporaryModelDir(std::string root, int lock_fd) : root_(std::move(root)), lock_fd_(lock_fd) {}
   void Release();
 
-  std::string root_;
-  std::string models_;
+  std::string root_;  // the server's own folder
   int lock_fd_ = -1;
 };
 

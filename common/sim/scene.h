@@ -72,8 +72,8 @@ class Scene {
   /// are then summed over the threads. A step whose tools took less than
   /// SceneOptions::parallel_work_share of the step period, summed over the
   /// threads, is followed by one on the stepping thread alone. Each new
-  /// worker thread first runs
-  /// `on_worker_start` when set. INVALID_ARGUMENT outside [1, 64].
+  /// worker thread first runs `on_worker_start` when set.
+  /// INVALID_ARGUMENT outside [1, 64].
   absl::Status SetThreads(int threads, const std::function<void()>& on_worker_start = {});
 
   /// What the scene's consumers need from now on (their union).

@@ -34,8 +34,12 @@ void WorkerPool::Drain(absl::FunctionRef<void(int)> task, int n) {
 }
 
 void WorkerPool::ForEach(int n, absl::FunctionRef<void(int)> task) {
+  if (workers_.empty()) {  // nothing to decide: no clock read
+    for (int i = 0; i < n; ++i) task(i);
+    return;
+  }
   work_ns_.store(0, std::memory_order_relaxed);
-  if (workers_.empty() || n <= 1 || last_work_ < serial_below_) {
+  if (n <= 1 || last_work_ < serial_below_) {
     next_.store(0, std::memory_order_relaxed);
     Drain(task, n);
     last_work_ = std::chrono::nanoseconds(work_ns_.load(std::memory_order_relaxed));

@@ -26,6 +26,13 @@ fs::path LeftFolder(const fs::path& parent, const std::string& name, bool lock) 
   return folder;
 }
 
+// How many folders `parent` holds.
+int Folders(const fs::path& parent) {
+  int folders = 0;
+  for (const auto& entry : fs::directory_iterator(parent)) folders += entry.is_directory();
+  return folders;
+}
+
 // The folder is made locked under its parent and removed, with what it
 // holds, at the end.
 TEST(TemporaryModelDirTest, MadeAndRemoved) {
@@ -90,14 +97,10 @@ TEST(TemporaryModelDirTest, AKilledServersFolderGoesAtTheNextStart) {
   int status = 0;
   ASSERT_EQ(waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << status;
-  int left = 0;
-  for (const auto& entry : fs::directory_iterator(parent)) left += entry.is_directory();
-  ASSERT_EQ(left, 1);
+  ASSERT_EQ(Folders(parent), 1);
   absl::StatusOr<TemporaryModelDir> next = TemporaryModelDir::Make(parent);
   ASSERT_TRUE(next.ok()) << next.status();
-  int now = 0;
-  for (const auto& entry : fs::directory_iterator(parent)) now += entry.is_directory();
-  EXPECT_EQ(now, 1);  // the new server's own
+  EXPECT_EQ(Folders(parent), 1);  // the new server's own
 }
 
 // A parent that is not a folder: UNAVAILABLE, nothing made.
