@@ -14,6 +14,7 @@
 #include "common/model/import.h"
 #include "common/model/procedural.h"
 #include "tests/bench/subdivided_model.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::accuracy {
 namespace {
@@ -29,7 +30,7 @@ const HapticObject& KidneyObject(int level) {
   static std::map<int, HapticObject> imported;
   auto it = imported.find(level);
   if (it != imported.end()) return it->second;
-  const std::string base = HS_TEST_DATA_DIR "/kidney.obj";
+  const std::string base = hs::TestDataDir() + "/kidney.obj";
   std::string path = base;
   if (level > 0) {
     path =

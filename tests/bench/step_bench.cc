@@ -35,6 +35,7 @@
 #include "tests/bench/simd_max_flag.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/common/contact/table1_cases.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
@@ -131,7 +132,7 @@ std::vector<Isometry3d> Resampled(const std::vector<Isometry3d>& path, int per_s
 // sample to the next).
 void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, int threads,
              int rate_hz, double per_step) {
-  const std::string dir = std::string(HS_SCENES_DIR) + "/";
+  const std::string dir = hs::ScenesDir() + "/";
   absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(dir + demo.scene);
   if (!spec.ok()) {
     state.SkipWithError(std::string(spec.status().message()).c_str());

@@ -7,11 +7,12 @@
 
 #include "client/exit_codes.h"
 #include "client/pose_args.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::cli {
 namespace {
 
-const std::string kCube = std::string(HS_TEST_DATA_DIR) + "/cube.obj";
+const std::string kCube = hs::TestDataDir() + "/cube.obj";
 
 // A unit cube sunk 0.01 into another along -z: depth 0.01, reversing vector
 // +z, in the JSON the command prints for both methods; face on face for the

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "client/exit_codes.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::cli {
 namespace {
@@ -20,7 +21,7 @@ int RunHapticctl(const std::string& args) {
 // The documented exit statuses hold for the binary: 0 on success, 1 when
 // the file cannot be read, 2 for a wrong command line, 0 for --help.
 TEST(HapticctlCliTest, ExitStatuses) {
-  const std::string data = HS_TEST_DATA_DIR;
+  const std::string data = hs::TestDataDir();
   EXPECT_EQ(RunHapticctl("inspect " + data + "/cube.iv"), kExitOk);
   EXPECT_EQ(RunHapticctl("inspect --json " + data + "/cube_binary.stl"), kExitOk);
   EXPECT_EQ(RunHapticctl("inspect " + data + "/truncated_binary.stl"), kExitFailure);

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/common/test_data_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::cli {
@@ -24,7 +25,7 @@ TEST(ModelUploadTest, UploadsInChunks) {
   // The unit cube OBJ sent 100 bytes at a time is stored whole: 8
   // vertices, 12 triangles, under "<name>.<format>".
   testing::TestServer server;
-  std::ifstream in(std::string(HS_TEST_DATA_DIR) + "/cube.obj");
+  std::ifstream in(hs::TestDataDir() + "/cube.obj");
   std::ostringstream bytes;
   bytes << in.rdbuf();
   haptics::v1::UploadModelResponse response;

@@ -10,11 +10,12 @@
 #include "client/exit_codes.h"
 #include "common/core/types.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::cli {
 namespace {
 
-const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
+const std::string kScenes = hs::ScenesDir();
 
 std::vector<nlohmann::json> Lines(const std::string& text) {
   std::vector<nlohmann::json> lines;
@@ -199,7 +200,7 @@ TEST(SimulateCommandTest, ToolPathsNameTheirTools) {
 TEST(SimulateCommandTest, BadInputFails) {
   std::ostringstream out, err;
   SimulateArgs args = DemoArgs();
-  args.tool_paths = {std::string(HS_TEST_DATA_DIR) + "/cube.obj"};
+  args.tool_paths = {hs::TestDataDir() + "/cube.obj"};
   EXPECT_EQ(RunSimulate(args, out, err), kExitFailure);
   args = DemoArgs();
   args.needs = {"gravity"};

@@ -6,12 +6,13 @@
 
 #include "client/exit_codes.h"
 #include "client/upload_command.h"
+#include "tests/common/test_data_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::cli {
 namespace {
 
-const std::string kData = HS_TEST_DATA_DIR;
+const std::string kData = hs::TestDataDir();
 
 // An uploaded model no scene uses is deleted, saying so; a second delete
 // finds nothing (exit kExitNotFound, the server's status on stderr). The

@@ -5,13 +5,13 @@
 #include <sstream>
 
 #include "client/exit_codes.h"
+#include "tests/common/test_data_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::cli {
 namespace {
 
-const std::string kDemoScene =
-    std::string(HS_TEST_DATA_DIR) + "/../../scenes/probe_on_torus.textproto";
+const std::string kDemoScene = hs::ScenesDir() + "/probe_on_torus.textproto";
 
 class ScenesCommandTest : public ::testing::Test {
  protected:

@@ -28,6 +28,7 @@
 #include "common/api/scene_file.h"
 #include "nlohmann/json.hpp"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::cli {
@@ -35,7 +36,7 @@ namespace {
 
 namespace pb = haptics::v1;
 
-const std::string kScenes = HS_SCENES_DIR;
+const std::string kScenes = hs::ScenesDir();
 const std::string kExercise = kScenes + "/exercises/three_points.textproto";
 const std::string kPath = kScenes + "/exercises/three_points_path.jsonl";
 

@@ -10,12 +10,13 @@
 #include "client/exit_codes.h"
 #include "client/objects_command.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::cli {
 namespace {
 
-const std::string kData = HS_TEST_DATA_DIR;
+const std::string kData = hs::TestDataDir();
 
 // An uploaded model (in small chunks) gets an id that an added object can
 // use; a malformed model and a taken name are refused, a missing file fails.

@@ -1,4 +1,5 @@
 #include "server/server_flags.h"
+#include "tests/common/test_data_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,7 @@ namespace hs {
 namespace {
 
 // A file that exists, for the flags that check.
-const std::string kExisting = std::string(HS_TEST_DATA_DIR) + "/cube.obj";
+const std::string kExisting = hs::TestDataDir() + "/cube.obj";
 
 // ParseServerFlags on `args` (after the program's name) and `environment`,
 // with what it printed.

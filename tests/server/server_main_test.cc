@@ -25,6 +25,7 @@
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 #include "tests/server/server_process.h"
 #include "tests/server/test_server.h"
 
@@ -179,7 +180,7 @@ TEST(ServerMainTest, StateAndRecordingsSurviveKills) {
   const std::string records = ScratchDir("crash_records").string();
   const std::vector<std::string> flags = {"--state-dir",      state, "--record-dir", records,
                                           "--record-sync-ms", "20"};
-  const std::string cube = ReadFile(std::string(HS_TEST_DATA_DIR) + "/cube.obj");
+  const std::string cube = ReadFile(hs::TestDataDir() + "/cube.obj");
   ASSERT_FALSE(cube.empty());
   {  // 1. Killed during a burst of poses, after an upload and a create.
     testing::ServerProcess server(flags);

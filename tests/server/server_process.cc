@@ -1,4 +1,5 @@
 #include "tests/server/server_process.h"
+#include "tests/common/test_data_dir.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -21,7 +22,7 @@ ServerProcess::ServerProcess(const std::vector<std::string>& extra,
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, fds[0]);
-  const std::string scene = std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto";
+  const std::string scene = hs::ScenesDir() + "/probe_on_torus.textproto";
   std::vector<const char*> argv = {HS_HAPTIC_SERVER, "--listen", listen.c_str(), "--scene",
                                    scene.c_str()};
   for (const std::string& arg : extra) argv.push_back(arg.c_str());

@@ -16,13 +16,14 @@
 #include "client/tool_path.h"
 #include "common/api/proto_convert.h"
 #include "common/api/scene_file.h"
+#include "tests/common/test_data_dir.h"
 #include "tests/server/test_server.h"
 
 namespace hs::testing {
 namespace {
 
 using google::protobuf::util::MessageDifferencer;
-const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
+const std::string kScenes = hs::ScenesDir();
 
 // A device on an Interact stream, driven from the test thread.
 class Device {

@@ -18,6 +18,7 @@
 #include "server/frame_outbox.h"
 #include "server/scene_runner.h"
 #include "tests/common/allocation_counter.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
@@ -54,7 +55,7 @@ class SerializingSink : public FrameSink {
 };
 
 TEST(StepAllocationTest, ThousandDemoStepsWithTwoStreamsAllocateNothing) {
-  const std::string scenes = HS_SCENES_DIR;
+  const std::string scenes = hs::ScenesDir();
   absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(scenes + "/probe_on_torus.textproto");
   ASSERT_TRUE(spec.ok()) << spec.status();
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(scenes + "/probe_on_torus.textproto");

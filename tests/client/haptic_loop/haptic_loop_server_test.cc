@@ -10,6 +10,7 @@
 #include "client/haptic_loop/haptic_loop.h"
 #include "client/tool_path.h"
 #include "common/api/scene_file.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
@@ -46,7 +47,7 @@ TEST_P(ZeroLatencyTest, LoopRendersTheServersForce) {
 }
 
 void ZeroLatencyTest::RenderAlongThePath(bool fresh_models) {
-  const std::string dir = std::string(HS_SCENES_DIR) + "/";
+  const std::string dir = hs::ScenesDir() + "/";
   absl::StatusOr<LoadedScene> loaded = LoadSceneFile(dir + GetParam().scene);
   ASSERT_TRUE(loaded.ok()) << loaded.status();
   absl::StatusOr<std::vector<Isometry3d>> path = cli::ReadToolPath(dir + GetParam().path);

@@ -16,13 +16,14 @@
 #include "common/api/proto_convert.h"
 #include "common/api/scene_file.h"
 #include "simulated_device.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::cli {
 namespace {
 
 namespace pb = haptics::v1;
 
-const std::string kScene = std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto";
+const std::string kScene = hs::ScenesDir() + "/probe_on_torus.textproto";
 
 // The passivity bound of the study (docs/remote-haptics.md): the contact
 // may hand back at most this much work to the hand over a run, joules.

@@ -11,6 +11,7 @@
 
 #include "tests/common/scratch_dir.h"
 #include "tests/common/test_certificates.h"
+#include "tests/common/test_data_dir.h"
 #include "tests/server/server_process.h"
 
 namespace {
@@ -122,7 +123,7 @@ TEST_F(SessionTest, UnreadableSceneFilesAreRefusedHere) {
 TEST_F(SessionTest, ModelsAreUploadedAndDeleted) {
   // The unit cube OBJ (8 vertices, 12 triangles) uploads under the file's
   // stem; deleting it twice is NOT_FOUND the second time.
-  auto model = session_->UploadModel(std::string(HS_TEST_DATA_DIR) + "/cube.obj");
+  auto model = session_->UploadModel(hs::TestDataDir() + "/cube.obj");
   ASSERT_TRUE(model.ok()) << model.error().ToString();
   EXPECT_EQ(model->model_id, "cube.obj");
   EXPECT_EQ(model->vertices, 8);

@@ -19,12 +19,13 @@
 #include "common/recording/recorded_step.h"
 #include "nlohmann/json.hpp"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::cli {
 namespace {
 
-const std::string kExercise = std::string(HS_SCENES_DIR) + "/exercises/three_points.textproto";
-const std::string kPath = std::string(HS_SCENES_DIR) + "/exercises/three_points_path.jsonl";
+const std::string kExercise = hs::ScenesDir() + "/exercises/three_points.textproto";
+const std::string kPath = hs::ScenesDir() + "/exercises/three_points_path.jsonl";
 
 nlohmann::json Score(const std::string& path, const std::string& recording = "") {
   std::ostringstream out, err;
@@ -101,8 +102,7 @@ std::string RecordPath(const std::string& name, const std::vector<TimedPose>& pa
   const std::string file = (ScratchDir("recordings") / name).string();
   absl::StatusOr<RecordFileWriter> writer = RecordFileWriter::Create(file);
   EXPECT_TRUE(writer.ok()) << writer.status();
-  absl::StatusOr<pb::SceneSpec> spec =
-      ReadSceneFile(std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto");
+  absl::StatusOr<pb::SceneSpec> spec = ReadSceneFile(hs::ScenesDir() + "/probe_on_torus.textproto");
   EXPECT_TRUE(spec.ok());
   spec->set_name(scene_name);
   pb::Record record;
@@ -227,7 +227,7 @@ TEST(ScoreCommandTest, ReportIsSelfContained) {
 // are not finite is refused too.
 TEST(ScoreCommandTest, BadExercisesNameTheField) {
   const std::filesystem::path dir = ScratchDir("exercises");
-  std::filesystem::copy(std::string(HS_SCENES_DIR) + "/probe_on_torus.textproto",
+  std::filesystem::copy(hs::ScenesDir() + "/probe_on_torus.textproto",
                         dir / "probe_on_torus.textproto");
   const std::string good = R"(scene_file: "probe_on_torus.textproto" tool: "probe"
     targets { object: "organ" sphere { center_m { x: 0.1 z: 0.04 } radius_m: 0.01 } }

@@ -6,11 +6,12 @@
 #include <filesystem>
 
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
 
-const std::string kScenes = std::string(HS_TEST_DATA_DIR) + "/../../scenes";
+const std::string kScenes = hs::ScenesDir();
 
 haptics::v1::SceneSpec Parse(const std::string& text) {
   haptics::v1::SceneSpec spec;
@@ -45,7 +46,7 @@ TEST(SceneFileTest, BundledDemoSceneLoads) {
 // material overrides by face group.
 TEST(SceneFileTest, ModelFileWithMaterialOverride) {
   const std::filesystem::path dir = ScratchDir("scene_file_test");
-  std::filesystem::copy_file(std::string(HS_TEST_DATA_DIR) + "/cube.iv", dir / "cube.iv",
+  std::filesystem::copy_file(hs::TestDataDir() + "/cube.iv", dir / "cube.iv",
                              std::filesystem::copy_options::overwrite_existing);
   const auto spec = Parse(R"(
     objects { name: "cube" kind: OBJECT_KIND_FIXED model { path: "cube.iv" unit_scale: 0.01 }
@@ -123,7 +124,7 @@ TEST(SceneFileTest, RejectsBadSpecs) {
 // A file that is not a SceneSpec, or not there, fails with the file named.
 TEST(SceneFileTest, UnreadableFiles) {
   EXPECT_EQ(ReadSceneFile("/missing.textproto").status().code(), absl::StatusCode::kNotFound);
-  const std::string garbage = std::string(HS_TEST_DATA_DIR) + "/garbage.obj";
+  const std::string garbage = hs::TestDataDir() + "/garbage.obj";
   const auto status = ReadSceneFile(garbage).status();
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(status.message().find("garbage.obj"), std::string::npos);

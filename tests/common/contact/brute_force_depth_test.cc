@@ -10,6 +10,7 @@
 #include "common/model/procedural.h"
 #include "tests/common/contact/contact_test_bodies.h"
 #include "tests/common/random_poses.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::reference {
 namespace {
@@ -70,7 +71,7 @@ TEST(BruteForceDepthTest, ApartIsNotColliding) {
 // method agree within the touching tolerance: the method's BVH search
 // finds every pair that decides t*.
 TEST(BruteForceDepthTest, AgreesWithSweepMethodOnNonConvexPair) {
-  absl::StatusOr<ImportedModel> kidney = ImportModel(HS_TEST_DATA_DIR "/kidney.obj");
+  absl::StatusOr<ImportedModel> kidney = ImportModel(hs::TestDataDir() + "/kidney.obj");
   ASSERT_TRUE(kidney.ok()) << kidney.status();
   EXPECT_EQ(kidney->object.num_faces(), 128);
   const auto fixed = MakeBody(std::move(kidney->object));

@@ -17,6 +17,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
@@ -24,7 +25,7 @@ namespace {
 using ::testing::ElementsAreArray;
 using ::testing::HasSubstr;
 
-std::string DataPath(const std::string& name) { return std::string(HS_TEST_DATA_DIR) + "/" + name; }
+std::string DataPath(const std::string& name) { return hs::TestDataDir() + "/" + name; }
 
 Vector3d FaceNormal(const HapticObject& object, FaceId f) {
   const auto& v = object.face(f).vertices;
@@ -398,7 +399,7 @@ TEST(ImportOptionsTest, BadOptionsRejected) {
 
 // A directory is not a model file.
 TEST(ImportFileTest, DirectoryRejected) {
-  absl::StatusOr<ImportedModel> model = ImportModel(HS_TEST_DATA_DIR);
+  absl::StatusOr<ImportedModel> model = ImportModel(hs::TestDataDir());
   ASSERT_FALSE(model.ok());
   EXPECT_EQ(model.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(model.status().message(), HasSubstr("directory"));

@@ -8,13 +8,12 @@
 #include <string>
 
 #include "common/model/raw_mesh.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs::testing_raw_mesh {
 
 /// The path of tests/data/`name`.
-inline std::string DataPath(const std::string& name) {
-  return std::string(HS_TEST_DATA_DIR) + "/" + name;
-}
+inline std::string DataPath(const std::string& name) { return hs::TestDataDir() + "/" + name; }
 
 /// The bytes of tests/data/`name`.
 inline std::string DataBytes(const std::string& name) {

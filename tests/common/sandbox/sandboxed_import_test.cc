@@ -11,6 +11,7 @@
 #include "gtest/gtest.h"
 #include "tests/common/sanitized_build.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string DataPath(const std::string& name) { return std::string(HS_TEST_DATA_DIR) + "/" + name; }
+std::string DataPath(const std::string& name) { return hs::TestDataDir() + "/" + name; }
 
 std::string Write(const std::string& name, const std::string& text) {
   const std::filesystem::path path = ScratchDir("sandbox-" + name) / name;

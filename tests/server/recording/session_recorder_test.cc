@@ -22,13 +22,14 @@
 #include "google/protobuf/text_format.h"
 #include "server/scene_runner.h"
 #include "tests/common/scratch_dir.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
 
 namespace pb = haptics::v1;
 
-const std::string kScenes = HS_SCENES_DIR;
+const std::string kScenes = hs::ScenesDir();
 
 // A device stream that only notes the last step it was offered.
 class StepSink : public FrameSink {
