@@ -1,3 +1,3 @@
-// The one translation unit of the targets that build the precompiled
-// headers (cmake/precompiled_headers.cmake): the header is compiled before
+// The one translation unit of the target that builds the precompiled
+// header (cmake/precompiled_headers.cmake): the header is compiled before
 // it; it has nothing of its own.

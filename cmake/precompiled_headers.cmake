@@ -1,14 +1,26 @@
-# Precompiled headers: the heavy headers most translation units include
-# (the standard library, Eigen, gRPC and the service's messages, CLI11,
-# nlohmann-json; GoogleTest for the tests) are parsed once per build
-# instead of once per file: with line tables only (HS_DEBUG_INFO), a cold
-# build on two cores went from 42.5 to about 27 min (2026-11-28).
+# A precompiled header for the service's libraries and programs: the heavy
+# headers they include (the standard library, Eigen, gRPC and the
+# service's messages, CLI11, nlohmann-json) are parsed once per build
+# instead of once per file. It saves a quarter of the time of a file that
+# uses CLI11 or nlohmann-json (drive_command.cc: 14.3 against 19 s) and
+# costs a little where it is loaded for less (haptic_server.cc: 17 against
+# 15 s; 2026-11-29, GCC 12, one file at a time on the 2-core VM).
 #
-# Each set is built by a host target of its own (cmake/precompiled_headers.cc,
-# an empty translation unit) and reused by the targets that include those
-# headers (REUSE_FROM). Reuse needs the same compiler flags, and clang also
-# refuses a header built with a macro the reusing file lacks, so each host
-# defines only what every one of its users defines.
+# The tests have none. GCC's header for them (GoogleTest with the above)
+# came out different at each build of the same sources, and ccache hashes
+# it into every file that uses it, so no test compiled in one clone was
+# found in ccache by another's build; parsed per file, a test takes about
+# as long (stream_registry_test.cc 8.4 s either way, triangle_sat_test.cc
+# 20.5 against 19.2 s, drive_command_test.cc 25.5 against 18.7 s). GCC's
+# header of the service is the same at every build. scripts/sanitize.sh
+# builds with none: clang's hold the build folder's path.
+#
+# The header is built by a host target of its own
+# (cmake/precompiled_headers.cc, an empty translation unit) and reused by
+# the targets that include those headers (REUSE_FROM). Reuse needs the
+# same compiler flags, and clang also refuses a header built with a macro
+# the reusing file lacks, so the host defines only what every one of its
+# users defines.
 
 # The service's libraries and programs (client and server): every one of
 # them defines BOOST_ALL_NO_LIB (Boost::headers through hs_hash or hs_server).

@@ -1,8 +1,8 @@
 #pragma once
 // Where the tests find the checkout's files. The path is compiled into
 // test_data_dir.cc alone: as a definition on every test it would sit in
-// their precompiled header and command lines, and no test of one clone
-// would be found in ccache by the build of another.
+// their command lines, and no test compiled in one clone would be found in
+// ccache by the build of another.
 
 #include <string>
 
