@@ -9,7 +9,7 @@
 #  2. each libFuzzer target (tests/fuzz, built in the same tree) for
 #     FUZZ_SECONDS (default 60) from its seed corpus;
 #  3. the tests of the project's own threads under ThreadSanitizer, unless
-#     TSAN=0 (.ci/run: a third build does not fit CI's time on two cores).
+#     TSAN=0.
 # Suppressions (scripts/sanitizers/) cover uninstrumented Debian libraries
 # only, each with its reason.
 set -euo pipefail
