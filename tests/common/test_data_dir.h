@@ -5,11 +5,15 @@
 // ccache by the build of another.
 
 #include <string>
+#include <string_view>
 
 namespace hs {
 
 /// The absolute path of tests/data in the checkout.
 std::string TestDataDir();
+
+/// The absolute path of tests/data/`name`.
+std::string TestDataPath(std::string_view name);
 
 /// The absolute path of scenes/ in the checkout.
 std::string ScenesDir();

@@ -7,12 +7,12 @@
 #include <string>
 
 #include "tests/common/model/reader_oracle.h"
+#include "tests/common/test_data_dir.h"
 
 namespace hs {
 namespace {
 
 using testing_raw_mesh::DataBytes;
-using testing_raw_mesh::DataPath;
 using testing_raw_mesh::MaterialName;
 using testing_raw_mesh::Side;
 using testing_raw_mesh::SignedVolume;
@@ -43,14 +43,14 @@ const std::map<std::string, std::string> kSteelAndRubber = {{"-z", "steel"},  {"
 // Inventor: each face's triangles share its id; the DEF names of the
 // Material nodes name the materials.
 TEST(CoinReaderTest, InventorFacesAndMaterials) {
-  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(DataPath("cube.iv"));
+  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(TestDataPath("cube.iv"));
   ASSERT_TRUE(mesh.ok()) << mesh.status();
   ExpectCube(*mesh, kSteelAndRubber);
 }
 
 // VRML 2: two shapes over one Coordinate, named materials.
 TEST(CoinReaderTest, Vrml2Shapes) {
-  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(DataPath("cube.wrl"));
+  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(TestDataPath("cube.wrl"));
   ASSERT_TRUE(mesh.ok()) << mesh.status();
   ExpectCube(*mesh, kSteelAndRubber);
 }
@@ -58,7 +58,7 @@ TEST(CoinReaderTest, Vrml2Shapes) {
 // VRML 1: one Material node of two values bound per face gives the node's
 // name with each value's index.
 TEST(CoinReaderTest, MaterialValuesBoundPerFace) {
-  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(DataPath("cube_vrml1.wrl"));
+  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(TestDataPath("cube_vrml1.wrl"));
   ASSERT_TRUE(mesh.ok()) << mesh.status();
   ExpectCube(*mesh, {{"-z", "paint_0"},
                      {"+z", "paint_0"},
@@ -71,7 +71,7 @@ TEST(CoinReaderTest, MaterialValuesBoundPerFace) {
 // Clockwise faces under a mirroring transform face outward once both are
 // honoured, in the transformed place.
 TEST(CoinReaderTest, MirrorAndClockwiseStillFaceOutward) {
-  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(DataPath("cube_mirrored.wrl"));
+  const absl::StatusOr<RawMesh> mesh = ReadWithCoin(TestDataPath("cube_mirrored.wrl"));
   ASSERT_TRUE(mesh.ok()) << mesh.status();
   EXPECT_NEAR(SignedVolume(*mesh), 1, 1e-12);
   EXPECT_TRUE(UsedBox(*mesh).isApprox(AlignedBox3d(Vector3d(2, 0, -1), Vector3d(3, 1, 0)), 1e-12));
@@ -79,7 +79,7 @@ TEST(CoinReaderTest, MirrorAndClockwiseStillFaceOutward) {
 
 // From bytes, the same mesh as from the file.
 TEST(CoinReaderTest, BytesReadAsTheFile) {
-  const absl::StatusOr<RawMesh> file = ReadWithCoin(DataPath("cube.iv"));
+  const absl::StatusOr<RawMesh> file = ReadWithCoin(TestDataPath("cube.iv"));
   const absl::StatusOr<RawMesh> bytes = ReadBytesWithCoin(DataBytes("cube.iv"));
   ASSERT_TRUE(file.ok() && bytes.ok()) << bytes.status();
   EXPECT_EQ(bytes->positions, file->positions);
@@ -96,7 +96,7 @@ TEST(CoinReaderTest, BadFilesAreInvalidArgumentAndQuiet) {
                                                   {"bad_index.iv", "coordIndex[2] = 9"}};
   for (const auto& [name, reason] : bad) {
     testing::internal::CaptureStderr();
-    const absl::StatusOr<RawMesh> mesh = ReadWithCoin(DataPath(name));
+    const absl::StatusOr<RawMesh> mesh = ReadWithCoin(TestDataPath(name));
     const std::string printed = testing::internal::GetCapturedStderr();
     EXPECT_EQ(mesh.status().code(), absl::StatusCode::kInvalidArgument) << name;
     EXPECT_NE(mesh.status().message().find(reason), std::string::npos) << mesh.status();

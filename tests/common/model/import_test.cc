@@ -25,8 +25,6 @@ namespace {
 using ::testing::ElementsAreArray;
 using ::testing::HasSubstr;
 
-std::string DataPath(const std::string& name) { return hs::TestDataDir() + "/" + name; }
-
 Vector3d FaceNormal(const HapticObject& object, FaceId f) {
   const auto& v = object.face(f).vertices;
   const Vector3d& a = object.position(v[0]);
@@ -76,7 +74,7 @@ class ImportCubeTest : public ::testing::TestWithParam<CubeFile> {};
 // The unit cube of every format imports as 8 vertices, 18 edges, 12 faces in [0,1]^3.
 TEST_P(ImportCubeTest, CountsAndBox) {
   const CubeFile& c = GetParam();
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath(c.file));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath(c.file));
   ASSERT_TRUE(model.ok()) << model.status();
   const HapticObject& object = model->object;
   EXPECT_EQ(model->reader, c.reader);
@@ -91,7 +89,7 @@ TEST_P(ImportCubeTest, CountsAndBox) {
 
 // The imported cube is closed, consistently oriented, sphere-like and faces outward.
 TEST_P(ImportCubeTest, ClosedAndOutward) {
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath(GetParam().file));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath(GetParam().file));
   ASSERT_TRUE(model.ok()) << model.status();
   const MeshReport report = InspectMesh(model->object);
   EXPECT_TRUE(report.closed);
@@ -108,7 +106,7 @@ TEST_P(ImportCubeTest, ClosedAndOutward) {
 // Triangles cut from one file polygon share its id, and the ids count the file's polygons.
 TEST_P(ImportCubeTest, Provenance) {
   const CubeFile& c = GetParam();
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath(c.file));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath(c.file));
   ASSERT_TRUE(model.ok()) << model.status();
   const HapticObject& object = model->object;
   const auto groups = FacesByPolygon(object);
@@ -136,7 +134,7 @@ TEST_P(ImportCubeTest, Materials) {
   ImportOptions options;
   options.default_material.name = "fallback";
   options.default_material.stiffness_n_per_m = 2500;
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath(c.file), options);
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath(c.file), options);
   ASSERT_TRUE(model.ok()) << model.status();
   const HapticObject& object = model->object;
   std::vector<std::string> expected = c.materials;
@@ -159,7 +157,7 @@ TEST_P(ImportCubeTest, Materials) {
 TEST_P(ImportCubeTest, UnitScale) {
   ImportOptions options;
   options.unit_scale = 0.001;
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath(GetParam().file), options);
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath(GetParam().file), options);
   ASSERT_TRUE(model.ok()) << model.status();
   EXPECT_EQ(model->object.bounding_box().min(), Vector3d::Zero());
   EXPECT_EQ(model->object.bounding_box().max(), Vector3d::Constant(0.001));
@@ -186,7 +184,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // An STL repeats each corner per triangle; welding merges them to the cube's 8 and says so.
 TEST(ImportWeldTest, StlCornersWelded) {
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath("cube_binary.stl"));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath("cube_binary.stl"));
   ASSERT_TRUE(model.ok()) << model.status();
   EXPECT_EQ(model->cleaning.input_vertices, 36);
   EXPECT_EQ(model->cleaning.welded_vertices, 28);
@@ -198,7 +196,7 @@ TEST(ImportWeldTest, StlCornersWelded) {
 TEST(ImportWeldTest, ZeroToleranceWeldsExactDuplicates) {
   ImportOptions options;
   options.weld_relative_tolerance = 0;
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath("cube_ascii.stl"), options);
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath("cube_ascii.stl"), options);
   ASSERT_TRUE(model.ok()) << model.status();
   EXPECT_EQ(model->cleaning.welded_vertices, 28);
   EXPECT_EQ(model->object.num_vertices(), 8);
@@ -244,7 +242,7 @@ TEST(ImportWeldTest, NearbyVerticesWeldedWithinTolerance) {
 
 // Degenerate, collapsed and duplicate triangles and the vertices they leave are dropped, counted.
 TEST(ImportCleaningTest, DirtyCubeCleaned) {
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath("dirty_cube.obj"));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath("dirty_cube.obj"));
   ASSERT_TRUE(model.ok()) << model.status();
   const CleaningReport& r = model->cleaning;
   EXPECT_EQ(r.input_polygons, 15);
@@ -265,7 +263,7 @@ TEST(ImportCleaningTest, DirtyCubeCleaned) {
 
 // A concave n-gon becomes n - 2 triangles that cover exactly its area.
 TEST(ImportTriangulationTest, ConcavePolygon) {
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath("l_prism.obj"));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath("l_prism.obj"));
   ASSERT_TRUE(model.ok()) << model.status();
   const HapticObject& object = model->object;
   EXPECT_EQ(model->cleaning.input_polygons, 8);
@@ -294,7 +292,7 @@ TEST(ImportTriangulationTest, ConcavePolygon) {
 
 // Node transforms are applied to every instance of a mesh and COLLADA's up axis does not turn it.
 TEST(ImportTransformTest, AssimpNodeTransforms) {
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath("two_cubes.dae"));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath("two_cubes.dae"));
   ASSERT_TRUE(model.ok()) << model.status();
   const HapticObject& object = model->object;
   EXPECT_EQ(object.num_vertices(), 16);
@@ -311,7 +309,7 @@ TEST(ImportTransformTest, AssimpNodeTransforms) {
 
 // A mirroring transform and a clockwise declaration in VRML still give outward-facing triangles.
 TEST(ImportTransformTest, CoinMirrorAndClockwise) {
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath("cube_mirrored.wrl"));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath("cube_mirrored.wrl"));
   ASSERT_TRUE(model.ok()) << model.status();
   const HapticObject& object = model->object;
   EXPECT_EQ(object.bounding_box().min(), Vector3d(2, 0, -1));
@@ -336,7 +334,7 @@ class ImportMalformedTest : public ::testing::TestWithParam<BadFile> {};
 // A malformed file gives the documented error, naming the file and the reason, and never crashes.
 TEST_P(ImportMalformedTest, ErrorNamesFile) {
   const BadFile& b = GetParam();
-  absl::StatusOr<ImportedModel> model = ImportModel(DataPath(b.file));
+  absl::StatusOr<ImportedModel> model = ImportModel(TestDataPath(b.file));
   ASSERT_FALSE(model.ok());
   EXPECT_EQ(model.status().code(), b.code) << model.status();
   EXPECT_THAT(model.status().message(), HasSubstr(b.file));
@@ -369,7 +367,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Options out of their documented range give INVALID_ARGUMENT naming the option.
 TEST(ImportOptionsTest, BadOptionsRejected) {
-  const std::string path = DataPath("cube.obj");
+  const std::string path = TestDataPath("cube.obj");
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   for (double scale : {0.0, -1.0, nan, inf}) {
@@ -408,7 +406,7 @@ TEST(ImportFileTest, DirectoryRejected) {
 // A file that cannot be opened for reading gives PERMISSION_DENIED.
 TEST(ImportFileTest, UnreadableFileDenied) {
   const std::filesystem::path path = ScratchDir("denied") / "cube.obj";
-  std::filesystem::copy_file(DataPath("cube.obj"), path);
+  std::filesystem::copy_file(TestDataPath("cube.obj"), path);
   ASSERT_EQ(chmod(path.c_str(), 0), 0);
   if (access(path.c_str(), R_OK) == 0) GTEST_SKIP() << "running with rights to read any file";
   absl::StatusOr<ImportedModel> model = ImportModel(path.string());
@@ -420,7 +418,7 @@ TEST(ImportFileTest, UnreadableFileDenied) {
 // The reader is chosen by extension without regard to case.
 TEST(ImportFileTest, ExtensionCaseIgnored) {
   const std::filesystem::path path = ScratchDir("case") / "CUBE.IV";
-  std::filesystem::copy_file(DataPath("cube.iv"), path);
+  std::filesystem::copy_file(TestDataPath("cube.iv"), path);
   absl::StatusOr<ImportedModel> model = ImportModel(path.string());
   ASSERT_TRUE(model.ok()) << model.status();
   EXPECT_EQ(model->reader, "coin3d");
@@ -438,7 +436,7 @@ TEST(ImportThreadTest, ConcurrentImports) {
   for (size_t i = 0; i < files.size(); ++i) {
     threads.emplace_back([&, i] {
       for (int repeat = 0; repeat < 5 && results[i].ok(); ++repeat) {
-        results[i] = ImportModel(DataPath(files[i])).status();
+        results[i] = ImportModel(TestDataPath(files[i])).status();
       }
     });
   }

@@ -12,12 +12,9 @@
 
 namespace hs::testing_raw_mesh {
 
-/// The path of tests/data/`name`.
-inline std::string DataPath(const std::string& name) { return hs::TestDataDir() + "/" + name; }
-
 /// The bytes of tests/data/`name`.
 inline std::string DataBytes(const std::string& name) {
-  std::ifstream in(DataPath(name), std::ios::binary);
+  std::ifstream in(TestDataPath(name), std::ios::binary);
   std::stringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();

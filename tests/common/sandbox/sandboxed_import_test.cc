@@ -19,8 +19,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string DataPath(const std::string& name) { return hs::TestDataDir() + "/" + name; }
-
 std::string Write(const std::string& name, const std::string& text) {
   const std::filesystem::path path = ScratchDir("sandbox-" + name) / name;
   std::ofstream(path, std::ios::binary) << text;
@@ -44,8 +42,8 @@ TEST(SandboxedImportTest, SameModelAsInProcess) {
     SCOPED_TRACE(file);
     ImportOptions options;
     options.unit_scale = 0.001;
-    absl::StatusOr<ImportedModel> here = ImportModel(DataPath(file), options);
-    absl::StatusOr<ImportedModel> there = SandboxedImport(DataPath(file), options);
+    absl::StatusOr<ImportedModel> here = ImportModel(TestDataPath(file), options);
+    absl::StatusOr<ImportedModel> there = SandboxedImport(TestDataPath(file), options);
     ASSERT_TRUE(here.ok()) << here.status();
     ASSERT_TRUE(there.ok()) << there.status();
     EXPECT_EQ(there->object.name(), here->object.name());
@@ -95,7 +93,7 @@ TEST(SandboxedImportTest, DeepNestingCrashesOnlyTheWorker) {
 // An 800-byte OFF file that crashes assimp 5.2's reader (found by
 // import_fuzzer) costs the worker only.
 TEST(SandboxedImportTest, FileThatCrashesAssimpCrashesOnlyTheWorker) {
-  const std::string path = DataPath("crashes_assimp.off");
+  const std::string path = TestDataPath("crashes_assimp.off");
   absl::StatusOr<ImportedModel> model = SandboxedImport(path);
   ASSERT_FALSE(model.ok());
   EXPECT_EQ(model.status().code(), absl::StatusCode::kInvalidArgument);
@@ -156,7 +154,7 @@ TEST(SandboxedImportTest, ReferencesToOtherFilesReadNothing) {
 // Too little memory ends the import with a message naming the file.
 TEST(SandboxedImportTest, MemoryLimitEndsTheImport) {
   if (hs::testing::kSanitizedBuild) GTEST_SKIP() << "sanitized workers take no address-space limit";
-  const std::string kidney = DataPath("kidney.obj");
+  const std::string kidney = TestDataPath("kidney.obj");
   absl::StatusOr<ImportedModel> starved =
       SandboxedImport(kidney, {}, SandboxLimits{.memory_bytes = 16 << 20});
   ASSERT_FALSE(starved.ok());
@@ -167,14 +165,14 @@ TEST(SandboxedImportTest, MemoryLimitEndsTheImport) {
 // Too little wall time ends the import naming the file; a missing worker
 // is UNAVAILABLE; a missing file NOT_FOUND.
 TEST(SandboxedImportTest, WallTimeAndMissingPieces) {
-  const std::string kidney = DataPath("kidney.obj");
+  const std::string kidney = TestDataPath("kidney.obj");
 
   absl::StatusOr<ImportedModel> hurried =
       SandboxedImport(kidney, {}, SandboxLimits{.wall_s = 1e-6});
   ASSERT_FALSE(hurried.ok());
   EXPECT_THAT(hurried.status().message(), HasSubstr("took longer than"));
 
-  absl::StatusOr<ImportedModel> missing = SandboxedImport(DataPath("no_such_file.obj"));
+  absl::StatusOr<ImportedModel> missing = SandboxedImport(TestDataPath("no_such_file.obj"));
   EXPECT_EQ(missing.status().code(), absl::StatusCode::kNotFound) << missing.status();
 
   setenv("HAPTIC_IMPORT_WORKER", "/nonexistent/haptic-import", 1);
