@@ -27,10 +27,11 @@ here=$(pwd)
 # in another clone; without them, a clone finds what an earlier build of
 # the same sources left there.
 sanitizer_flags="-O1 -g1 -DNDEBUG"
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 -DHS_SANITIZE=address,undefined -DHS_FUZZ=ON \
-  -DHS_TIMING_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$sanitizer_flags" \
-  -DCMAKE_C_FLAGS_RELWITHDEBINFO="$sanitizer_flags" -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON >/dev/null
+clang_build=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14
+             -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$sanitizer_flags" -DCMAKE_C_FLAGS_RELWITHDEBINFO="$sanitizer_flags"
+             -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON)
+cmake -S . -B build-asan "${clang_build[@]}" -DHS_SANITIZE=address,undefined -DHS_FUZZ=ON \
+  -DHS_TIMING_BENCHMARKS=OFF >/dev/null
 phase "asan build" cmake --build build-asan -j2 --target engine_tests import_fuzzer requests_fuzzer contact_fuzzer
 export ASAN_OPTIONS="detect_leaks=1:suppressions=$here/scripts/sanitizers/asan.supp"
 export LSAN_OPTIONS="suppressions=$here/scripts/sanitizers/lsan.supp:print_suppressions=0"
@@ -84,10 +85,7 @@ phase fuzz fuzz
 
 [ "${TSAN:-1}" = 1 ] || exit 0
 
-cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 -DHS_SANITIZE=thread \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$sanitizer_flags" -DCMAKE_C_FLAGS_RELWITHDEBINFO="$sanitizer_flags" -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON \
-  >/dev/null
+cmake -S . -B build-tsan "${clang_build[@]}" -DHS_SANITIZE=thread >/dev/null
 # The tests whose threads are the project's own: the scene runner and its
 # parts, the worker pool and a scene stepped on it, the registries, the
 # session recorder, the Agones lifecycle. Tests through gRPC are left out: Debian's gRPC and
