@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <thread>
 
 #include "CLI/CLI.hpp"
 #include "absl/strings/numbers.h"
+#include "server/cpu_affinity.h"
 
 namespace hs {
 namespace {
@@ -91,13 +91,21 @@ void AddLimitFlags(CLI::App& app, ServerLimits& limits) {
       ->capture_default_str();
 }
 
-// How scenes are stepped: threads, scheduling, silent devices.
-void AddSteppingFlags(CLI::App& app, ServerLimits& limits) {
-  // One per core, up to 4: a step rarely has more tools than that busy.
-  limits.threads_per_scene =
-      static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
+// One thread a scene per CPU the server runs on, up to 4: a step rarely
+// has more tools than that busy.
+int DefaultThreadsPerScene(size_t cpus) { return static_cast<int>(std::clamp<size_t>(cpus, 1, 4)); }
+
+// How scenes are stepped: CPUs, threads, scheduling, silent devices.
+void AddSteppingFlags(CLI::App& app, ServerFlags& flags, std::string& cpus) {
+  ServerLimits& limits = flags.server.limits;
+  app.add_option("--cpus", cpus,
+                 "Run the server on these CPUs only, as taskset -c writes them (0,2-3): "
+                 "threads that wake one another on one CPU cost less than across CPUs. "
+                 "Default: every CPU it may use");
+  limits.threads_per_scene = DefaultThreadsPerScene(AllowedCpus().size());
   app.add_option("--threads-per-scene", limits.threads_per_scene,
-                 "Threads that step one scene's tools at once")
+                 "Threads that step one scene's tools at once (default: one per CPU the server "
+                 "runs on, up to 4)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   app.add_option("--realtime-priority", limits.realtime_priority,
@@ -137,6 +145,23 @@ bool ReadAgonesPort(const EnvironmentReader& getenv, int& port, std::ostream& er
   return true;
 }
 
+// --cpus, when given: CPUs this process may run on, and then the threads'
+// default. False, with a message, when they are not.
+bool ReadCpus(const CLI::App& app, const std::string& text, ServerFlags& flags, std::ostream& err) {
+  if (app.count("--cpus") == 0) return true;
+  absl::StatusOr<std::vector<int>> cpus = ParseCpuList(text);
+  absl::Status allowed = cpus.ok() ? CheckCpusAllowed(*cpus) : cpus.status();
+  if (!allowed.ok()) {
+    err << "haptic-server: --cpus: " << allowed.message() << "\n";
+    return false;
+  }
+  flags.cpus = *std::move(cpus);
+  if (app.count("--threads-per-scene") == 0) {
+    flags.server.limits.threads_per_scene = DefaultThreadsPerScene(flags.cpus.size());
+  }
+  return true;
+}
+
 }  // namespace
 
 ParsedServerFlags ParseServerFlags(int argc, const char* const* argv,
@@ -146,10 +171,11 @@ ParsedServerFlags ParseServerFlags(int argc, const char* const* argv,
   ServerFlags flags;
   std::string record_frames = "full";
   std::string record_scenes = "all";
+  std::string cpus;
   AddServingFlags(app, flags);
   AddRecordingFlags(app, flags.server.recording, record_frames, record_scenes);
   AddLimitFlags(app, flags.server.limits);
-  AddSteppingFlags(app, flags.server.limits);
+  AddSteppingFlags(app, flags, cpus);
   AddAgonesFlags(app, flags.agones);
   try {
     app.parse(argc, argv);
@@ -157,7 +183,7 @@ ParsedServerFlags ParseServerFlags(int argc, const char* const* argv,
     const int parse_code = app.exit(e, out, err);
     return {.flags = std::nullopt, .exit_code = parse_code == 0 ? 0 : kServerExitUsage};
   }
-  if (!ReadAgonesPort(getenv, flags.agones.sdk_port, err)) {
+  if (!ReadAgonesPort(getenv, flags.agones.sdk_port, err) || !ReadCpus(app, cpus, flags, err)) {
     return {.flags = std::nullopt, .exit_code = kServerExitUsage};
   }
   flags.server.recording.frames = record_frames == "digest" ? haptics::v1::FRAME_RECORDING_DIGEST

@@ -24,6 +24,8 @@ struct ServerFlags {
   std::vector<std::string> scene_files;
   /// --metrics host:port; empty: no metrics endpoint.
   std::string metrics_address;
+  /// --cpus, sorted, each one the process may run on; empty: not given.
+  std::vector<int> cpus;
 };
 
 /// The exit status of a command line or environment that cannot be run.

@@ -14,6 +14,7 @@
 #include "common/net/address.h"
 #include "server/agones/agones_lifecycle.h"
 #include "server/agones/server_activity.h"
+#include "server/cpu_affinity.h"
 #include "server/haptic_server.h"
 #include "server/server_flags.h"
 
@@ -111,6 +112,13 @@ int main(int argc, char** argv) {
       std::cerr);
   if (!parsed.flags) return parsed.exit_code;
   const hs::ServerFlags& flags = *parsed.flags;
+  // Before any thread starts, so that every one inherits it.
+  if (!flags.cpus.empty()) {
+    if (absl::Status s = hs::RunOnCpus(flags.cpus); !s.ok()) {
+      std::cerr << "haptic-server: --cpus: " << s.message() << "\n";
+      return 1;
+    }
+  }
   const sigset_t signals = BlockStopSignals();
 
   hs::Metrics metrics;

@@ -1,4 +1,5 @@
 #include "server/server_flags.h"
+#include "server/cpu_affinity.h"
 #include "tests/common/test_data_dir.h"
 
 #include <gtest/gtest.h>
@@ -7,7 +8,6 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace hs {
@@ -15,6 +15,14 @@ namespace {
 
 // A file that exists, for the flags that check.
 const std::string kExisting = hs::TestDataDir() + "/cube.obj";
+
+// A CPU number the process may not run on.
+int CpuNotAllowed() {
+  const std::vector<int> allowed = AllowedCpus();
+  int cpu = 0;
+  while (std::find(allowed.begin(), allowed.end(), cpu) != allowed.end()) ++cpu;
+  return cpu;
+}
 
 // ParseServerFlags on `args` (after the program's name) and `environment`,
 // with what it printed.
@@ -39,7 +47,7 @@ Outcome Parse(const std::vector<std::string>& args,
 }
 
 // No flags and no environment give the options' own defaults, threads one
-// per core up to 4, and no Agones.
+// per CPU the process may use up to 4, no --cpus, and no Agones.
 TEST(ServerFlagsTest, NothingGivenIsTheDefaults) {
   const Outcome o = Parse({});
   ASSERT_TRUE(o.parsed.flags) << o.err;
@@ -53,7 +61,8 @@ TEST(ServerFlagsTest, NothingGivenIsTheDefaults) {
   EXPECT_EQ(flags.server.recording.sync_ms, defaults.recording.sync_ms);
   EXPECT_EQ(flags.server.limits.max_scenes, defaults.limits.max_scenes);
   EXPECT_EQ(flags.server.limits.threads_per_scene,
-            static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u)));
+            static_cast<int>(std::clamp<size_t>(AllowedCpus().size(), 1, 4)));
+  EXPECT_TRUE(flags.cpus.empty());
   EXPECT_EQ(flags.agones.sdk_port, 0);
   EXPECT_EQ(flags.agones.idle_shutdown_s, AgonesOptions{}.idle_shutdown_s);
   EXPECT_TRUE(flags.scene_files.empty());
@@ -111,11 +120,37 @@ TEST(ServerFlagsTest, FlagsLandInTheirOptions) {
   EXPECT_TRUE(flags.server.insecure_listen);
 }
 
+// --cpus lands sorted; the threads of a scene default to one per CPU it
+// names (up to 4), and --threads-per-scene still wins.
+TEST(ServerFlagsTest, CpusSetTheThreadsDefault) {
+  const std::vector<int> allowed = AllowedCpus();
+  const std::string first = std::to_string(allowed.front());
+  const Outcome one = Parse({"--cpus", first});
+  ASSERT_TRUE(one.parsed.flags) << one.err;
+  EXPECT_EQ(one.parsed.flags->cpus, std::vector<int>{allowed.front()});
+  EXPECT_EQ(one.parsed.flags->server.limits.threads_per_scene, 1);
+
+  const Outcome given = Parse({"--threads-per-scene", "3", "--cpus", first});
+  ASSERT_TRUE(given.parsed.flags) << given.err;
+  EXPECT_EQ(given.parsed.flags->server.limits.threads_per_scene, 3);
+
+  std::string every;
+  for (const int cpu : allowed) every = std::to_string(cpu) + (every.empty() ? "" : ",") + every;
+  const Outcome all = Parse({"--cpus", every});
+  ASSERT_TRUE(all.parsed.flags) << all.err;
+  EXPECT_EQ(all.parsed.flags->cpus, allowed);
+  EXPECT_EQ(all.parsed.flags->server.limits.threads_per_scene,
+            static_cast<int>(std::clamp<size_t>(allowed.size(), 1, 4)));
+}
+
 // A bad command line gives no flags, exit status 2 and a message on err
 // that names the flag; nothing on out.
 TEST(ServerFlagsTest, BadFlagsExitTwoNamingTheFlag) {
   const std::vector<std::vector<std::string>> bad = {
       {"--threads-per-scene", "0"},
+      {"--cpus", ""},
+      {"--cpus", "0-"},
+      {"--cpus", std::to_string(CpuNotAllowed())},
       {"--threads-per-scene", "65"},
       {"--realtime-priority", "100"},
       {"--record-frames", "some"},
@@ -143,7 +178,7 @@ TEST(ServerFlagsTest, HelpExitsZero) {
   const Outcome o = Parse({"--help"});
   EXPECT_FALSE(o.parsed.flags);
   EXPECT_EQ(o.parsed.exit_code, 0);
-  for (const char* flag : {"--listen", "--record-frames", "--threads-per-scene",
+  for (const char* flag : {"--listen", "--record-frames", "--threads-per-scene", "--cpus",
                            "--agones-idle-shutdown-s", "--max-vertex-moves"}) {
     EXPECT_NE(o.out.find(flag), std::string::npos) << flag;
   }

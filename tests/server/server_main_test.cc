@@ -24,6 +24,7 @@
 #include "common/recording/replay.h"
 #include "haptics/v1/scene_service.grpc.pb.h"
 #include "haptics/v1/session_service.grpc.pb.h"
+#include "server/cpu_affinity.h"
 #include "tests/common/scratch_dir.h"
 #include "tests/common/test_data_dir.h"
 #include "tests/server/server_process.h"
@@ -65,6 +66,45 @@ TEST(ServerMainTest, ServesSceneAndStopsGracefullyOnSigterm) {
   EXPECT_EQ(server.StopWith(SIGTERM), 0);
   reader.join();
   EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
+}
+
+// The CPUs each thread of process `pid` may run on, as the kernel writes
+// them (Cpus_allowed_list), one entry a thread.
+std::vector<std::string> ThreadCpuLists(pid_t pid) {
+  std::vector<std::string> lists;
+  for (const auto& task :
+       std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task")) {
+    std::ifstream status(task.path() / "status");
+    std::string line;
+    while (std::getline(status, line)) {
+      if (line.rfind("Cpus_allowed_list:", 0) == 0) {
+        lists.push_back(line.substr(line.find_first_not_of(" \t", line.find(':') + 1)));
+      }
+    }
+  }
+  return lists;
+}
+
+// With --cpus, every thread of the server, gRPC's and the scene's among
+// them, runs on that CPU only, and a device is served as without it.
+TEST(ServerMainTest, CpusHoldEveryThread) {
+  const std::string cpu = std::to_string(AllowedCpus().back());
+  testing::ServerProcess server({"--cpus", cpu});
+  ASSERT_GT(server.port(), 0) << server.startup();
+  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(server.port()),
+                                     grpc::InsecureChannelCredentials());
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
+  auto stub = pb::SessionService::NewStub(channel);
+  auto stream = testing::OpenDevice(*stub, context, "probe on torus", "probe");
+  ASSERT_NE(stream, nullptr);
+  pb::Frame frame;
+  ASSERT_TRUE(stream->Read(&frame));
+
+  const std::vector<std::string> lists = ThreadCpuLists(server.pid());
+  EXPECT_GE(lists.size(), 4u);  // main, gRPC's, the scene's stepping and frames threads
+  for (const std::string& list : lists) EXPECT_EQ(list, cpu);
+  context.TryCancel();
 }
 
 std::unique_ptr<pb::SceneService::Stub> SceneStub(int port) {

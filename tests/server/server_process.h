@@ -28,6 +28,7 @@ class ServerProcess {
   ServerProcess& operator=(const ServerProcess&) = delete;
 
   int port() const { return port_; }
+  pid_t pid() const { return pid_; }
   /// What it wrote to stderr until it listened (or ended).
   const std::string& startup() const { return startup_; }
   /// The next line of its stderr that holds `text`; empty at its end.
