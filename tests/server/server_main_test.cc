@@ -35,6 +35,21 @@ namespace {
 
 namespace pb = haptics::v1;
 
+// A device stream on the demo's probe, its first frame read (`ok`).
+struct ProbeDevice {
+  explicit ProbeDevice(const std::shared_ptr<grpc::Channel>& channel)
+      : stub(pb::SessionService::NewStub(channel)) {
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
+    stream = testing::OpenDevice(*stub, context, "probe on torus", "probe");
+    ok = stream != nullptr && stream->Read(&frame);
+  }
+  std::unique_ptr<pb::SessionService::Stub> stub;
+  grpc::ClientContext context;
+  std::unique_ptr<testing::DeviceStream> stream;
+  pb::Frame frame;
+  bool ok = false;
+};
+
 // The binary serves the scene given with --scene on the port it picked,
 // and on SIGTERM ends an open device stream with UNAVAILABLE after the
 // frames it had and exits 0.
@@ -51,21 +66,16 @@ TEST(ServerMainTest, ServesSceneAndStopsGracefullyOnSigterm) {
   ASSERT_TRUE(pb::SceneService::NewStub(channel)->GetScene(&get_context, get, &info).ok());
   EXPECT_EQ(info.spec().objects_size(), 3);
 
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
-  auto stub = pb::SessionService::NewStub(channel);
-  auto stream = testing::OpenDevice(*stub, context, "probe on torus", "probe");
-  ASSERT_NE(stream, nullptr);
-  pb::Frame frame;
-  ASSERT_TRUE(stream->Read(&frame));
+  ProbeDevice device(channel);
+  ASSERT_TRUE(device.ok);
 
   std::thread reader([&] {
-    while (stream->Read(&frame)) {
+    while (device.stream->Read(&device.frame)) {
     }
   });
   EXPECT_EQ(server.StopWith(SIGTERM), 0);
   reader.join();
-  EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_EQ(device.stream->Finish().error_code(), grpc::StatusCode::UNAVAILABLE);
 }
 
 // The CPUs each thread of process `pid` may run on, as the kernel writes
@@ -91,20 +101,14 @@ TEST(ServerMainTest, CpusHoldEveryThread) {
   const std::string cpu = std::to_string(AllowedCpus().back());
   testing::ServerProcess server({"--cpus", cpu});
   ASSERT_GT(server.port(), 0) << server.startup();
-  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(server.port()),
-                                     grpc::InsecureChannelCredentials());
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
-  auto stub = pb::SessionService::NewStub(channel);
-  auto stream = testing::OpenDevice(*stub, context, "probe on torus", "probe");
-  ASSERT_NE(stream, nullptr);
-  pb::Frame frame;
-  ASSERT_TRUE(stream->Read(&frame));
+  ProbeDevice device(grpc::CreateChannel("127.0.0.1:" + std::to_string(server.port()),
+                                         grpc::InsecureChannelCredentials()));
+  ASSERT_TRUE(device.ok);
 
   const std::vector<std::string> lists = ThreadCpuLists(server.pid());
   EXPECT_GE(lists.size(), 4u);  // main, gRPC's, the scene's stepping and frames threads
   for (const std::string& list : lists) EXPECT_EQ(list, cpu);
-  context.TryCancel();
+  device.context.TryCancel();
 }
 
 std::unique_ptr<pb::SceneService::Stub> SceneStub(int port) {
