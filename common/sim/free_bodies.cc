@@ -232,11 +232,16 @@ void FreeBodies::KeepEightPoints(const Vector3d& n) {
         best = static_cast<int>(i);
       }
     }
-    if (std::find(picked.begin(), picked.begin() + unique, best) == picked.begin() + unique) {
-      picked[unique++] = best;
+    // Kept sorted as picked (an insertion into at most 7), so that the
+    // copies below never overwrite a point still to be copied.
+    const auto end = picked.begin() + unique;
+    const auto at = std::lower_bound(picked.begin(), end, best);
+    if (at == end || *at != best) {
+      std::copy_backward(at, end, end + 1);
+      *at = best;
+      ++unique;
     }
   }
-  std::sort(picked.begin(), picked.begin() + unique);
   for (int k = 0; k < unique; ++k) points_[k] = points_[picked[k]];
   points_.resize(unique);
 }
