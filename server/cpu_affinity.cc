@@ -1,10 +1,12 @@
 #include "server/cpu_affinity.h"
 
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include "absl/strings/numbers.h"
@@ -29,6 +31,8 @@ absl::StatusOr<int> ParseCpu(absl::string_view text, absl::string_view list) {
   return cpu;
 }
 
+void CpuFree(cpu_set_t* set) { CPU_FREE(set); }
+
 }  // namespace
 
 absl::StatusOr<std::vector<int>> ParseCpuList(absl::string_view text) {
@@ -51,12 +55,17 @@ absl::StatusOr<std::vector<int>> ParseCpuList(absl::string_view text) {
 }
 
 std::vector<int> AllowedCpus() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
+  // Sized for the machine: a fixed cpu_set_t (CPU_SETSIZE) is refused
+  // (EINVAL) by a kernel configured for more CPUs.
+  const int count = std::max<int>(CPU_SETSIZE, static_cast<int>(sysconf(_SC_NPROCESSORS_CONF)));
+  std::unique_ptr<cpu_set_t, decltype(&CpuFree)> set(CPU_ALLOC(count), &CpuFree);
+  const size_t bytes = CPU_ALLOC_SIZE(count);
   std::vector<int> cpus;
-  if (sched_getaffinity(0, sizeof(set), &set) != 0) return cpus;
-  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
-    if (CPU_ISSET(cpu, &set)) cpus.push_back(cpu);
+  if (set == nullptr) return cpus;
+  CPU_ZERO_S(bytes, set.get());
+  if (sched_getaffinity(0, bytes, set.get()) != 0) return cpus;
+  for (int cpu = 0; cpu < count; ++cpu) {
+    if (CPU_ISSET_S(cpu, bytes, set.get())) cpus.push_back(cpu);
   }
   return cpus;
 }

@@ -17,12 +17,14 @@
 namespace hs {
 
 /// CPU numbers written as `taskset -c` and /sys/devices/system/cpu/online
-/// write them: numbers and ranges, comma-separated ("0", "2-3", "0,4-5").
+/// write them: numbers and ranges, comma-separated ("0", "2-3", "0,4-5");
+/// no strides (taskset's "0-8:2").
 /// Sorted, each once. INVALID_ARGUMENT when empty, malformed, a range
 /// backwards or a number past the kernel's CPU set (CPU_SETSIZE).
 absl::StatusOr<std::vector<int>> ParseCpuList(absl::string_view text);
 
-/// The CPUs this process may run on (sched_getaffinity), sorted.
+/// The CPUs this process may run on (sched_getaffinity), sorted; empty
+/// when the system does not say.
 std::vector<int> AllowedCpus();
 
 /// INVALID_ARGUMENT unless `cpus` is non-empty and each is one this

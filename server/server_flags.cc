@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <thread>
 
 #include "CLI/CLI.hpp"
 #include "absl/strings/numbers.h"
@@ -95,14 +96,22 @@ void AddLimitFlags(CLI::App& app, ServerLimits& limits) {
 // has more tools than that busy.
 int DefaultThreadsPerScene(size_t cpus) { return static_cast<int>(std::clamp<size_t>(cpus, 1, 4)); }
 
+// The CPUs the process may run on, or the machine's when the system does
+// not say.
+size_t UsableCpuCount() {
+  const size_t allowed = AllowedCpus().size();
+  return allowed > 0 ? allowed : std::thread::hardware_concurrency();
+}
+
 // How scenes are stepped: CPUs, threads, scheduling, silent devices.
 void AddSteppingFlags(CLI::App& app, ServerFlags& flags, std::string& cpus) {
   ServerLimits& limits = flags.server.limits;
   app.add_option("--cpus", cpus,
-                 "Run the server on these CPUs only, as taskset -c writes them (0,2-3): "
+                 "Run the server on these CPUs only, numbers and ranges as taskset -c writes them "
+                 "(0,2-3): "
                  "threads that wake one another on one CPU cost less than across CPUs. "
                  "Default: every CPU it may use");
-  limits.threads_per_scene = DefaultThreadsPerScene(AllowedCpus().size());
+  limits.threads_per_scene = DefaultThreadsPerScene(UsableCpuCount());
   app.add_option("--threads-per-scene", limits.threads_per_scene,
                  "Threads that step one scene's tools at once (default: one per CPU the server "
                  "runs on, up to 4)")
@@ -156,8 +165,13 @@ bool ReadCpus(const CLI::App& app, const std::string& text, ServerFlags& flags, 
     return false;
   }
   flags.cpus = *std::move(cpus);
+  int& threads = flags.server.limits.threads_per_scene;
   if (app.count("--threads-per-scene") == 0) {
-    flags.server.limits.threads_per_scene = DefaultThreadsPerScene(flags.cpus.size());
+    threads = DefaultThreadsPerScene(flags.cpus.size());
+  } else if (static_cast<size_t>(threads) > flags.cpus.size()) {
+    err << "haptic-server: warning: --threads-per-scene " << threads << " on " << flags.cpus.size()
+        << " CPU(s) of --cpus: the threads past one a CPU only add "
+        << "wake-ups\n";
   }
   return true;
 }

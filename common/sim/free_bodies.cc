@@ -223,7 +223,7 @@ void FreeBodies::KeepEightPoints(const Vector3d& n) {
   FaceTangents(n, t1, t2);
   const std::array<Vector3d, 8> directions = {t1,      -t1,     t2,       -t2,
                                               t1 + t2, t1 - t2, -t1 + t2, -t1 - t2};
-  std::array<int, 8> picked;
+  std::array<int, directions.size()> picked;
   int unique = 0;
   for (const Vector3d& d : directions) {
     int best = 0;
@@ -232,7 +232,7 @@ void FreeBodies::KeepEightPoints(const Vector3d& n) {
         best = static_cast<int>(i);
       }
     }
-    // Kept sorted as picked (an insertion into at most 7), so that the
+    // Kept sorted as picked (an insertion into at most 7 picks), so that the
     // copies below never overwrite a point still to be copied.
     const auto end = picked.begin() + unique;
     const auto at = std::lower_bound(picked.begin(), end, best);

@@ -130,9 +130,19 @@ TEST(ServerFlagsTest, CpusSetTheThreadsDefault) {
   EXPECT_EQ(one.parsed.flags->cpus, std::vector<int>{allowed.front()});
   EXPECT_EQ(one.parsed.flags->server.limits.threads_per_scene, 1);
 
+  // More threads than CPUs: as asked, with a warning.
   const Outcome given = Parse({"--threads-per-scene", "3", "--cpus", first});
   ASSERT_TRUE(given.parsed.flags) << given.err;
   EXPECT_EQ(given.parsed.flags->server.limits.threads_per_scene, 3);
+  EXPECT_NE(given.err.find("warning: --threads-per-scene 3 on 1 CPU"), std::string::npos)
+      << given.err;
+
+  if (allowed.size() >= 3) {
+    const Outcome two =
+        Parse({"--cpus", std::to_string(allowed[0]) + "," + std::to_string(allowed[2])});
+    ASSERT_TRUE(two.parsed.flags) << two.err;
+    EXPECT_EQ(two.parsed.flags->server.limits.threads_per_scene, 2);
+  }
 
   std::string every;
   for (const int cpu : allowed) every = std::to_string(cpu) + (every.empty() ? "" : ",") + every;
