@@ -50,6 +50,9 @@ struct LoadReport {
   /// What each device asked the scene for.
   EffectSet needs;
   bool tools_meet = false;
+  /// Tool pairs in contact where they start (start_contacts.h); -1 when
+  /// not known.
+  int tools_touching_at_start = -1;
   double load_average_1m = -1;
   /// Device streams: overall (round trips pooled, counts summed) and each.
   StreamReport devices;

@@ -17,6 +17,7 @@
 #include "client/loadtest/echo_stream.h"
 #include "client/loadtest/process_cpu.h"
 #include "client/loadtest/server_cpu.h"
+#include "client/loadtest/start_contacts.h"
 #include "client/loadtest/stream_runner.h"
 #include "client/loadtest/turn_cpu.h"
 #include "client/loadtest/viewer_stream.h"
@@ -64,6 +65,7 @@ absl::StatusOr<pb::SceneSpec> RunSceneSpec(const LoadtestOptions& options, LoadR
   if (!spec.ok()) return spec.status();
   if (options.step_s > 0) spec->set_step_s(options.step_s);
   report.step_s = spec->step_s() > 0 ? spec->step_s() : SceneOptions{}.step_s;
+  report.tools_touching_at_start = ToolPairsTouchingAtStart(*spec, options.scene_dir);
   return spec;
 }
 

@@ -1,5 +1,6 @@
 #include "client/loadtest/loadtest_command.h"
 
+#include <filesystem>
 #include <iostream>
 
 #include "client/exit_codes.h"
@@ -22,6 +23,7 @@ int RunLoadtestCommand(const LoadtestArgs& args, std::ostream& out, std::ostream
     absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(args.scene_file);
     if (!spec.ok()) return ReportError("loadtest", spec.status(), err);
     options.scene = *std::move(spec);
+    options.scene_dir = std::filesystem::path(args.scene_file).parent_path().string();
   }
   if (absl::Status s = CheckLoadtestOptions(options); !s.ok()) {
     ReportError("loadtest", s, err);

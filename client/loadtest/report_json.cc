@@ -53,6 +53,7 @@ std::string LoadReportJson(const LoadReport& r) {
                                  {"missed_steps_off_cpu", r.missed_steps_off_cpu},
                                  {"missed_fraction", r.missed_fraction},
                                  {"tools_meet", r.tools_meet},
+                                 {"tools_touching_at_start", r.tools_touching_at_start},
                                  {"tool_clashes", r.tool_clashes},
                                  {"tool_clash_s", r.tool_clash_s},
                                  {"p99_ratio", r.p99_ratio},

@@ -38,6 +38,11 @@ void PrintLoadReport(const LoadReport& r, std::ostream& out) {
       << r.step_ms.p99 << ", max " << r.step_ms.max << "\n";
   out << "tools " << (r.tools_meet ? "meet in pairs" : "apart") << ": " << r.tool_clashes
       << " clashes, touching " << r.tool_clash_s << " s\n";
+  if (r.tools_touching_at_start > 0) {
+    out << "WARNING: " << r.tools_touching_at_start
+        << " tool pairs touch where they start: every step computes their contacts (fewer "
+           "clients fit the scene apart)\n";
+  }
   if (r.echo_run) {
     out << "echo (turns with the devices): " << r.echo_request_bytes << " B requests, "
         << r.echo_reply_bytes << " B replies; p99 ratio devices/echo " << r.p99_ratio

@@ -46,6 +46,7 @@ TEST(ReportJsonTest, FieldsAndValues) {
                                              "missed_steps_off_cpu",
                                              "missed_fraction",
                                              "tools_meet",
+                                             "tools_touching_at_start",
                                              "tool_clashes",
                                              "tool_clash_s",
                                              "p99_ratio",
@@ -63,6 +64,7 @@ TEST(ReportJsonTest, FieldsAndValues) {
   EXPECT_EQ(json["devices"]["rtt_ms"]["p99_9"], 1.25);
   EXPECT_EQ(json["server_cpu_percent_per_device"], 15);
   EXPECT_EQ(json["server_cpu_source"], "/proc/9/stat");
+  EXPECT_EQ(json["tools_touching_at_start"], -1);  // not known
 }
 
 // A stream's object has its counts and its round-trip percentiles.

@@ -31,13 +31,19 @@ TEST(ReportTextTest, Lines) {
   EXPECT_TRUE(Has(text, "  device 1")) << text;
   EXPECT_FALSE(Has(text, "echo (turns")) << text;
   EXPECT_TRUE(Has(text, "server 30.000, 15.000 per device (/proc/9/stat)")) << text;
-  EXPECT_FALSE(Has(text, "hypervisor")) << text;  // unknown: -1
+  EXPECT_FALSE(Has(text, "hypervisor")) << text;              // unknown: -1
+  EXPECT_FALSE(Has(text, "touch where they start")) << text;  // unknown: -1
   r.echo_run = true;
   r.machine_steal_ms = 2;
   std::ostringstream with_echo;
   PrintLoadReport(r, with_echo);
   EXPECT_TRUE(Has(with_echo.str(), "echo (turns with the devices)")) << with_echo.str();
   EXPECT_TRUE(Has(with_echo.str(), "hypervisor: 2.000 ms")) << with_echo.str();
+  r.tools_touching_at_start = 3;
+  std::ostringstream touching;
+  PrintLoadReport(r, touching);
+  EXPECT_TRUE(Has(touching.str(), "WARNING: 3 tool pairs touch where they start"))
+      << touching.str();
 }
 
 }  // namespace
