@@ -562,10 +562,7 @@ void RegisterAll() {
 }  // namespace hs
 
 int main(int argc, char** argv) {
-  if (std::string error; !hs::TakeSimdMaxFlag(argc, argv, error)) {
-    std::cerr << error << "\n";
-    return 2;
-  }
+  if (!hs::TakeSimdMaxFlag(argc, argv, std::cerr)) return 2;
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   hs::RegisterAll();

@@ -1,6 +1,7 @@
 #include "tests/bench/simd_max_flag.h"
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -8,7 +9,7 @@
 
 namespace hs {
 
-bool TakeSimdMaxFlag(int& argc, char** argv, std::string& error) {
+bool TakeSimdMaxFlag(int& argc, char** argv, std::ostream& err) {
   constexpr std::string_view kFlag = "--simd_max=";
   int kept = 1;
   std::string_view name;
@@ -31,7 +32,7 @@ bool TakeSimdMaxFlag(int& argc, char** argv, std::string& error) {
     }
     names += std::string(names.empty() ? "" : ", ") + hwy::TargetName(target);
   }
-  error = "--simd_max: " + std::string(name) + " is not a target this machine runs (" + names + ")";
+  err << "--simd_max: " << name << " is not a target this machine runs (" << names << ")\n";
   return false;
 }
 

@@ -4,15 +4,16 @@
 // times its targets against each other, and valgrind, which runs no
 // AVX-512, can count instructions on a machine that has it.
 
-#include <string>
+#include <ostream>
 
 namespace hs {
 
 /// Takes `--simd_max=NAME` (a target this machine runs: AVX3, AVX2, SSE4,
 /// ...) out of argv, leaving the other arguments in order, and keeps
-/// Highway from dispatching to any better target. False with `error` set
-/// (the names this machine runs) when NAME is none of them; true and
-/// nothing changed when the flag is absent.
-bool TakeSimdMaxFlag(int& argc, char** argv, std::string& error);
+/// Highway from dispatching to any better target. False, with a line on
+/// `err` naming the targets this machine runs, when NAME is none of them
+/// (a bench's main then exits 2); true and nothing changed when the flag
+/// is absent.
+bool TakeSimdMaxFlag(int& argc, char** argv, std::ostream& err);
 
 }  // namespace hs

@@ -229,10 +229,7 @@ void Register() {
 }  // namespace hs
 
 int main(int argc, char** argv) {
-  if (std::string error; !hs::TakeSimdMaxFlag(argc, argv, error)) {
-    std::cerr << error << "\n";
-    return 2;
-  }
+  if (!hs::TakeSimdMaxFlag(argc, argv, std::cerr)) return 2;
   hs::Register();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
