@@ -23,11 +23,6 @@
 HWY_BEFORE_NAMESPACE();
 namespace hs {
 namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-
-using D = hn::ScalableTag<double>;
-using V = hn::Vec<D>;
-using M = hn::Mask<D>;
 
 // A PlacedFace as doubles: corners 0-8, normal 9-11, then its box.
 constexpr int64_t kFaceDoubles = sizeof(PlacedFace) / sizeof(double);

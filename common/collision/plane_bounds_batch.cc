@@ -21,11 +21,6 @@
 HWY_BEFORE_NAMESPACE();
 namespace hs {
 namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-
-using D = hn::ScalableTag<double>;
-using V = hn::Vec<D>;
-using M = hn::Mask<D>;
 
 // The faces of one batch, a lane each: corner k's coordinates.
 struct Corners {

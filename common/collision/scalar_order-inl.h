@@ -18,22 +18,21 @@
 HWY_BEFORE_NAMESPACE();
 namespace hs {
 namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// The lanes the batched kernels work in: doubles, as many as the target
+/// holds, a face or face pair each.
+using D = hn::ScalableTag<double>;
+using V = hn::Vec<D>;
+using M = hn::Mask<D>;
 
 /// std::min(a, b) and std::max(a, b), lane by lane, NaNs and signed zeros
 /// included.
-template <class V>
-HWY_INLINE V MinOf(V a, V b) {
-  return hwy::HWY_NAMESPACE::IfThenElse(hwy::HWY_NAMESPACE::Lt(b, a), b, a);
-}
-template <class V>
-HWY_INLINE V MaxOf(V a, V b) {
-  return hwy::HWY_NAMESPACE::IfThenElse(hwy::HWY_NAMESPACE::Lt(a, b), b, a);
-}
+HWY_INLINE V MinOf(V a, V b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
+HWY_INLINE V MaxOf(V a, V b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }
 
 /// Eigen's dot product (and squared norm) of 3-vectors, in its order.
-template <class V>
 HWY_INLINE V Dot(V ax, V ay, V az, V bx, V by, V bz) {
-  namespace hn = hwy::HWY_NAMESPACE;
   return hn::Add(hn::Add(hn::Mul(ax, bx), hn::Mul(ay, by)), hn::Mul(az, bz));
 }
 
