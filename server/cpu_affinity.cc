@@ -9,6 +9,8 @@
 #include <memory>
 #include <string>
 
+#include "absl/algorithm/container.h"
+#include "absl/strings/ascii.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
@@ -21,9 +23,7 @@ namespace {
 // (libnuma, hwloc) would be a dependency for a dozen lines.
 absl::StatusOr<int> ParseCpu(absl::string_view text, absl::string_view list) {
   int cpu = -1;
-  const bool digits_only = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
-    return c >= '0' && c <= '9';
-  });
+  const bool digits_only = !text.empty() && absl::c_all_of(text, absl::ascii_isdigit);
   if (!digits_only || !absl::SimpleAtoi(text, &cpu) || cpu >= CPU_SETSIZE) {
     return absl::InvalidArgumentError(absl::StrCat(
         "'", list, "' is no CPU list: '", text, "' is no CPU number (0 to ", CPU_SETSIZE - 1, ")"));

@@ -108,8 +108,7 @@ void AddSteppingFlags(CLI::App& app, ServerFlags& flags, std::string& cpus) {
   ServerLimits& limits = flags.server.limits;
   app.add_option("--cpus", cpus,
                  "Run the server on these CPUs only, numbers and ranges as taskset -c writes them "
-                 "(0,2-3): "
-                 "threads that wake one another on one CPU cost less than across CPUs. "
+                 "(0,2-3): threads that wake one another on one CPU cost less than across CPUs. "
                  "Default: every CPU it may use");
   limits.threads_per_scene = DefaultThreadsPerScene(UsableCpuCount());
   app.add_option("--threads-per-scene", limits.threads_per_scene,
@@ -170,8 +169,7 @@ bool ReadCpus(const CLI::App& app, const std::string& text, ServerFlags& flags, 
     threads = DefaultThreadsPerScene(flags.cpus.size());
   } else if (static_cast<size_t>(threads) > flags.cpus.size()) {
     err << "haptic-server: warning: --threads-per-scene " << threads << " on " << flags.cpus.size()
-        << " CPU(s) of --cpus: the threads past one a CPU only add "
-        << "wake-ups\n";
+        << " CPU(s) of --cpus: the threads past one a CPU only add wake-ups\n";
   }
   return true;
 }

@@ -35,8 +35,8 @@ struct LoadtestOptions {
   /// axis. Unset: the built-in demo (a ~9,200-triangle torus on a table, a
   /// 2 cm cube probe above the ring), as scenes/probe_on_torus.textproto.
   std::optional<haptics::v1::SceneSpec> scene;
-  /// The folder `scene`'s relative model paths are read from here, to see
-  /// whether its tools touch at the start (start_contacts.h).
+  /// The folder of `scene`'s file: its relative model paths are read from
+  /// there to see whether its tools touch at the start (start_contacts.h).
   std::string scene_dir;
   /// The scene's step length, seconds, in [1e-4, 1] (1e-4: 10 kHz);
   /// 0: the scene's own.

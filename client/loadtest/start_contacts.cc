@@ -1,5 +1,6 @@
 #include "client/loadtest/start_contacts.h"
 
+#include "absl/algorithm/container.h"
 #include "common/api/scene_file.h"
 
 namespace hs::cli {
@@ -8,9 +9,8 @@ int ToolPairsTouchingAtStart(const haptics::v1::SceneSpec& spec, const std::stri
   absl::StatusOr<LoadedScene> loaded = BuildScene(spec, base_dir);
   if (!loaded.ok()) return -1;
   const StepFrame& frame = loaded->scene->Step();
-  int touching = 0;
-  for (const ToolClash& clash : frame.clashes) touching += clash.touching ? 1 : 0;
-  return touching;
+  return static_cast<int>(
+      absl::c_count_if(frame.clashes, [](const ToolClash& clash) { return clash.touching; }));
 }
 
 }  // namespace hs::cli
