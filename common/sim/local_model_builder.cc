@@ -13,11 +13,19 @@ namespace {
 
 // Kept between steps (common/core/scratch.h): the tool's features near
 // an object at the proxy pose, and the candidate planes of a model.
+// An edge's length and the length of its `out`, each taken once per search
+// rather than once per pair the edge is tested in.
+struct EdgeLengths {
+  double edge_m, out;
+};
+EdgeLengths LengthsOf(const WorldEdge& e) { return {(e.to - e.from).norm(), e.out.norm()}; }
+
 struct PlacedTool {
   std::vector<Vector3d> vertices;
   std::vector<WorldFace> faces;
   std::vector<FaceId> face_ids;
   std::vector<WorldEdge> edges;
+  std::vector<EdgeLengths> edge_lengths;
 };
 struct CandidatePlanes {
   std::vector<ConstraintPlane> planes;
@@ -205,7 +213,11 @@ void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures
     placed.face_ids.push_back(g);
   }
   placed.edges.clear();
-  for (const EdgeId e : near.edges) placed.edges.push_back(PlaceEdge(at_proxy, e, normals));
+  placed.edge_lengths.clear();
+  for (const EdgeId e : near.edges) {
+    placed.edges.push_back(PlaceEdge(at_proxy, e, normals));
+    placed.edge_lengths.push_back(LengthsOf(placed.edges.back()));
+  }
 }
 
 // Where point `p` falls on `face` along its normal (`foot`), and how far in
@@ -280,25 +292,29 @@ double SegmentSlack(double lu, double lv) { return 1e-7 * (lu + lv); }
 // lines' distance changes by at most twice the margin. Edges within four
 // turns of parallel are kept whenever they are near enough: their normal
 // may turn any way. Without a margin, the test itself.
-bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_m, double turn,
+bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, const WorldEdge& o,
+                          const EdgeLengths& o_lengths, double margin_m, double turn,
                           double radius_m, double behind_m, double& apart_m) {
   const Vector3d u = t.to - t.from, v = o.to - o.from;
-  const double lu = u.norm(), lv = v.norm();
+  const double lu = t_lengths.edge_m, lv = o_lengths.edge_m;
   // Last, as the dearest test: the edges' distance.
-  auto near_enough = [&] {
-    apart_m = SegmentDistance(t.from, t.to, o.from, o.to);
+  auto near_enough = [&](double distance_m) {
+    apart_m = distance_m;
     return apart_m <= std::max(radius_m, behind_m) + margin_m + SegmentSlack(lu, lv);
+  };
+  auto segments_near_enough = [&] {
+    return near_enough(SegmentDistance(t.from, t.to, o.from, o.to));
   };
   if (margin_m == 0) {
     ConstraintPlane plane;
     return EdgePairPlane(t, o, plane) && plane.gap_m >= -behind_m && plane.gap_m <= radius_m &&
-           near_enough();
+           segments_near_enough();
   }
   const double lines_m = std::max(radius_m, behind_m) + 2 * margin_m;
   const Vector3d n = u.cross(v);
   const double length = n.norm();
   const double sine = length / (lu * lv);
-  if (!(sine > 4 * turn + 1e-9)) return near_enough();
+  if (!(sine > 4 * turn + 1e-9)) return segments_near_enough();
   // The cheap tests first: the lines' distance, where their closest points
   // fall, then which way the normal may point.
   const Vector3d w = t.from - o.from;
@@ -311,23 +327,36 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const WorldEdge& o, double margin_
     return false;
   }
   const double turned = 2 * turn / sine;
-  const double out_o = o.out.norm(), out_t = t.out.norm();
+  const double out_o = o_lengths.out, out_t = t_lengths.out;
   if (!(out_o > 0 && out_t > 0)) return false;
   const double along_o = n.dot(o.out) / (length * out_o), along_t = n.dot(t.out) / (length * out_t);
   const bool either = (along_o >= -turned && along_t <= turned + turn) ||
                       (-along_o >= -turned && -along_t <= turned + turn);
-  return either && near_enough();
+  if (!either) return false;
+  if (a >= 0 && a <= 1 && b >= 0 && b <= 1) {
+    // The lines' closest points lie on both edges: the edges' distance is
+    // the lines'.
+    return near_enough(std::abs(n.dot(w)) / length);
+  }
+  return segments_near_enough();
 }
 
 // Which of a set of boxes (world frame) may meet a query box: a uniform
 // grid of cells, each listing the boxes that meet it, kept between
-// searches (common/core/scratch.h) so that it stops allocating.
+// searches (common/core/scratch.h) so that it stops allocating. For a few
+// queries the grid costs more to build than it saves: each query then
+// tests every box.
 class BoxGrid {
  public:
   // Bins `boxes` (kept by reference until the next Build) in cells of side
-  // `cell_m` at least, no more cells than a few per box.
-  void Build(const std::vector<AlignedBox3d>& boxes, double cell_m) {
+  // `cell_m` at least, no more cells than a few per box, for `queries`
+  // queries to come.
+  void Build(const std::vector<AlignedBox3d>& boxes, double cell_m, size_t queries) {
     boxes_ = &boxes;
+    // Binning a box costs about as much as testing it against a few
+    // dozen queries (step_bench's remote_device, 2026-11-30).
+    every_box_ = queries <= kEveryBoxQueries;
+    if (every_box_) return;
     AlignedBox3d bounds;
     for (const AlignedBox3d& box : boxes) {
       if (!box.isEmpty()) bounds.extend(box);
@@ -382,6 +411,12 @@ class BoxGrid {
   // particular order.
   template <typename Visit>
   void ForEachMeeting(const AlignedBox3d& query, Visit&& visit) {
+    if (every_box_) {
+      for (size_t k = 0; k < boxes_->size(); ++k) {
+        if ((*boxes_)[k].intersects(query)) visit(static_cast<int>(k));
+      }
+      return;
+    }
     int lo[3], hi[3];
     if (start_.empty() || !Cells(query, lo, hi)) return;
     if (++stamp_ == 0) {  // wrapped: forget every mark
@@ -420,7 +455,9 @@ class BoxGrid {
     return true;
   }
 
+  static constexpr size_t kEveryBoxQueries = 24;
   const std::vector<AlignedBox3d>* boxes_ = nullptr;
+  bool every_box_ = false;
   Vector3d origin_ = Vector3d::Zero();
   double inv_cell_ = 1;
   int n_[3] = {1, 1, 1};
@@ -473,6 +510,7 @@ struct ObjectSide {
   std::vector<Vector3d> points;
   std::vector<VertexId> point_ids;
   std::vector<WorldEdge> edges;
+  std::vector<EdgeLengths> edge_lengths;
   std::vector<EdgeId> edge_ids;
   double longest_m = 0;  // the longest of `edges`
   std::vector<AlignedBox3d> boxes;
@@ -485,6 +523,7 @@ struct ObjectSide {
     points.clear();
     point_ids.clear();
     edges.clear();
+    edge_lengths.clear();
     edge_ids.clear();
     longest_m = 0;
     boxes.clear();
@@ -743,7 +782,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
           FootBox(face, behind + margin_m, within, margin_m, pad).intersection(tool_vertices));
     }
     side.material.assign(side.faces.size(), -1);
-    side.grid.Build(side.boxes, within);
+    side.grid.Build(side.boxes, within, placed.vertices.size());
     for (size_t i = 0; i < placed.vertices.size(); ++i) {
       const Vector3d& v = placed.vertices[i];
       side.grid.ForEachMeeting(AlignedBox3d(v, v), [&](int j) {
@@ -764,7 +803,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
       side.boxes.emplace_back(q, q);
     }
     side.material.assign(side.points.size(), -1);
-    side.grid.Build(side.boxes, within);
+    side.grid.Build(side.boxes, within, placed.faces.size());
     for (size_t i = 0; i < placed.faces.size(); ++i) {
       const WorldFace& face = placed.faces[i];
       side.grid.ForEachMeeting(FootBox(face, behind + margin_m, within, margin_m, pad), [&](int j) {
@@ -783,20 +822,23 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
       const AlignedBox3d box = SegmentBox(edge.from, edge.to);
       if (!box.intersects(near)) continue;
       side.edges.push_back(edge);
+      side.edge_lengths.push_back(LengthsOf(edge));
       side.edge_ids.push_back(e);
       side.boxes.push_back(box);
-      side.longest_m = std::max(side.longest_m, (edge.to - edge.from).norm());
+      side.longest_m = std::max(side.longest_m, side.edge_lengths.back().edge_m);
     }
     side.material.assign(side.edges.size(), -1);
-    side.grid.Build(side.boxes, within);
+    side.grid.Build(side.boxes, within, placed.edges.size());
     for (size_t i = 0; i < placed.edges.size(); ++i) {
       const WorldEdge& g = placed.edges[i];
-      const double reach = edge_reach + SegmentSlack((g.to - g.from).norm(), side.longest_m) + pad;
+      const EdgeLengths& g_lengths = placed.edge_lengths[i];
+      const double reach = edge_reach + SegmentSlack(g_lengths.edge_m, side.longest_m) + pad;
       side.grid.ForEachMeeting(GrowBox(SegmentBox(g.from, g.to), reach), [&](int j) {
         const WorldEdge& edge = side.edges[j];
+        const EdgeLengths& edge_lengths = side.edge_lengths[j];
         double apart_m;
-        if (!EdgePairMayGivePlane(g, edge, margin_m, margin_m / pairs.lever_m, radius_m, behind,
-                                  apart_m)) {
+        if (!EdgePairMayGivePlane(g, g_lengths, edge, edge_lengths, margin_m,
+                                  margin_m / pairs.lever_m, radius_m, behind, apart_m)) {
           return;
         }
         const EdgeId e = side.edge_ids[j];
@@ -804,8 +846,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
             {tool_near.edges[i], edge,
              MaterialIndex(*o.object, o.object->EdgeFaces(e).front(), ids[k], pairs,
                            side.material[j]),
-             apart_m - SegmentSlack((g.to - g.from).norm(), (edge.to - edge.from).norm()) -
-                 behind});
+             apart_m - SegmentSlack(g_lengths.edge_m, edge_lengths.edge_m) - behind});
       });
     }
   }
