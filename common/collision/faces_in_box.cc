@@ -17,20 +17,21 @@ struct NodeStack {
 
 // A box (half sides `half`, pose X_OB in the object frame) as a query on
 // volumes of kind BV. Volumes with an oriented culling box (OBB, OBBRSS)
-// are tested against the box itself; the other kinds against FCL's
-// conversion of it, which allocates.
+// are tested against the box itself, with the pair traversal's lean test
+// (obb_overlap.h: a bounding-sphere test first); the other kinds against
+// FCL's conversion of it, which allocates.
 template <typename BV>
 class BoxQuery {
  public:
   BoxQuery(const Vector3d& half, const fcl::Transform3d& X_OB) {
-    box_.axis = X_OB.linear();
-    box_.To = X_OB.translation();
-    box_.extent = half;
+    box_ = {
+        .axis = X_OB.linear(), .center = X_OB.translation(), .extent = half, .radius = half.norm()};
     if constexpr (!kOriented) fcl::computeBV(fcl::Boxd(2 * half), X_OB, converted_);
   }
   bool Meets(const BV& node) const {
     if constexpr (kOriented) {
-      return CullingBox(node).overlap(box_);
+      const fcl::OBBd& volume = CullingBox(node);
+      return !BoxesDisjoint(volume, volume.extent.norm(), box_);
     } else {
       return node.overlap(converted_);
     }
@@ -38,7 +39,7 @@ class BoxQuery {
 
  private:
   static constexpr bool kOriented = requires(const BV& bv) { CullingBox(bv); };
-  fcl::OBBd box_;
+  PlacedBox box_;
   BV converted_;
 };
 

@@ -24,6 +24,7 @@ constexpr int kMaxSubsteps = 256;
 // correctness needs: the fixed objects do not move, and a scene edit makes
 // a new scene). 0.1 to 0.15 cost least (docs/benchmarks.md).
 constexpr double kPairMarginFraction = 0.15;
+constexpr double kAheadFraction = 0.9;
 constexpr double kLongestSearchPeriodS = 1.0;
 
 // A model holds for every point within its validity radius of the proxy it
@@ -561,7 +562,14 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
                                           .friction = stages.Has(Effect::kFriction)};
     const double margin = kPairMarginFraction * radius_m;
     auto gather = [&](double reach_m) {
-      GatherLocalModelPairs(objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP, objects_.obstacles(),
+      // Gathered for a pose ahead of the proxy along its last move, so
+      // that the pairs serve it over twice the way a search about the
+      // proxy's own pose would, in the direction it goes.
+      Isometry3d X_ahead = proxy.X_WP;
+      const Vector3d move = proxy.X_WP.translation() - tool.X_WP.translation();
+      const double move_m = move.norm();
+      if (move_m > 0) X_ahead.translation() += (kAheadFraction * margin / move_m) * move;
+      GatherLocalModelPairs(objects_.Posed(tool.id, X_ahead), X_ahead, objects_.obstacles(),
                             objects_.obstacle_ids(), model_options, margin, reach_m,
                             scratch.model_pairs);
       scratch.steps_since_search = 0;
