@@ -288,10 +288,14 @@ double SegmentSlack(double lu, double lv) { return 1e-7 * (lu + lv); }
 // margin. Then EdgePairPlane's tests, each loosened by what such a move
 // may change. The plane's normal, across two edges at an angle whose
 // sine is s, turns by at most turn / s (twice that here); the closest
-// points slide along the edges by at most margin / s (thrice here); the
+// points slide along the edges by at most margin / s under a shift alone
+// (the lines' parameters change by the shift along u - (u.v) v over s^2,
+// a vector of length s), thrice that where the tool may turn too; the
 // lines' distance changes by at most twice the margin. Edges within four
 // turns of parallel are kept whenever they are near enough: their normal
-// may turn any way. Without a margin, the test itself.
+// may turn any way. A shift turns nothing, but the features placed at the
+// new pose round differently: the direction tests keep kRounding of room.
+// Without a margin, the test itself.
 bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, const WorldEdge& o,
                           const EdgeLengths& o_lengths, double margin_m, double turn,
                           double radius_m, double behind_m, double& apart_m) {
@@ -322,11 +326,12 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, cons
   const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
   const double det = uu * vv - uv * uv;
   const double a = (uv * vw - vv * uw) / det, b = (uu * vw - uv * uw) / det;
-  const double slide_m = 3 * margin_m / sine + 1e-9 * (lu + lv);
+  const double slide_m = (turn > 0 ? 3 : 1) * margin_m / sine + 1e-9 * (lu + lv);
   if (a < -slide_m / lu || a > 1 + slide_m / lu || b < -slide_m / lv || b > 1 + slide_m / lv) {
     return false;
   }
-  const double turned = 2 * turn / sine;
+  constexpr double kRounding = 1e-9;
+  const double turned = 2 * turn / sine + kRounding;
   const double out_o = o_lengths.out, out_t = t_lengths.out;
   if (!(out_o > 0 && out_t > 0)) return false;
   const double along_o = n.dot(o.out) / (length * out_o), along_t = n.dot(t.out) / (length * out_t);
@@ -708,6 +713,7 @@ double PlaneTouchTolerance(const HapticObject& tool) {
 }
 
 double LocalModelPairs::Moved(const Isometry3d& X_WP_now) const {
+  if (!turns && X_WP_now.linear() != X_WP.linear()) return std::numeric_limits<double>::infinity();
   return MovedBy(X_WP, X_WP_now, lever_m);
 }
 
@@ -715,13 +721,14 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                            const LocalModelOptions& options, double margin_m,
                            LocalModelPairs& pairs) {
-  GatherLocalModelPairs(tool, X_WP, obstacles, ids, options, margin_m, options.radius_m, pairs);
+  GatherLocalModelPairs(tool, X_WP, obstacles, ids, options, margin_m, options.radius_m,
+                        ProxyMoves::kAny, pairs);
 }
 
 void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                            const LocalModelOptions& options, double margin_m, double reach_m,
-                           LocalModelPairs& pairs) {
+                           ProxyMoves moves, LocalModelPairs& pairs) {
   const HapticObject& t = *tool.object;
   const double behind = PlaneTouchTolerance(t);
   // The gap the pairs are gathered for: the radius, or less.
@@ -733,10 +740,13 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   double gap;
   pairs.X_WP = X_WP;
   pairs.margin_m = margin_m;
+  pairs.turns = moves == ProxyMoves::kAny;
   // Every point of the tool is within Reach of its origin, and the objects'
   // features the pairs hold within `within` of the tool's box: each
   // coordinate within Reach + within of the origin.
   pairs.lever_m = std::sqrt(3.0) * (Reach(t) + within);
+  // The most the tool may turn while its features move by the margin.
+  const double turn = pairs.turns ? margin_m / pairs.lever_m : 0.0;
   pairs.obstacle_count = obstacles.size();
   pairs.materials.clear();
   pairs.vertex_faces.clear();
@@ -837,8 +847,8 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
         const WorldEdge& edge = side.edges[j];
         const EdgeLengths& edge_lengths = side.edge_lengths[j];
         double apart_m;
-        if (!EdgePairMayGivePlane(g, g_lengths, edge, edge_lengths, margin_m,
-                                  margin_m / pairs.lever_m, radius_m, behind, apart_m)) {
+        if (!EdgePairMayGivePlane(g, g_lengths, edge, edge_lengths, margin_m, turn, radius_m,
+                                  behind, apart_m)) {
           return;
         }
         const EdgeId e = side.edge_ids[j];

@@ -569,8 +569,12 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       const Vector3d move = proxy.X_WP.translation() - tool.X_WP.translation();
       const double move_m = move.norm();
       if (move_m > 0) X_ahead.translation() += (kAheadFraction * margin / move_m) * move;
+      // A proxy that did not turn in its last move is searched for shifts
+      // alone: fewer pairs, and the first turn searches again.
+      const ProxyMoves moves =
+          proxy.X_WP.linear() == tool.X_WP.linear() ? ProxyMoves::kShiftsOnly : ProxyMoves::kAny;
       GatherLocalModelPairs(objects_.Posed(tool.id, X_ahead), X_ahead, objects_.obstacles(),
-                            objects_.obstacle_ids(), model_options, margin, reach_m,
+                            objects_.obstacle_ids(), model_options, margin, reach_m, moves,
                             scratch.model_pairs);
       scratch.steps_since_search = 0;
       scratch.searched_radius_m = scratch.model_radius_m;

@@ -241,6 +241,10 @@ TEST(LocalModelBuilderTest, TranslationsThePlanesAllowMeetNothing) {
 Isometry3d MoveWithin(const LocalModelPairs& pairs, std::mt19937& rng, double margin) {
   std::uniform_real_distribution<double> unit(0, 1);
   Isometry3d X = pairs.X_WP;
+  if (!pairs.turns) {  // a shift alone, up to the whole margin
+    X.translation() += margin * unit(rng) * testing_poses::RandomDirection(rng);
+    return X;
+  }
   X.translation() += 0.5 * margin * unit(rng) * testing_poses::RandomDirection(rng);
   X.linear() = X.linear() * Eigen::AngleAxisd(0.5 * margin / pairs.lever_m * unit(rng),
                                               testing_poses::RandomDirection(rng))
@@ -253,8 +257,9 @@ Isometry3d MoveWithin(const LocalModelPairs& pairs, std::mt19937& rng, double ma
 // there makes, plane for plane and bit for bit (the same tests on the same
 // numbers); pairs gathered short of the radius make it too, or say they
 // cannot. A turned cube over a floor and beside a faceted ball, random
-// gather poses and moves, with and without a cap on the planes, searches
-// for the whole radius and for half of it.
+// gather poses and moves (with turns, and shifts alone for the pairs
+// gathered for those), with and without a cap on the planes, searches for
+// the whole radius and for half of it.
 TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
   const auto floor = Floor();
   const auto ball = MakeBody(MakeIcosphere(0.03, 2), At(0.035, 0, 0.03));
@@ -272,7 +277,8 @@ TEST(LocalModelBuilderTest, ModelsFromPairsAreTheSearchesWithinTheMargin) {
       X_WP.translation() += Vector3d(0, 0, 0.018);
       LocalModelPairs pairs;
       const double margin = 0.25 * kRadius;
-      GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, options, margin, reach, pairs);
+      const ProxyMoves moves = k % 2 == 0 ? ProxyMoves::kAny : ProxyMoves::kShiftsOnly;
+      GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, options, margin, reach, moves, pairs);
       for (int j = 0; j < 20; ++j) {
         const Isometry3d moved = MoveWithin(pairs, rng, margin);
         ASSERT_LE(pairs.Moved(moved), margin);
@@ -509,6 +515,14 @@ TEST(LocalModelBuilderTest, MovedIsTheShiftPlusTheTurnTimesTheLever) {
   moved.linear() = Eigen::AngleAxisd(0.01, Vector3d::UnitY()).toRotationMatrix();
   EXPECT_NEAR(pairs.Moved(moved), 0.005 + 0.01 * pairs.lever_m, 1e-12);
   EXPECT_FALSE(pairs.vertex_faces.empty());
+  // Pairs for shifts alone: a shift is its length, any turn too far.
+  GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, {.radius_m = kRadius}, 0.002, kRadius,
+                        ProxyMoves::kShiftsOnly, pairs);
+  EXPECT_FALSE(pairs.turns);
+  Isometry3d shifted = X_WP;
+  shifted.translation() += Vector3d(0.003, 0, 0.004);
+  EXPECT_NEAR(pairs.Moved(shifted), 0.005, 1e-15);
+  EXPECT_EQ(pairs.Moved(moved), std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
