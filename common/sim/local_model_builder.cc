@@ -11,15 +11,15 @@
 namespace hs {
 namespace {
 
-// Kept between steps (common/core/scratch.h): the tool's features near
-// an object at the proxy pose, and the candidate planes of a model.
-// An edge's length and the length of its `out`, each taken once per search
+// An edge's length and the norm of its `out`, each taken once per search
 // rather than once per pair the edge is tested in.
 struct EdgeLengths {
-  double edge_m, out;
+  double edge_m, out_norm;
 };
 EdgeLengths LengthsOf(const WorldEdge& e) { return {(e.to - e.from).norm(), e.out.norm()}; }
 
+// Kept between steps (common/core/scratch.h): the tool's features near
+// an object at the proxy pose, and the candidate planes of a model.
 struct PlacedTool {
   std::vector<Vector3d> vertices;
   std::vector<WorldFace> faces;
@@ -288,13 +288,15 @@ double SegmentSlack(double lu, double lv) { return 1e-7 * (lu + lv); }
 // margin. Then EdgePairPlane's tests, each loosened by what such a move
 // may change. The plane's normal, across two edges at an angle whose
 // sine is s, turns by at most turn / s (twice that here); the closest
-// points slide along the edges by at most margin / s under a shift alone
-// (the lines' parameters change by the shift along u - (u.v) v over s^2,
-// a vector of length s), thrice that where the tool may turn too; the
-// lines' distance changes by at most twice the margin. Edges within four
-// turns of parallel are kept whenever they are near enough: their normal
-// may turn any way. A shift turns nothing, but the features placed at the
-// new pose round differently: the direction tests keep kRounding of room.
+// points slide along the edges by at most margin / s under a shift d alone
+// (a |u| changes by d.(c v^ - u^) / s^2, with u^, v^ the unit edges and c
+// their cosine: a vector of length s), thrice that where the tool may turn
+// too; the lines' distance changes by at most twice the margin. Edges
+// within four turns of parallel (or a millionth of a radian) are kept
+// whenever they are near enough: their normal may turn any way. A shift
+// turns nothing, but the features placed at the new pose round
+// differently, and the normal across edges at a small angle turns by that
+// rounding over s: the direction tests keep kRounding / s of room.
 // Without a margin, the test itself.
 bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, const WorldEdge& o,
                           const EdgeLengths& o_lengths, double margin_m, double turn,
@@ -318,7 +320,7 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, cons
   const Vector3d n = u.cross(v);
   const double length = n.norm();
   const double sine = length / (lu * lv);
-  if (!(sine > 4 * turn + 1e-9)) return segments_near_enough();
+  if (!(sine > 4 * turn + 1e-6)) return segments_near_enough();
   // The cheap tests first: the lines' distance, where their closest points
   // fall, then which way the normal may point.
   const Vector3d w = t.from - o.from;
@@ -331,8 +333,8 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, cons
     return false;
   }
   constexpr double kRounding = 1e-9;
-  const double turned = 2 * turn / sine + kRounding;
-  const double out_o = o_lengths.out, out_t = t_lengths.out;
+  const double turned = (2 * turn + kRounding) / sine;
+  const double out_o = o_lengths.out_norm, out_t = t_lengths.out_norm;
   if (!(out_o > 0 && out_t > 0)) return false;
   const double along_o = n.dot(o.out) / (length * out_o), along_t = n.dot(t.out) / (length * out_t);
   const bool either = (along_o >= -turned && along_t <= turned + turn) ||
@@ -884,6 +886,7 @@ bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
   // plane left out then sorts after the last one kept: the model is the
   // one all the pairs make.
   const double moved = pairs.Moved(proxy.X_WP) + BoundSlack(proxy.X_WP, pairs.lever_m);
+  if (!std::isfinite(moved)) return false;  // turned, from pairs for shifts alone
   const double band = options.radius_m / 8;
   double from = -std::numeric_limits<double>::infinity();
   double to = moved + band;

@@ -138,8 +138,8 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
 /// from `pairs`: while `pairs.Moved(proxy.X_WP) <= pairs.margin_m`, the
 /// model BuildLocalModel makes there (its revision left as it was), and
 /// true. False when the pairs were gathered short of the radius and the
-/// model's farthest plane may lie beyond them (then `model` is not the
-/// search's: gather farther).
+/// model's farthest plane may lie beyond them, or for shifts alone and the
+/// proxy turned (then `model` is not the search's: gather again).
 bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
                     const LocalModelPairs& pairs, const LocalModelOptions& options,
                     LocalModel& model);

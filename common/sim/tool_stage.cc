@@ -24,6 +24,8 @@ constexpr int kMaxSubsteps = 256;
 // correctness needs: the fixed objects do not move, and a scene edit makes
 // a new scene). 0.1 to 0.15 cost least (docs/benchmarks.md).
 constexpr double kPairMarginFraction = 0.15;
+// How far ahead of the proxy a search is made, as a fraction of the
+// margin: the proxy must stay within the margin of that pose.
 constexpr double kAheadFraction = 0.9;
 constexpr double kLongestSearchPeriodS = 1.0;
 
@@ -563,8 +565,8 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
     const double margin = kPairMarginFraction * radius_m;
     auto gather = [&](double reach_m) {
       // Gathered for a pose ahead of the proxy along its last move, so
-      // that the pairs serve it over twice the way a search about the
-      // proxy's own pose would, in the direction it goes.
+      // that the pairs serve it over nearly twice the way a search about
+      // the proxy's own pose would, in the direction it goes.
       Isometry3d X_ahead = proxy.X_WP;
       const Vector3d move = proxy.X_WP.translation() - tool.X_WP.translation();
       const double move_m = move.norm();

@@ -200,6 +200,18 @@ int CheckHoldsOrganOut(const LocalModel& model, const LocalModel& built, const V
 // the slide, and the proxy rests on one of them. Between revisions the
 // proxy stays within a tenth of the 1 cm radius of the model's and,
 // touching, where it was.
+// A model built from kept pairs against one searched afresh at the same
+// step: plane for plane, bit for bit.
+void ExpectSamePlanes(const LocalModel& model, const LocalModel& searched, int step) {
+  EXPECT_EQ(model.validity_radius_m, searched.validity_radius_m) << step;
+  ASSERT_EQ(model.planes.size(), searched.planes.size()) << step;
+  for (size_t i = 0; i < model.planes.size(); ++i) {
+    EXPECT_EQ(model.planes[i].normal_W, searched.planes[i].normal_W) << step;
+    EXPECT_EQ(model.planes[i].gap_m, searched.planes[i].gap_m) << step;
+    EXPECT_EQ(model.planes[i].tool_point_W, searched.planes[i].tool_point_W) << step;
+  }
+}
+
 TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   constexpr double kRadius = 0.01;
   std::unique_ptr<Scene> kept = RemoteDeviceScene();
@@ -269,13 +281,7 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
     }
     ++built;
     last_built = model;
-    EXPECT_EQ(model.validity_radius_m, b.local_model.validity_radius_m) << step;
-    ASSERT_EQ(model.planes.size(), b.local_model.planes.size()) << step;
-    for (size_t i = 0; i < model.planes.size(); ++i) {
-      EXPECT_EQ(model.planes[i].normal_W, b.local_model.planes[i].normal_W) << step;
-      EXPECT_EQ(model.planes[i].gap_m, b.local_model.planes[i].gap_m) << step;
-      EXPECT_EQ(model.planes[i].tool_point_W, b.local_model.planes[i].tool_point_W) << step;
-    }
+    ExpectSamePlanes(model, b.local_model, step);
   }
   EXPECT_GT(held, 5) << "the path must hold models between revisions";
   EXPECT_GT(pressing, 5) << "the path must press with the proxy held";
@@ -283,6 +289,39 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   EXPECT_GT(built, 3) << "the slide must build models";
   EXPECT_GT(brute_forced, 20) << "the anchored models must be checked by brute force";
   EXPECT_EQ(kept->RequestLocalModel(0).code(), absl::StatusCode::kFailedPrecondition);
+}
+
+// A device that turns now and then: the pairs a proxy that did not turn
+// was searched for (shifts alone) must not serve the first turn after, and
+// those of a turn serve the shifts that follow. Down onto the crest and
+// along it, turning by 0.02 rad every third step: each model built
+// is the one a fresh search makes.
+TEST(ToolStageTest, BuiltModelsAreTheSearchedOnesWhenTheDeviceTurnsAtTimes) {
+  std::unique_ptr<Scene> kept = RemoteDeviceScene();
+  std::unique_ptr<Scene> searched = RemoteDeviceScene();
+  int built = 0, built_touching = 0;
+  uint64_t last_revision = 0;
+  double angle = 0;
+  for (int step = 0; step < 60; ++step) {
+    if (step % 3 == 2) angle += 2e-2;
+    const double z = 0.095 - 0.0005 * std::min(step, 30);
+    const double x = 0.1 - (step > 30 ? 0.0005 * (step - 30) : 0.0);
+    Isometry3d X = At(x, 0, z);
+    X.linear() = Eigen::AngleAxisd(angle, Vector3d(0.6, 0, 0.8)).toRotationMatrix();
+    ASSERT_TRUE(kept->SetDevicePose(2, X).ok());
+    ASSERT_TRUE(searched->SetDevicePose(2, X).ok());
+    ASSERT_TRUE(searched->RequestLocalModel(2).ok());
+    const LocalModel& model = kept->Step().tools[0].local_model;
+    const LocalModel& fresh = searched->Step().tools[0].local_model;
+    const bool new_model = model.revision != last_revision;
+    last_revision = model.revision;
+    if (!new_model || model.validity_radius_m < fresh.validity_radius_m) continue;  // anchored
+    ++built;
+    built_touching += model.touching;
+    ExpectSamePlanes(model, fresh, step);
+  }
+  EXPECT_GT(built, 20);
+  EXPECT_GT(built_touching, 10);
 }
 
 // Random presses and slides over the organ (fixed seeds): each model
