@@ -715,7 +715,9 @@ double PlaneTouchTolerance(const HapticObject& tool) {
 }
 
 double LocalModelPairs::Moved(const Isometry3d& X_WP_now) const {
-  if (!turns && X_WP_now.linear() != X_WP.linear()) return std::numeric_limits<double>::infinity();
+  if (moves == ProxyMoves::kShiftsOnly && X_WP_now.linear() != X_WP.linear()) {
+    return std::numeric_limits<double>::infinity();
+  }
   return MovedBy(X_WP, X_WP_now, lever_m);
 }
 
@@ -742,13 +744,13 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   double gap;
   pairs.X_WP = X_WP;
   pairs.margin_m = margin_m;
-  pairs.turns = moves == ProxyMoves::kAny;
+  pairs.moves = moves;
   // Every point of the tool is within Reach of its origin, and the objects'
   // features the pairs hold within `within` of the tool's box: each
   // coordinate within Reach + within of the origin.
   pairs.lever_m = std::sqrt(3.0) * (Reach(t) + within);
   // The most the tool may turn while its features move by the margin.
-  const double turn = pairs.turns ? margin_m / pairs.lever_m : 0.0;
+  const double turn = moves == ProxyMoves::kAny ? margin_m / pairs.lever_m : 0.0;
   pairs.obstacle_count = obstacles.size();
   pairs.materials.clear();
   pairs.vertex_faces.clear();

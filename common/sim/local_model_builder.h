@@ -30,6 +30,12 @@ struct WorldEdge {
   Vector3d from, to, out;
 };
 
+/// What moves of the proxy from where pairs are gathered they must serve:
+/// any within the margin, or only those without a turn. A turn moves the
+/// edges' closest points and their planes' normals more than a shift does,
+/// so a search for shifts alone keeps fewer edge pairs.
+enum class ProxyMoves { kAny, kShiftsOnly };
+
 /// The pairs of features of a tool and the fixed objects near it (a tool
 /// vertex and an object face, an object vertex and a tool face, a tool edge
 /// and an object edge) that may give a plane of the tool's local model while
@@ -68,9 +74,9 @@ struct LocalModelPairs {
   double complete_m = 0;
   /// The arm a turn of the tool moves the features by (Moved).
   double lever_m = 0;
-  /// Whether they serve a proxy that turned from X_WP, or only one that
-  /// moved without turning (Moved is then infinite for any turn).
-  bool turns = true;
+  /// The moves they serve: with kShiftsOnly, Moved is infinite for any
+  /// turn from X_WP.
+  ProxyMoves moves = ProxyMoves::kAny;
   /// How many fixed objects there were.
   size_t obstacle_count = 0;
   /// Object id and face material of the pairs' planes (their other fields
@@ -84,7 +90,7 @@ struct LocalModelPairs {
   /// other with the proxy at X_WP instead of where they were gathered: the
   /// shift of the origin and the turn times the lever (the farthest point
   /// of the tool or of an object feature within the radius of it, from the
-  /// tool's origin); infinite for a turned pose when they do not `turn`.
+  /// tool's origin); infinite for a turned pose when they serve shifts only.
   double Moved(const Isometry3d& X_WP) const;
 };
 
@@ -117,12 +123,6 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
                            std::span<const PosedObject> obstacles, std::span<const ObjectId> ids,
                            const LocalModelOptions& options, double margin_m,
                            LocalModelPairs& pairs);
-
-/// What moves of the proxy from where pairs are gathered they must serve:
-/// any within the margin, or only those without a turn. A turn moves the
-/// edges' closest points and their planes' normals more than a shift does,
-/// so a search for shifts alone keeps fewer edge pairs.
-enum class ProxyMoves { kAny, kShiftsOnly };
 
 /// As above, but only the pairs that may give a plane with a gap up to
 /// `reach_m` (metres, in (0, options.radius_m]; the whole radius at or

@@ -241,7 +241,7 @@ TEST(LocalModelBuilderTest, TranslationsThePlanesAllowMeetNothing) {
 Isometry3d MoveWithin(const LocalModelPairs& pairs, std::mt19937& rng, double margin) {
   std::uniform_real_distribution<double> unit(0, 1);
   Isometry3d X = pairs.X_WP;
-  if (!pairs.turns) {  // a shift alone, up to the whole margin
+  if (pairs.moves == ProxyMoves::kShiftsOnly) {  // a shift alone, up to the whole margin
     X.translation() += margin * unit(rng) * testing_poses::RandomDirection(rng);
     return X;
   }
@@ -518,7 +518,7 @@ TEST(LocalModelBuilderTest, MovedIsTheShiftPlusTheTurnTimesTheLever) {
   // Pairs for shifts alone: a shift is its length, any turn too far.
   GatherLocalModelPairs(tool->posed(), X_WP, posed, ids, {.radius_m = kRadius}, 0.002, kRadius,
                         ProxyMoves::kShiftsOnly, pairs);
-  EXPECT_FALSE(pairs.turns);
+  EXPECT_EQ(pairs.moves, ProxyMoves::kShiftsOnly);
   Isometry3d shifted = X_WP;
   shifted.translation() += Vector3d(0.003, 0, 0.004);
   EXPECT_NEAR(pairs.Moved(shifted), 0.005, 1e-15);
