@@ -23,6 +23,12 @@ constexpr int kMaxSubsteps = 256;
 // farther or the search is older than the period below (which no
 // correctness needs: the fixed objects do not move, and a scene edit makes
 // a new scene). 0.1 to 0.15 cost least (docs/benchmarks.md).
+//
+// A touching proxy that did not turn gets no margin: it is given a new
+// model only when it has slid past kAnchorMoveFraction of the radius
+// (below), or off its model's planes, and pairs with a margin, dearer to
+// gather and to make models from, served few of those models
+// (step_bench's remote_device, 2026-11-30: docs/benchmarks.md).
 constexpr double kPairMarginFraction = 0.15;
 // How far ahead of the proxy a search is made, as a fraction of the
 // margin: the proxy must stay within the margin of that pose.
@@ -562,7 +568,12 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
     const LocalModelOptions model_options{.radius_m = radius_m,
                                           .force_clamp_n = options_.force_clamp_n,
                                           .friction = stages.Has(Effect::kFriction)};
-    const double margin = kPairMarginFraction * radius_m;
+    // A proxy that did not turn in its last move is searched for shifts
+    // alone: fewer pairs, and the first turn searches again.
+    const ProxyMoves moves =
+        proxy.X_WP.linear() == tool.X_WP.linear() ? ProxyMoves::kShiftsOnly : ProxyMoves::kAny;
+    const double margin =
+        proxy.touching && moves == ProxyMoves::kShiftsOnly ? 0.0 : kPairMarginFraction * radius_m;
     auto gather = [&](double reach_m) {
       // Gathered for a pose ahead of the proxy along its last move, so
       // that the pairs serve it over nearly twice the way a search about
@@ -571,10 +582,6 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       const Vector3d move = proxy.X_WP.translation() - tool.X_WP.translation();
       const double move_m = move.norm();
       if (move_m > 0) X_ahead.translation() += (kAheadFraction * margin / move_m) * move;
-      // A proxy that did not turn in its last move is searched for shifts
-      // alone: fewer pairs, and the first turn searches again.
-      const ProxyMoves moves =
-          proxy.X_WP.linear() == tool.X_WP.linear() ? ProxyMoves::kShiftsOnly : ProxyMoves::kAny;
       GatherLocalModelPairs(objects_.Posed(tool.id, X_ahead), X_ahead, objects_.obstacles(),
                             objects_.obstacle_ids(), model_options, margin, reach_m, moves,
                             scratch.model_pairs);
