@@ -6,17 +6,11 @@
 
 #include "common/collision/faces_in_box.h"
 #include "common/core/scratch.h"
+#include "common/sim/edge_pairs_batch.h"
 #include "common/sim/motion_bounds.h"
 
 namespace hs {
 namespace {
-
-// An edge's length and the norm of its `out`, each taken once per search
-// rather than once per pair the edge is tested in.
-struct EdgeLengths {
-  double edge_m, out_norm;
-};
-EdgeLengths LengthsOf(const WorldEdge& e) { return {(e.to - e.from).norm(), e.out.norm()}; }
 
 // Kept between steps (common/core/scratch.h): the tool's features near
 // an object at the proxy pose, and the candidate planes of a model.
@@ -131,33 +125,6 @@ WorldEdge PlaceEdge(const PosedObject& o, EdgeId e, NormalCache& normals) {
   return out;
 }
 
-// The plane where tool edge `t` meets object edge `o` when the tool moves
-// along it: normal t x o, out of the object and into neither side's
-// faces; the closest points of the lines must lie on both edges. False
-// for parallel edges (the vertex pairs hold those) and edges that cannot
-// meet that way.
-bool EdgePairPlane(const WorldEdge& t, const WorldEdge& o, ConstraintPlane& plane) {
-  const Vector3d u = t.to - t.from, v = o.to - o.from;
-  Vector3d n = u.cross(v);
-  if (!(n.norm() > 1e-9 * u.norm() * v.norm())) return false;
-  n.normalize();
-  if (n.dot(o.out) < 0) n = -n;
-  if (!(n.dot(o.out) > 0 && n.dot(t.out) < 0)) return false;
-  // Closest points of the two lines: t.from + a u and o.from + b v.
-  const Vector3d w = t.from - o.from;
-  const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
-  const double det = uu * vv - uv * uv;
-  const double a = (uv * vw - vv * uw) / det, b = (uu * vw - uv * uw) / det;
-  constexpr double kEnds = 1e-9;
-  if (a < -kEnds || a > 1 + kEnds || b < -kEnds || b > 1 + kEnds) return false;
-  const Vector3d on_tool = t.from + a * u, on_object = o.from + b * v;
-  plane.normal_W = n;
-  plane.gap_m = n.dot(on_tool - on_object);
-  plane.point_W = on_object;
-  plane.tool_point_W = on_tool;
-  return true;
-}
-
 // The faces of `o` whose volumes meet `box_W`, and their vertices and edges,
 // each once (in the order the hierarchy gives them: the model does not
 // depend on the order of the pairs). Returns the world box of those faces.
@@ -242,110 +209,6 @@ int MaterialIndex(const HapticObject& object, FaceId f, ObjectId id, LocalModelP
     pairs.materials.push_back(MaterialPlane(object, f, id));
   }
   return index;
-}
-
-// The distance between segments [p0, p1] and [q0, q1], up to rounding
-// (Ericson, Real-Time Collision Detection, 5.1.9): at most 1e-8 of their
-// lengths more than the true one, nearly parallel segments included.
-double SegmentDistance(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0,
-                       const Vector3d& q1) {
-  const Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (!(a > 0) && !(e > 0)) return r.norm();
-  if (!(a > 0)) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (!(e > 0)) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return (p0 + s * d1 - q0 - t * d2).norm();
-}
-
-// What SegmentDistance may overstate the distance by, and what
-// EdgePairPlane's ends (1e-9 of an edge past either end) may understate
-// a plane's gap by, for edges of lengths `lu` and `lv`.
-double SegmentSlack(double lu, double lv) { return 1e-7 * (lu + lv); }
-
-// Whether tool edge `t` and object edge `o` may give a plane (EdgePairPlane,
-// its gap in [-behind_m, radius_m]) once the tool has moved by at most
-// `margin_m`, turning by at most `turn`. First their distance (`apart_m`
-// out): such a plane's gap is the distance of two points of the edges
-// (to within their ends' slack), which the move changes by at most the
-// margin. Then EdgePairPlane's tests, each loosened by what such a move
-// may change. The plane's normal, across two edges at an angle whose
-// sine is s, turns by at most turn / s (twice that here); the closest
-// points slide along the edges by at most margin / s under a shift d alone
-// (a |u| changes by d.(c v^ - u^) / s^2, with u^, v^ the unit edges and c
-// their cosine: a vector of length s), thrice that where the tool may turn
-// too; the lines' distance changes by at most twice the margin. Edges
-// within four turns of parallel (or a millionth of a radian) are kept
-// whenever they are near enough: their normal may turn any way. A shift
-// turns nothing, but the features placed at the new pose round
-// differently, and the normal across edges at a small angle turns by that
-// rounding over s: the direction tests keep kRounding / s of room.
-// Without a margin, the test itself.
-bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, const WorldEdge& o,
-                          const EdgeLengths& o_lengths, double margin_m, double turn,
-                          double radius_m, double behind_m, double& apart_m) {
-  const Vector3d u = t.to - t.from, v = o.to - o.from;
-  const double lu = t_lengths.edge_m, lv = o_lengths.edge_m;
-  // Last, as the dearest test: the edges' distance.
-  auto near_enough = [&](double distance_m) {
-    apart_m = distance_m;
-    return apart_m <= std::max(radius_m, behind_m) + margin_m + SegmentSlack(lu, lv);
-  };
-  auto segments_near_enough = [&] {
-    return near_enough(SegmentDistance(t.from, t.to, o.from, o.to));
-  };
-  if (margin_m == 0) {
-    ConstraintPlane plane;
-    return EdgePairPlane(t, o, plane) && plane.gap_m >= -behind_m && plane.gap_m <= radius_m &&
-           segments_near_enough();
-  }
-  const double lines_m = std::max(radius_m, behind_m) + 2 * margin_m;
-  const Vector3d n = u.cross(v);
-  const double length = n.norm();
-  const double sine = length / (lu * lv);
-  if (!(sine > 4 * turn + 1e-6)) return segments_near_enough();
-  // The cheap tests first: the lines' distance, where their closest points
-  // fall, then which way the normal may point.
-  const Vector3d w = t.from - o.from;
-  if (std::abs(n.dot(w)) > lines_m * length) return false;
-  const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
-  const double det = uu * vv - uv * uv;
-  const double a = (uv * vw - vv * uw) / det, b = (uu * vw - uv * uw) / det;
-  const double slide_m = (turn > 0 ? 3 : 1) * margin_m / sine + 1e-9 * (lu + lv);
-  if (a < -slide_m / lu || a > 1 + slide_m / lu || b < -slide_m / lv || b > 1 + slide_m / lv) {
-    return false;
-  }
-  constexpr double kRounding = 1e-9;
-  const double turned = (2 * turn + kRounding) / sine;
-  const double out_o = o_lengths.out_norm, out_t = t_lengths.out_norm;
-  if (!(out_o > 0 && out_t > 0)) return false;
-  const double along_o = n.dot(o.out) / (length * out_o), along_t = n.dot(t.out) / (length * out_t);
-  const bool either = (along_o >= -turned && along_t <= turned + turn) ||
-                      (-along_o >= -turned && -along_t <= turned + turn);
-  if (!either) return false;
-  if (a >= 0 && a <= 1 && b >= 0 && b <= 1) {
-    // The lines' closest points lie on both edges: the edges' distance is
-    // the lines'.
-    return near_enough(std::abs(n.dot(w)) / length);
-  }
-  return segments_near_enough();
 }
 
 // Which of a set of boxes (world frame) may meet a query box: a uniform
@@ -519,10 +382,12 @@ struct ObjectSide {
   std::vector<WorldEdge> edges;
   std::vector<EdgeLengths> edge_lengths;
   std::vector<EdgeId> edge_ids;
-  double longest_m = 0;  // the longest of `edges`
+  EdgeColumns edge_columns;  // `edges` again, for the batched test
+  double longest_m = 0;      // the longest of `edges`
   std::vector<AlignedBox3d> boxes;
   std::vector<int> material;
   BoxGrid grid;
+  std::vector<int> meeting, kept;  // a query's boxes, and those kept
 
   void Clear() {
     faces.clear();
@@ -532,6 +397,7 @@ struct ObjectSide {
     edges.clear();
     edge_lengths.clear();
     edge_ids.clear();
+    edge_columns.Clear();
     longest_m = 0;
     boxes.clear();
   }
@@ -767,6 +633,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   // Pairs whose features are farther apart than this cannot give a plane
   // after a move of at most the margin (EdgePairMayGivePlane).
   const double edge_reach = std::max(radius_m, behind) + margin_m;
+  const EdgeMove move(margin_m, turn, radius_m, behind);
   // The tests are loosened for rounding (FootOnFace's slack, the edges'
   // ends): a short search holds the planes nearer than its reach by more.
   pairs.complete_m =
@@ -838,6 +705,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
       side.edges.push_back(edge);
       side.edge_lengths.push_back(LengthsOf(edge));
       side.edge_ids.push_back(e);
+      side.edge_columns.Add(edge, side.edge_lengths.back().edge_m);
       side.boxes.push_back(box);
       side.longest_m = std::max(side.longest_m, side.edge_lengths.back().edge_m);
     }
@@ -847,21 +715,28 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
       const WorldEdge& g = placed.edges[i];
       const EdgeLengths& g_lengths = placed.edge_lengths[i];
       const double reach = edge_reach + SegmentSlack(g_lengths.edge_m, side.longest_m) + pad;
-      side.grid.ForEachMeeting(GrowBox(SegmentBox(g.from, g.to), reach), [&](int j) {
+      // The object edges near enough, then those whose lines pass the first
+      // tests, a batch at a time, then the rest of the tests one by one.
+      side.meeting.clear();
+      side.grid.ForEachMeeting(GrowBox(SegmentBox(g.from, g.to), reach),
+                               [&](int j) { side.meeting.push_back(j); });
+      side.kept.resize(side.meeting.size());
+      const size_t passed =
+          KeepEdgesWhoseLinesMayMeet(g.from, g.to - g.from, g_lengths.edge_m, side.edge_columns,
+                                     side.meeting, move, side.kept.data());
+      for (size_t m = 0; m < passed; ++m) {
+        const int j = side.kept[m];
         const WorldEdge& edge = side.edges[j];
         const EdgeLengths& edge_lengths = side.edge_lengths[j];
         double apart_m;
-        if (!EdgePairMayGivePlane(g, g_lengths, edge, edge_lengths, margin_m, turn, radius_m,
-                                  behind, apart_m)) {
-          return;
-        }
+        if (!EdgePairMayGivePlane(g, g_lengths, edge, edge_lengths, move, apart_m)) continue;
         const EdgeId e = side.edge_ids[j];
         pairs.edge_edges.push_back(
             {tool_near.edges[i], edge,
              MaterialIndex(*o.object, o.object->EdgeFaces(e).front(), ids[k], pairs,
                            side.material[j]),
              apart_m - SegmentSlack(g_lengths.edge_m, edge_lengths.edge_m) - behind});
-      });
+      }
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "common/contact/contact_query.h"
+#include "common/sim/edge_pairs.h"
 #include "common/sim/local_model.h"
 #include "common/sim/proxy.h"
 #include "common/sim/step_frame.h"
@@ -23,11 +24,6 @@ struct LocalModelOptions {
 /// A triangle in the world frame with its unit normal (out of its object).
 struct WorldFace {
   Vector3d a, b, c, n;
-};
-/// An edge in the world frame: its ends and the sum of its faces' normals
-/// (which side is out).
-struct WorldEdge {
-  Vector3d from, to, out;
 };
 
 /// What moves of the proxy from where pairs are gathered they must serve:
