@@ -31,18 +31,6 @@ struct CandidatePlanes {
 constexpr double kSameNormalCos = 1 - 1e-9;
 constexpr double kSameOffset = 1e-9;
 
-// Face `f` of `o` in the world frame; false when it has no area.
-bool PlaceFace(const PosedObject& o, FaceId f, WorldFace& out) {
-  const Face& face = o.object->face(f);
-  out.a = o.X_WO * o.object->position(face.vertices[0]);
-  out.b = o.X_WO * o.object->position(face.vertices[1]);
-  out.c = o.X_WO * o.object->position(face.vertices[2]);
-  const Vector3d normal = (out.b - out.a).cross(out.c - out.a);
-  if (!(normal.norm() > 0)) return false;
-  out.n = normal.normalized();
-  return true;
-}
-
 // Whether `p` (on the face's plane) lies in the face, within `slack` of its
 // edges (relative to the face's size) and `margin_m` more.
 bool Inside(const WorldFace& f, const Vector3d& p, double slack, double margin_m = 0) {
@@ -54,13 +42,6 @@ bool Inside(const WorldFace& f, const Vector3d& p, double slack, double margin_m
     }
   }
   return true;
-}
-
-// Unit normal of face `f` of `o` in the world frame (zero when it has no
-// area).
-Vector3d FaceNormal(const PosedObject& o, FaceId f) {
-  WorldFace face;
-  return PlaceFace(o, f, face) ? face.n : Vector3d::Zero();
 }
 
 // Marks on an object's elements (faces, vertices or edges) that tell this
@@ -84,29 +65,66 @@ struct Marks {
   }
 };
 
-// The face normals of one object at one pose, each computed once.
-struct NormalCache {
-  std::vector<Vector3d> normals;
-  Marks placed;
+// An object at one pose: its vertices' world positions and its faces'
+// unit normals, each computed once however many faces and edges share it.
+class PlacedObject {
+ public:
+  void Begin(const PosedObject& o) {
+    o_ = o;
+    const HapticObject& h = *o.object;
+    placed_vertices_.Begin(h.num_vertices());
+    if (static_cast<int>(vertices_.size()) < h.num_vertices()) vertices_.resize(h.num_vertices());
+    placed_normals_.Begin(h.num_faces());
+    if (static_cast<int>(normals_.size()) < h.num_faces()) normals_.resize(h.num_faces());
+  }
+  const PosedObject& posed() const { return o_; }
 
-  void Begin(const HapticObject& h) {
-    placed.Begin(h.num_faces());
-    if (static_cast<int>(normals.size()) < h.num_faces()) normals.resize(h.num_faces());
+  const Vector3d& Vertex(VertexId v) {
+    if (placed_vertices_.Mark(v)) vertices_[v] = o_.X_WO * o_.object->position(v);
+    return vertices_[v];
   }
-  const Vector3d& Normal(const PosedObject& o, FaceId f) {
-    if (placed.Mark(f)) normals[f] = FaceNormal(o, f);
-    return normals[f];
+  // Face `f` in the world frame; false when it has no area.
+  bool PlaceFace(FaceId f, WorldFace& out) {
+    const Face& face = o_.object->face(f);
+    out.a = Vertex(face.vertices[0]);
+    out.b = Vertex(face.vertices[1]);
+    out.c = Vertex(face.vertices[2]);
+    const Vector3d normal = (out.b - out.a).cross(out.c - out.a);
+    const bool has_area = normal.norm() > 0;
+    if (has_area) out.n = normal.normalized();
+    if (placed_normals_.Mark(f)) normals_[f] = has_area ? out.n : Vector3d::Zero();
+    return has_area;
   }
+  // The unit normal of face `f` (zero when it has no area).
+  const Vector3d& Normal(FaceId f) {
+    if (placed_normals_.marks[f] != placed_normals_.stamp) {
+      WorldFace face;
+      (void)PlaceFace(f, face);  // records the normal
+    }
+    return normals_[f];
+  }
+  // Edge `e` in the world frame.
+  WorldEdge PlaceEdge(EdgeId e) {
+    const Edge& edge = o_.object->edge(e);
+    WorldEdge out{Vertex(edge.vertices[0]), Vertex(edge.vertices[1]), Vector3d::Zero()};
+    for (const FaceId f : o_.object->EdgeFaces(e)) out.out += Normal(f);
+    return out;
+  }
+
+ private:
+  PosedObject o_;
+  std::vector<Vector3d> vertices_, normals_;
+  Marks placed_vertices_, placed_normals_;
 };
 
 // An object's faces near a region, their vertices and edges (each once),
-// and the object's face normals at its pose.
+// and the object placed at its pose.
 struct NearFeatures {
   std::vector<FaceId> faces;
   std::vector<VertexId> vertices;
   std::vector<EdgeId> edges;
   Marks vertex_marks, edge_marks;
-  NormalCache normals;
+  PlacedObject placed;
 };
 struct ObjectNear {
   NearFeatures features;
@@ -115,20 +133,12 @@ struct ToolNear {
   NearFeatures features;
 };
 
-// Edge `e` of `o` in the world frame, its faces' normals from `normals`
-// (begun for `o` at its pose).
-WorldEdge PlaceEdge(const PosedObject& o, EdgeId e, NormalCache& normals) {
-  const Edge& edge = o.object->edge(e);
-  WorldEdge out{o.X_WO * o.object->position(edge.vertices[0]),
-                o.X_WO * o.object->position(edge.vertices[1]), Vector3d::Zero()};
-  for (const FaceId f : o.object->EdgeFaces(e)) out.out += normals.Normal(o, f);
-  return out;
-}
-
-// The faces of `o` whose volumes meet `box_W`, and their vertices and edges,
+// The faces of the object `out` is placed for whose volumes meet `box_W`,
+// and their vertices and edges,
 // each once (in the order the hierarchy gives them: the model does not
 // depend on the order of the pairs). Returns the world box of those faces.
-AlignedBox3d FindNearFeatures(const PosedObject& o, const AlignedBox3d& box_W, NearFeatures& out) {
+AlignedBox3d FindNearFeatures(const AlignedBox3d& box_W, NearFeatures& out) {
+  const PosedObject& o = out.placed.posed();
   out.faces.clear();
   out.vertices.clear();
   out.edges.clear();
@@ -145,7 +155,7 @@ AlignedBox3d FindNearFeatures(const PosedObject& o, const AlignedBox3d& box_W, N
     }
   }
   AlignedBox3d box;
-  for (const VertexId v : out.vertices) box.extend(o.X_WO * o.object->position(v));
+  for (const VertexId v : out.vertices) box.extend(out.placed.Vertex(v));
   return box;
 }
 
@@ -165,24 +175,23 @@ bool SamePlane(const ConstraintPlane& a, const ConstraintPlane& b, double size) 
          std::abs(a.normal_W.dot(a.point_W - b.point_W)) <= kSameOffset * size;
 }
 
-// The tool's `near` features at X_WP in the world frame.
-void PlaceTool(const HapticObject& t, const Isometry3d& X_WP, const NearFeatures& near,
-               NormalCache& normals, PlacedTool& placed) {
-  const PosedObject at_proxy{&t, nullptr, X_WP};
+// The tool's `near` features in the world frame, at the pose it is placed
+// at.
+void PlaceTool(NearFeatures& near, PlacedTool& placed) {
   placed.vertices.clear();
-  for (const VertexId v : near.vertices) placed.vertices.push_back(X_WP * t.position(v));
+  for (const VertexId v : near.vertices) placed.vertices.push_back(near.placed.Vertex(v));
   placed.faces.clear();
   placed.face_ids.clear();
   for (const FaceId g : near.faces) {
     WorldFace face;
-    if (!PlaceFace(at_proxy, g, face)) continue;
+    if (!near.placed.PlaceFace(g, face)) continue;
     placed.faces.push_back(face);
     placed.face_ids.push_back(g);
   }
   placed.edges.clear();
   placed.edge_lengths.clear();
   for (const EdgeId e : near.edges) {
-    placed.edges.push_back(PlaceEdge(at_proxy, e, normals));
+    placed.edges.push_back(near.placed.PlaceEdge(e));
     placed.edge_lengths.push_back(LengthsOf(placed.edges.back()));
   }
 }
@@ -422,61 +431,51 @@ double Reach(const HapticObject& t) {
 // The tool's faces and edges placed at one proxy pose, each once however
 // many pairs name it: `stamp` tells this placing's entries from older ones.
 struct PlacedById {
-  std::vector<Vector3d> vertices;
   std::vector<WorldFace> faces;
   std::vector<bool> face_ok;
   std::vector<WorldEdge> edges;
-  std::vector<uint64_t> vertex_stamp, face_stamp, edge_stamp;
+  std::vector<uint64_t> face_stamp, edge_stamp;
   uint64_t stamp = 0;
-  NormalCache normals;
+  PlacedObject tool;
 
-  void Begin(const HapticObject& t) {
+  void Begin(const PosedObject& at_proxy) {
     ++stamp;
-    vertices.resize(t.num_vertices());
-    vertex_stamp.resize(t.num_vertices(), 0);
+    const HapticObject& t = *at_proxy.object;
     faces.resize(t.num_faces());
     face_ok.resize(t.num_faces());
     face_stamp.resize(t.num_faces(), 0);
     edges.resize(t.num_edges());
     edge_stamp.resize(t.num_edges(), 0);
-    normals.Begin(t);
+    tool.Begin(at_proxy);
   }
-  const Vector3d& Vertex(const HapticObject& t, const Isometry3d& X_WP, VertexId v) {
-    if (vertex_stamp[v] != stamp) {
-      vertex_stamp[v] = stamp;
-      vertices[v] = X_WP * t.position(v);
-    }
-    return vertices[v];
-  }
-  const WorldFace* Face(const PosedObject& at_proxy, FaceId f) {
+  const Vector3d& Vertex(VertexId v) { return tool.Vertex(v); }
+  const WorldFace* Face(FaceId f) {
     if (face_stamp[f] != stamp) {
       face_stamp[f] = stamp;
-      face_ok[f] = PlaceFace(at_proxy, f, faces[f]);
+      face_ok[f] = tool.PlaceFace(f, faces[f]);
     }
     return face_ok[f] ? &faces[f] : nullptr;
   }
-  const WorldEdge& Edge(const PosedObject& at_proxy, EdgeId e) {
+  const WorldEdge& Edge(EdgeId e) {
     if (edge_stamp[e] != stamp) {
       edge_stamp[e] = stamp;
-      edges[e] = PlaceEdge(at_proxy, e, normals);
+      edges[e] = tool.PlaceEdge(e);
     }
     return edges[e];
   }
 };
 
-// The planes of the pairs of `pairs` whose floor is in (from_m, to_m], at
-// `proxy`, appended to `candidates`: the tests of a pair at the proxy's
-// pose, without margin.
-void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelPairs& pairs,
-                double radius_m, double behind_m, double from_m, double to_m, PlacedById& placed,
-                std::vector<ConstraintPlane>& candidates) {
-  const PosedObject at_proxy{&t, nullptr, X_WP};
+// The planes of the pairs of `pairs` whose floor is in (from_m, to_m], with
+// the tool `placed` at the proxy, appended to `candidates`: the tests of a
+// pair at the proxy's pose, without margin.
+void PairPlanes(const LocalModelPairs& pairs, double radius_m, double behind_m, double from_m,
+                double to_m, PlacedById& placed, std::vector<ConstraintPlane>& candidates) {
   auto in_window = [&](double floor_m) { return floor_m > from_m && floor_m <= to_m; };
   Vector3d foot;
   double gap;
   for (const LocalModelPairs::VertexFace& pair : pairs.vertex_faces) {
     if (!in_window(pair.floor_m)) continue;
-    const Vector3d& v = placed.Vertex(t, X_WP, pair.tool_vertex);
+    const Vector3d& v = placed.Vertex(pair.tool_vertex);
     if (!FootOnFace(pair.face, v, behind_m, radius_m, 0, foot, gap)) continue;
     ConstraintPlane& plane = candidates.emplace_back(pairs.materials[pair.material]);
     plane.normal_W = pair.face.n;
@@ -486,7 +485,7 @@ void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelP
   }
   for (const LocalModelPairs::FaceVertex& pair : pairs.face_vertices) {
     if (!in_window(pair.floor_m)) continue;
-    const WorldFace* tool_face = placed.Face(at_proxy, pair.tool_face);
+    const WorldFace* tool_face = placed.Face(pair.tool_face);
     if (tool_face == nullptr ||
         !FootOnFace(*tool_face, pair.vertex_W, behind_m, radius_m, 0, foot, gap)) {
       continue;
@@ -500,7 +499,7 @@ void PairPlanes(const HapticObject& t, const Isometry3d& X_WP, const LocalModelP
   for (const LocalModelPairs::EdgeEdge& pair : pairs.edge_edges) {
     if (!in_window(pair.floor_m)) continue;
     ConstraintPlane plane = pairs.materials[pair.material];
-    if (!EdgePairPlane(placed.Edge(at_proxy, pair.tool_edge), pair.edge, plane)) continue;
+    if (!EdgePairPlane(placed.Edge(pair.tool_edge), pair.edge, plane)) continue;
     if (plane.gap_m < -behind_m || plane.gap_m > radius_m) continue;
     plane.gap_m = std::max(plane.gap_m, 0.0);
     candidates.push_back(plane);
@@ -638,16 +637,17 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   // ends): a short search holds the planes nearer than its reach by more.
   pairs.complete_m =
       radius_m < options.radius_m ? radius_m - pad : std::numeric_limits<double>::infinity();
-  tool_near.normals.Begin(t);
+  tool_near.placed.Begin(at_proxy);
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const PosedObject& o = obstacles[k];
     // The object's features near the tool, and the tool's near those: on
     // both sides only what may come within the radius after the margin.
-    const AlignedBox3d object_box = FindNearFeatures(o, near, object_near);
+    PlacedObject& object = object_near.placed;
+    object.Begin(o);
+    const AlignedBox3d object_box = FindNearFeatures(near, object_near);
     if (object_box.isEmpty()) continue;
-    object_near.normals.Begin(*o.object);
-    FindNearFeatures(at_proxy, GrowBox(object_box, within), tool_near);
-    PlaceTool(t, X_WP, tool_near, tool_near.normals, placed);
+    FindNearFeatures(GrowBox(object_box, within), tool_near);
+    PlaceTool(tool_near, placed);
     // Each kind of pair: the object's features binned in a grid by where
     // their partner must be, each of the tool's looked up in it, and the
     // pair's tests run on what the grid gives.
@@ -656,7 +656,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
     side.Clear();
     for (const FaceId f : object_near.faces) {  // tool vertex, object face
       WorldFace face;
-      if (!PlaceFace(o, f, face)) continue;
+      if (!object.PlaceFace(f, face)) continue;
       side.faces.push_back(face);
       side.face_ids.push_back(f);
       side.boxes.push_back(
@@ -677,7 +677,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
     // from the tool: a move the pairs hold for cannot bring them together.
     side.Clear();
     for (const VertexId v : object_near.vertices) {  // object vertex, tool face
-      const Vector3d q = o.X_WO * o.object->position(v);
+      const Vector3d& q = object.Vertex(v);
       if (!near.contains(q)) continue;
       side.points.push_back(q);
       side.point_ids.push_back(v);
@@ -699,9 +699,11 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
     }
     side.Clear();
     for (const EdgeId e : object_near.edges) {  // object edge, tool edge
-      const WorldEdge edge = PlaceEdge(o, e, object_near.normals);
-      const AlignedBox3d box = SegmentBox(edge.from, edge.to);
+      const Edge& ends = o.object->edge(e);
+      const AlignedBox3d box =
+          SegmentBox(object.Vertex(ends.vertices[0]), object.Vertex(ends.vertices[1]));
       if (!box.intersects(near)) continue;
+      const WorldEdge edge = object.PlaceEdge(e);
       side.edges.push_back(edge);
       side.edge_lengths.push_back(LengthsOf(edge));
       side.edge_ids.push_back(e);
@@ -754,7 +756,7 @@ bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
   std::vector<ConstraintPlane>& candidates = candidate_planes.planes;
   candidates.clear();
   PlacedById& placed = Scratch<PlacedById>();
-  placed.Begin(tool);
+  placed.Begin(PosedObject{&tool, nullptr, proxy.X_WP});
   // A pair's plane is at least its floor less `moved` away (the pairs'
   // floor_m), and a pair not gathered gives none nearer than complete_m:
   // the pairs are taken in rising bands of floor until the nearest
@@ -768,7 +770,7 @@ bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vec
   double from = -std::numeric_limits<double>::infinity();
   double to = moved + band;
   for (;;) {
-    PairPlanes(tool, proxy.X_WP, pairs, options.radius_m, behind, from, to, placed, candidates);
+    PairPlanes(pairs, options.radius_m, behind, from, to, placed, candidates);
     NearestDistinct(candidates, options.max_planes, size, candidate_planes.order, model.planes);
     // Every plane nearer than this has been taken.
     const double taken = std::min(to - moved, pairs.complete_m);
