@@ -29,10 +29,11 @@ constexpr double kEnds = 1e-9;
 // plane's own gap is tested); the closest points slide along the edges by
 // at most margin / s under a shift d alone (a |u| changes by
 // d.(c v^ - u^) / s^2, with u^, v^ the unit edges and c their cosine: a
-// vector of length s), thrice that where the tool may turn too, and
-// twice EdgePairPlane's ends for rounding. Edges within four turns of
-// parallel (or a millionth of a radian) are left to their segments'
-// distance: their normal may turn any way. The order of the operations is
+// vector of length s), thrice that where the tool may turn too, and never
+// less than twice EdgePairPlane's ends (rounding room for a test without
+// a margin). Edges whose angle's sine is at most four turns and a
+// millionth are left to their segments' distance: their normal may turn
+// any way. The order of the operations is
 // edge_pairs_batch.cc's, which gives the same answers.
 Lines LinesOf(const Vector3d& t_from, const Vector3d& u, double lu, const Vector3d& o_from,
               const Vector3d& v, double lv, const EdgeMove& move) {

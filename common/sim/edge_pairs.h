@@ -62,8 +62,8 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, cons
 /// for tool edge from `t_from` along `u` (length `lu`) and object edge
 /// from `o_from` along `v` (length `lv`): whether the lines' distance and
 /// where their closest points fall leave room for a plane. False only
-/// where EdgePairMayGivePlane is false; true for edges within 4 turns (or
-/// a millionth of a radian) of parallel. It turns most of a search's
+/// where EdgePairMayGivePlane is false; true for edges whose angle's sine
+/// is at most 4 turns and a millionth. It turns most of a search's
 /// pairs away, and a batch of object edges takes it at once
 /// (edge_pairs_batch.h).
 bool EdgeLinesMayMeet(const Vector3d& t_from, const Vector3d& u, double lu, const Vector3d& o_from,

@@ -37,8 +37,8 @@ HWY_BEFORE_NAMESPACE();
 namespace hs {
 namespace HWY_NAMESPACE {
 
-size_t KeepLanes(const BatchToolEdge& t, const double* const* columns, const int* candidates,
-                 size_t n, int* kept) {
+size_t EdgeLinesMayMeetLanes(const BatchToolEdge& t, const double* const* columns,
+                             const int* candidates, size_t n, int* kept) {
   const D d;
   const hn::RebindToSigned<D> di;
   const hn::Rebind<int32_t, D> d32;
@@ -100,7 +100,7 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace hs {
 
-HWY_EXPORT(KeepLanes);
+HWY_EXPORT(EdgeLinesMayMeetLanes);
 
 void EdgeColumns::Clear() {
   for (std::vector<double>& column : columns_) column.clear();
@@ -131,8 +131,8 @@ size_t KeepEdgesWhoseLinesMayMeet(const Vector3d& t_from, const Vector3d& u, dou
   for (int c = 0; c < EdgeColumns::kNumColumns; ++c) {
     columns[c] = edges.column(static_cast<EdgeColumns::Column>(c));
   }
-  return HWY_DYNAMIC_DISPATCH(KeepLanes)(tool, columns.data(), candidates.data(), candidates.size(),
-                                         kept);
+  return HWY_DYNAMIC_DISPATCH(EdgeLinesMayMeetLanes)(tool, columns.data(), candidates.data(),
+                                                     candidates.size(), kept);
 }
 
 }  // namespace hs

@@ -134,9 +134,9 @@ struct ToolNear {
 };
 
 // The faces of the object `out` is placed for whose volumes meet `box_W`,
-// and their vertices and edges,
-// each once (in the order the hierarchy gives them: the model does not
-// depend on the order of the pairs). Returns the world box of those faces.
+// and their vertices and edges, each once (in the order the hierarchy
+// gives them: the model does not depend on the order of the pairs).
+// Returns the world box of those faces.
 AlignedBox3d FindNearFeatures(const AlignedBox3d& box_W, NearFeatures& out) {
   const PosedObject& o = out.placed.posed();
   out.faces.clear();

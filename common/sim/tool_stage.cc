@@ -59,6 +59,10 @@ struct StartContact {
 // the model the last one made: the whole radius unless that model was
 // full, else twice the gap of its farthest plane with the margin, which a
 // proxy's move within the margin does not take the farthest plane past.
+// A touching proxy searched without a margin may have slid farther since
+// that model (a quarter of the radius); where the new model's farthest
+// plane lies beyond the reach, ModelFromPairs says so and the step
+// searches the whole radius (no step_bench path did, 2026-11-30).
 // A shorter search has fewer pairs to find and each step fewer to test.
 double SearchReach(const LocalModel& last, const LocalModelOptions& options, double margin_m) {
   if (last.revision == 0 || static_cast<int>(last.planes.size()) < options.max_planes) {
@@ -581,7 +585,9 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       Isometry3d X_ahead = proxy.X_WP;
       const Vector3d move = proxy.X_WP.translation() - tool.X_WP.translation();
       const double move_m = move.norm();
-      if (move_m > 0) X_ahead.translation() += (kAheadFraction * margin / move_m) * move;
+      if (move_m > 0 && margin > 0) {
+        X_ahead.translation() += (kAheadFraction * margin / move_m) * move;
+      }
       GatherLocalModelPairs(objects_.Posed(tool.id, X_ahead), X_ahead, objects_.obstacles(),
                             objects_.obstacle_ids(), model_options, margin, reach_m, moves,
                             scratch.model_pairs);

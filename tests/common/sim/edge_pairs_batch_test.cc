@@ -2,25 +2,22 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
 
 #include "hwy/targets.h"
+#include "tests/common/sim/random_edges.h"
 
 namespace hs {
 namespace {
 
-Vector3d RandomUnit(std::mt19937& rng) {
-  std::normal_distribution<double> g;
-  return Vector3d(g(rng), g(rng), g(rng)).normalized();
-}
-
-WorldEdge RandomEdge(std::mt19937& rng, double scale, const Vector3d& offset) {
-  std::uniform_real_distribution<double> u(-1, 1), l(0.05, 1);
-  const Vector3d from = offset + scale * Vector3d(u(rng), u(rng), u(rng));
-  return {from, from + scale * l(rng) * RandomUnit(rng), RandomUnit(rng)};
-}
+using testing_edges::DoublesAround;
+using testing_edges::FindFlip;
+using testing_edges::RandomEdge;
+using testing_edges::RandomUnit;
+using testing_edges::Shifted;
 
 // Checks the batch against EdgeLinesMayMeet, edge by edge, for tool edge
 // `tool` and the rows `candidates` of `edges`, on every SIMD target built
@@ -54,8 +51,8 @@ size_t ExpectScalarAnswers(const WorldEdge& tool, const std::vector<WorldEdge>& 
 // Random edges near a tool edge, every batch size from 1 to 19 (every
 // short last batch of every lane count), at tiny, unit and huge scales and
 // far from the origin, with and without a margin and a turn; the
-// candidates are rows in a shuffled order, some left out, as a grid gives
-// them.
+// candidates are rows in another order than the columns', some left out,
+// as a grid gives them.
 TEST(EdgePairsBatchTest, RandomEdgesGiveTheScalarAnswers) {
   std::mt19937 rng(41);
   size_t kept = 0, tested = 0;
@@ -113,6 +110,42 @@ TEST(EdgePairsBatchTest, DegenerateEdgesGiveTheScalarAnswers) {
       EXPECT_GT(ExpectScalarAnswers(tool, edges, all, EdgeMove(margin, turn, 0.01, 1e-8)), 0u);
     }
   }
+}
+
+// Object edges shifted to where the scalar answer flips (found by
+// bisection along a random direction), and a few doubles either side of
+// it: where an operation done in another order than the scalar's would
+// change an answer.
+TEST(EdgePairsBatchTest, EdgesWhereTheAnswerFlipsGiveTheScalarAnswers) {
+  std::mt19937 rng(43);
+  int flips = 0;
+  for (const double margin : {0.0, 0.002}) {
+    for (const double turn : {0.0, 0.01}) {
+      const EdgeMove move(margin, turn, 0.01, 1e-8);
+      for (int trial = 0; trial < 40; ++trial) {
+        const WorldEdge tool = RandomEdge(rng, 0.01, Vector3d::Zero());
+        const WorldEdge object = RandomEdge(rng, 0.01, Vector3d::Zero());
+        const Vector3d direction = RandomUnit(rng);
+        const Vector3d u = tool.to - tool.from;
+        auto keeps = [&](double s) {
+          const WorldEdge o = Shifted(object, s, direction);
+          return EdgeLinesMayMeet(tool.from, u, u.norm(), o.from, o.to - o.from,
+                                  (o.to - o.from).norm(), move);
+        };
+        double lo, hi;
+        if (!FindFlip(keeps, lo, hi)) continue;
+        ++flips;
+        std::vector<WorldEdge> edges;
+        for (const double s : DoublesAround(lo)) edges.push_back(Shifted(object, s, direction));
+        std::vector<int> all;
+        for (size_t k = 0; k < edges.size(); ++k) all.push_back(static_cast<int>(k));
+        const size_t kept = ExpectScalarAnswers(tool, edges, all, move);
+        EXPECT_GT(kept, 0u);
+        EXPECT_LT(kept, edges.size());
+      }
+    }
+  }
+  EXPECT_GT(flips, 40);
 }
 
 TEST(EdgePairsBatchTest, NoCandidatesKeepNone) {

@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
+
+#include "tests/common/sim/random_edges.h"
 
 namespace hs {
 namespace {
@@ -15,17 +18,11 @@ WorldEdge Edge(const Vector3d& from, const Vector3d& to, const Vector3d& out) {
   return {from, to, out};
 }
 
-Vector3d RandomUnit(std::mt19937& rng) {
-  std::normal_distribution<double> g;
-  return Vector3d(g(rng), g(rng), g(rng)).normalized();
-}
-
-// A random edge near the origin: length up to `scale`, its out any way.
-WorldEdge RandomEdge(std::mt19937& rng, double scale) {
-  std::uniform_real_distribution<double> u(-1, 1), l(0.05, 1);
-  const Vector3d from = scale * Vector3d(u(rng), u(rng), u(rng));
-  return Edge(from, from + scale * l(rng) * RandomUnit(rng), RandomUnit(rng));
-}
+using testing_edges::DoublesAround;
+using testing_edges::FindFlip;
+using testing_edges::RandomEdge;
+using testing_edges::RandomUnit;
+using testing_edges::Shifted;
 
 // The distance of two segments by brute force: the nearest of a grid of
 // points on each, an upper bound within a grid step of the true one.
@@ -167,6 +164,62 @@ TEST(EdgeLinesMayMeetTest, TurnsAwayOnlyPairsThatCannotGiveAPlane) {
       EXPECT_GT(turned_away, trials / 4) << "margin " << margin << " turn " << turn;
     }
   }
+}
+
+// Without a margin the closest points may fall past an edge's end by at
+// least twice EdgePairPlane's ends (1e-9 of the edge), whatever the edges'
+// lengths: room for the two tests' rounding.
+TEST(EdgeLinesMayMeetTest, KeepsClosestPointsWithinTwiceThePlanesEnds) {
+  const EdgeMove move(0, 0, 0.01, 1e-8);
+  // The tool edge along x (length 1), a short object edge (0.1) across it
+  // 1.5e-9 before its start: a = -1.5e-9.
+  const Vector3d t_from(0, 0, 0.001), u(1, 0, 0), v(0, 0.1, 0);
+  EXPECT_TRUE(EdgeLinesMayMeet(t_from, u, 1, Vector3d(-1.5e-9, -0.05, 0), v, 0.1, move));
+  EXPECT_FALSE(EdgeLinesMayMeet(t_from, u, 1, Vector3d(-3e-9, -0.05, 0), v, 0.1, move));
+  // And past its end.
+  EXPECT_TRUE(EdgeLinesMayMeet(t_from, u, 1, Vector3d(1 + 1.5e-9, -0.05, 0), v, 0.1, move));
+  EXPECT_FALSE(EdgeLinesMayMeet(t_from, u, 1, Vector3d(1 + 3e-9, -0.05, 0), v, 0.1, move));
+}
+
+// Edge pairs at the point where EdgeLinesMayMeet's answer flips (found by
+// bisection along a random shift of the object edge) and where
+// EdgePairMayGivePlane's does, and a few doubles either side: the first
+// says no only where the second does.
+TEST(EdgeLinesMayMeetTest, TurnsAwayOnlyPairsThatCannotGiveAPlaneWhereEitherAnswerFlips) {
+  std::mt19937 rng(10);
+  int flips = 0;
+  for (const double margin : {0.0, 0.002}) {
+    for (const double turn : {0.0, 0.04}) {
+      const EdgeMove move(margin, turn, 0.01, 1e-8);
+      for (int trial = 0; trial < 400; ++trial) {
+        const WorldEdge tool = RandomEdge(rng, 0.01), object = RandomEdge(rng, 0.01);
+        const Vector3d direction = RandomUnit(rng);
+        const EdgeLengths lt = LengthsOf(tool);
+        // Each shift's edge with its own vector and length, as a search
+        // places it.
+        auto lines = [&](double s) {
+          const WorldEdge o = Shifted(object, s, direction);
+          return EdgeLinesMayMeet(tool.from, tool.to - tool.from, lt.edge_m, o.from, o.to - o.from,
+                                  LengthsOf(o).edge_m, move);
+        };
+        auto full = [&](double s) {
+          const WorldEdge o = Shifted(object, s, direction);
+          double apart_m;
+          return EdgePairMayGivePlane(tool, lt, o, LengthsOf(o), move, apart_m);
+        };
+        for (const auto& answer :
+             {std::function<bool(double)>(lines), std::function<bool(double)>(full)}) {
+          double lo, hi;
+          if (!FindFlip(answer, lo, hi)) continue;
+          ++flips;
+          for (const double s : DoublesAround(lo)) {
+            if (!lines(s)) EXPECT_FALSE(full(s)) << "trial " << trial << " shift " << s;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(flips, 200);
 }
 
 TEST(EdgeLinesMayMeetTest, LeavesNearParallelAndNonFiniteEdgesToTheFullTest) {
