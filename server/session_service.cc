@@ -249,7 +249,7 @@ class InteractReactor
 // What a viewer's parts need the scene to compute.
 absl::StatusOr<std::pair<FrameParts, EffectSet>> ViewerNeeds(const pb::WatchRequest& request) {
   if (request.parts().empty()) return std::pair{FrameParts{}, EffectSet::Default()};
-  FrameParts parts{false, false, false, false, false};
+  FrameParts parts{false, false, false, false, false, std::nullopt};
   EffectSet needs;
   for (int i = 0; i < request.parts_size(); ++i) {
     switch (request.parts(i)) {

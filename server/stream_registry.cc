@@ -81,7 +81,7 @@ StreamChange StreamRegistry::EndSilentDevices(std::chrono::steady_clock::time_po
   }
   if (released.size() == before) return {};
   UpdateHoldersLocked();
-  return {.devices_fresh_since = DevicesFreshLocked()};
+  return {.tool = std::nullopt, .devices_fresh_since = DevicesFreshLocked()};
 }
 
 void StreamRegistry::UpdateHoldersLocked() {
@@ -108,7 +108,7 @@ StreamChange StreamRegistry::Detach(FrameSink* sink) {
   if (it == sinks_.end()) return {};
   const ObjectId tool = it->second.tool;
   sinks_.erase(it);
-  if (tool < 0) return {.tool = ""};
+  if (tool < 0) return {.tool = "", .devices_fresh_since = std::nullopt};
   DropPendingLocked(tool);
   --devices_;
   UpdateHoldersLocked();
@@ -133,7 +133,7 @@ StreamChange StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD,
                                   .validity_radius_m = model.validity_radius_m}};
   it->second.sent_pose = true;
   it->second.heard = std::chrono::steady_clock::now();
-  return {.devices_fresh_since = DevicesFreshLocked()};
+  return {.tool = std::nullopt, .devices_fresh_since = DevicesFreshLocked()};
 }
 
 EffectSet StreamRegistry::TakeFreshPoses(FreshPoses& fresh) {

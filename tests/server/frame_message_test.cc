@@ -17,6 +17,13 @@ struct NoSink : FrameSink {
   void Close(const absl::Status&) override {}
 };
 
+// What a device's stream has sent: its own tool's models only.
+ModelsSent OwnToolOnly() {
+  ModelsSent sent;
+  sent.own_tool_only = true;
+  return sent;
+}
+
 // A step of a scene of three objects whose tools 1 and 2 have local models
 // of the revisions given, tool 1 held by `holder` as "alice".
 std::shared_ptr<StepSnapshot> Snapshot(const FrameSink* holder, uint64_t revision_1,
@@ -77,7 +84,7 @@ TEST(FrameMessageTest, ADeviceGetsItsOwnToolOnly) {
   const std::shared_ptr<StepSnapshot> s = Snapshot(&device, 1, 1, names);
   s->frame.tools[0].force_W = Vector3d(0, 0, 1.5);
   haptics::v1::Frame frame;
-  ModelsSent device_sent{.own_tool_only = true}, other_sent{.own_tool_only = true}, viewer_sent;
+  ModelsSent device_sent = OwnToolOnly(), other_sent = OwnToolOnly(), viewer_sent;
   FillFrameMessage(*s, FrameParts{}, &device, 0, 0, device_sent, frame);
   ASSERT_EQ(frame.tools_size(), 1);
   EXPECT_EQ(frame.tools(0).tool(), "probe");
@@ -98,7 +105,7 @@ TEST(FrameMessageTest, EachModelRevisionGoesOutOnce) {
   NoSink device, viewer;
   auto names = std::make_shared<const std::vector<std::string>>(
       std::vector<std::string>{"floor", "probe", "stylus"});
-  ModelsSent device_sent{.own_tool_only = true}, viewer_sent;
+  ModelsSent device_sent = OwnToolOnly(), viewer_sent;
   haptics::v1::Frame frame;
   auto models = [&](const StepSnapshot& s, const FrameSink* stream, ModelsSent& sent) {
     FillFrameMessage(s, FrameParts{}, stream, 0, 0, sent, frame);
@@ -154,7 +161,9 @@ haptics::v1::BodyState CubeIn(const PinchRig& pinch, const StepFrame& frame) {
   EXPECT_EQ(cube.name(), "cube");
   const absl::StatusOr<Isometry3d> X_WO = PoseFromProto(cube.pose(), "pose");
   EXPECT_TRUE(X_WO.ok());
-  if (X_WO.ok()) EXPECT_TRUE(X_WO->isApprox(pinch.rig.scene->object(pinch.cube).X_WO, 1e-12));
+  if (X_WO.ok()) {
+    EXPECT_TRUE(X_WO->isApprox(pinch.rig.scene->object(pinch.cube).X_WO, 1e-12));
+  }
   return cube;
 }
 

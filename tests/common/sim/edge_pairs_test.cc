@@ -213,7 +213,9 @@ TEST(EdgeLinesMayMeetTest, TurnsAwayOnlyPairsThatCannotGiveAPlaneWhereEitherAnsw
           if (!FindFlip(answer, lo, hi)) continue;
           ++flips;
           for (const double s : DoublesAround(lo)) {
-            if (!lines(s)) EXPECT_FALSE(full(s)) << "trial " << trial << " shift " << s;
+            if (!lines(s)) {
+              EXPECT_FALSE(full(s)) << "trial " << trial << " shift " << s;
+            }
           }
         }
       }
