@@ -124,6 +124,7 @@ EdgeMove::EdgeMove(double margin_m, double turn, double radius_m, double behind_
       turn(turn),
       radius_m(radius_m),
       behind_m(behind_m),
+      segments_m(std::max(radius_m, behind_m) + margin_m),
       lines_m(std::max(radius_m, behind_m) + 2 * margin_m) {}
 
 // First the lines (LinesOf); then the plane's direction: its normal,
@@ -141,7 +142,7 @@ bool EdgePairMayGivePlane(const WorldEdge& t, const EdgeLengths& t_lengths, cons
   const double lu = t_lengths.edge_m, lv = o_lengths.edge_m;
   auto near_enough = [&](double distance_m) {
     apart_m = distance_m;
-    return apart_m <= std::max(move.radius_m, move.behind_m) + move.margin_m + SegmentSlack(lu, lv);
+    return apart_m <= move.segments_m + SegmentSlack(lu, lv);
   };
   auto segments_near_enough = [&] {
     return near_enough(SegmentDistance(t.from, t.to, o.from, o.to));

@@ -46,6 +46,9 @@ double SegmentSlack(double lu, double lv);
 struct EdgeMove {
   EdgeMove(double margin_m, double turn, double radius_m, double behind_m);
   double margin_m, turn, radius_m, behind_m;
+  /// The most the edges' segments may be apart (to within their
+  /// SegmentSlack): max(radius_m, behind_m) and the margin.
+  double segments_m;
   /// The most the edges' lines may be apart: max(radius_m, behind_m) and
   /// twice the margin.
   double lines_m;

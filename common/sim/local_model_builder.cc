@@ -57,6 +57,8 @@ struct Marks {
     }
     if (static_cast<int>(marks.size()) < count) marks.resize(count, 0);
   }
+  // Whether `i` is marked in this use.
+  bool Marked(int i) const { return marks[i] == stamp; }
   // True the first time `i` is marked in this use.
   bool Mark(int i) {
     if (marks[i] == stamp) return false;
@@ -97,7 +99,7 @@ class PlacedObject {
   }
   // The unit normal of face `f` (zero when it has no area).
   const Vector3d& Normal(FaceId f) {
-    if (placed_normals_.marks[f] != placed_normals_.stamp) {
+    if (!placed_normals_.Marked(f)) {
       WorldFace face;
       (void)PlaceFace(f, face);  // records the normal
     }
@@ -429,38 +431,30 @@ double Reach(const HapticObject& t) {
 }
 
 // The tool's faces and edges placed at one proxy pose, each once however
-// many pairs name it: `stamp` tells this placing's entries from older ones.
+// many pairs name it (Marks tell this placing's entries from older ones).
 struct PlacedById {
   std::vector<WorldFace> faces;
   std::vector<bool> face_ok;
   std::vector<WorldEdge> edges;
-  std::vector<uint64_t> face_stamp, edge_stamp;
-  uint64_t stamp = 0;
+  Marks placed_faces, placed_edges;
   PlacedObject tool;
 
   void Begin(const PosedObject& at_proxy) {
-    ++stamp;
     const HapticObject& t = *at_proxy.object;
+    placed_faces.Begin(t.num_faces());
     faces.resize(t.num_faces());
     face_ok.resize(t.num_faces());
-    face_stamp.resize(t.num_faces(), 0);
+    placed_edges.Begin(t.num_edges());
     edges.resize(t.num_edges());
-    edge_stamp.resize(t.num_edges(), 0);
     tool.Begin(at_proxy);
   }
   const Vector3d& Vertex(VertexId v) { return tool.Vertex(v); }
   const WorldFace* Face(FaceId f) {
-    if (face_stamp[f] != stamp) {
-      face_stamp[f] = stamp;
-      face_ok[f] = tool.PlaceFace(f, faces[f]);
-    }
+    if (placed_faces.Mark(f)) face_ok[f] = tool.PlaceFace(f, faces[f]);
     return face_ok[f] ? &faces[f] : nullptr;
   }
   const WorldEdge& Edge(EdgeId e) {
-    if (edge_stamp[e] != stamp) {
-      edge_stamp[e] = stamp;
-      edges[e] = tool.PlaceEdge(e);
-    }
+    if (placed_edges.Mark(e)) edges[e] = tool.PlaceEdge(e);
     return edges[e];
   }
 };
@@ -629,9 +623,8 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   NearFeatures& tool_near = Scratch<ToolNear>().features;
   // Rounding allowance on the boxes the grids compare.
   const double pad = BoundSlack(X_WP, pairs.lever_m);
-  // Pairs whose features are farther apart than this cannot give a plane
-  // after a move of at most the margin (EdgePairMayGivePlane).
-  const double edge_reach = std::max(radius_m, behind) + margin_m;
+  // Edge pairs farther apart than move.segments_m cannot give a plane after
+  // a move of at most the margin (EdgePairMayGivePlane).
   const EdgeMove move(margin_m, turn, radius_m, behind);
   // The tests are loosened for rounding (FootOnFace's slack, the edges'
   // ends): a short search holds the planes nearer than its reach by more.
@@ -716,7 +709,7 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
     for (size_t i = 0; i < placed.edges.size(); ++i) {
       const WorldEdge& g = placed.edges[i];
       const EdgeLengths& g_lengths = placed.edge_lengths[i];
-      const double reach = edge_reach + SegmentSlack(g_lengths.edge_m, side.longest_m) + pad;
+      const double reach = move.segments_m + SegmentSlack(g_lengths.edge_m, side.longest_m) + pad;
       // The object edges near enough, then those whose lines pass the first
       // tests, a batch at a time, then the rest of the tests one by one.
       side.meeting.clear();
