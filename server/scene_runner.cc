@@ -39,7 +39,7 @@ Clock::time_point AtNanoseconds(int64_t ns) {
 }
 
 SceneTools ToolsOf(const LoadedScene& scene) {
-  SceneTools tools{.object_count = scene.names.size()};
+  SceneTools tools{.tools = {}, .object_count = scene.names.size()};
   for (const ObjectId id : scene.tools) tools.tools.emplace_back(scene.names[id], id);
   return tools;
 }
