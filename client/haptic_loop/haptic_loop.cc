@@ -55,8 +55,79 @@ bool HapticLoop::SetModel(const LocalModel& model) {
   return true;
 }
 
-int HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
+HapticLoop::Hit HapticLoop::FirstHit(const Vector3d& p, const Vector3d& v) const {
   const Vector3d P0 = model_.X_WP.translation();
+  const int count = static_cast<int>(model_.planes.size());
+  const auto ahead = [&](const ConstraintPlane& plane) {
+    return plane.gap_m + plane.normal_W.dot(p - P0);
+  };
+  // The object's planes the move meets one by one: where the tool's
+  // distance in front of a plane falls to zero. An object with separating
+  // planes that the tool is in front of takes only those, below.
+  const auto separated = [&](int32_t object) {
+    for (const ConstraintPlane& plane : model_.planes) {
+      if (plane.separating && plane.object == object && ahead(plane) > 0) return true;
+    }
+    return false;
+  };
+  Hit first;
+  for (int i = 0; i < count; ++i) {
+    const ConstraintPlane& plane = model_.planes[i];
+    if (separated(plane.object)) continue;
+    const double approach = plane.normal_W.dot(v);
+    if (approach >= 0) continue;
+    const double t = std::max(ahead(plane), 0.0) / -approach;
+    if (t <= 1 && t < first.t) first = {i, t};
+  }
+  // A separated object: the move meets it where it enters the region
+  // behind every one of its separating planes, through the plane it
+  // crosses last (a segment clipped by a convex region).
+  for (int i = 0; i < count; ++i) {
+    const ConstraintPlane& lead = model_.planes[i];
+    if (!lead.separating || !separated(lead.object)) continue;
+    bool first_of_object = true;
+    for (int k = 0; k < i && first_of_object; ++k) {
+      first_of_object = !(model_.planes[k].separating && model_.planes[k].object == lead.object);
+    }
+    if (!first_of_object) continue;
+    double enter = 0;
+    double leave = std::numeric_limits<double>::infinity();
+    int through = -1;
+    for (int k = i; k < count; ++k) {
+      const ConstraintPlane& plane = model_.planes[k];
+      if (!plane.separating || plane.object != lead.object) continue;
+      const double d = ahead(plane);
+      const double approach = plane.normal_W.dot(v);
+      if (d > 0) {
+        if (approach >= 0) {
+          enter = std::numeric_limits<double>::infinity();
+          break;
+        }
+        if (d / -approach > enter) {
+          enter = d / -approach;
+          through = k;
+        }
+      } else if (approach > 0) {
+        leave = std::min(leave, -d / approach);
+      }
+    }
+    if (through >= 0 && enter <= 1 && enter <= leave && enter < first.t) first = {through, enter};
+  }
+  return first;
+}
+
+bool HapticLoop::LeftPlane(const Vector3d& p, int plane) const {
+  const ConstraintPlane& on = model_.planes[plane];
+  if (!on.separating) return false;
+  const Vector3d P0 = model_.X_WP.translation();
+  const double stand_off = kStandOff * model_.validity_radius_m;
+  return std::any_of(model_.planes.begin(), model_.planes.end(), [&](const ConstraintPlane& other) {
+    return &other != &on && other.separating && other.object == on.object &&
+           other.gap_m + other.normal_W.dot(p - P0) > 2 * stand_off;
+  });
+}
+
+int HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
   const double stand_off = kStandOff * model_.validity_radius_m;
   Vector3d p = proxy_;
   Vector3d goal = target;
@@ -64,29 +135,23 @@ int HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
   for (int slide = 0; slide <= options_.max_slides; ++slide) {
     const Vector3d v = goal - p;
     if (v.norm() <= stand_off * 1e-3) break;
-    // The first plane the straight move meets: where the tool's distance in
-    // front of it, gap + n . (p - P0), falls to zero.
-    int first = -1;
-    double first_t = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < static_cast<int>(model_.planes.size()); ++i) {
-      const ConstraintPlane& plane = model_.planes[i];
-      const double approach = plane.normal_W.dot(v);
-      if (approach >= 0) continue;
-      const double ahead = plane.gap_m + plane.normal_W.dot(p - P0);
-      const double t = std::max(ahead, 0.0) / -approach;
-      if (t <= 1 && t < first_t) {
-        first_t = t;
-        first = i;
-      }
-    }
-    if (first < 0) {
+    const Hit first = FirstHit(p, v);
+    if (first.plane < 0) {
       p = goal;
+      // Slid past the edge of a separating plane's face: the tool is in
+      // front of another of its object's separating planes, free of the
+      // object, and goes on toward the target.
+      if (touched >= 0 && goal != target && LeftPlane(p, touched)) {
+        touched = -1;
+        goal = target;
+        continue;
+      }
       break;
     }
-    const ConstraintPlane& plane = model_.planes[first];
+    const ConstraintPlane& plane = model_.planes[first.plane];
     const Vector3d& n = plane.normal_W;
-    p += first_t * v + stand_off * n;
-    touched = first;
+    p += first.t * v + stand_off * n;
+    touched = first.plane;
     // Slide toward the target as the server's proxy does (proxy_slide.h).
     const std::optional<Vector3d> next = SlideGoal(
         p, target, n,

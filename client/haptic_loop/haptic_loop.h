@@ -47,6 +47,7 @@
 // translation is watched: the torque is rendered as it is.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "common/core/types.h"
@@ -119,6 +120,16 @@ class HapticLoop {
   // (it is rendered at the sphere's edge): it is the loop's reckoning of
   // where the server's proxy would be, which the next model corrects.
   int MoveProxy(const Vector3d& target, bool friction);
+  // The first plane the straight move from `p` by `v` meets, and where
+  // along it (0..1); plane -1 for none.
+  struct Hit {
+    int plane = -1;
+    double t = std::numeric_limits<double>::infinity();
+  };
+  Hit FirstHit(const Vector3d& p, const Vector3d& v) const;
+  // Whether the tool at `p` has slid off separating plane `plane`'s face:
+  // it is in front of another separating plane of the same object.
+  bool LeftPlane(const Vector3d& p, int plane) const;
   // The point of the validity sphere nearest `point`.
   Vector3d InValidity(const Vector3d& point) const;
   // Makes model_ the pending model: the proxy moves from the new model's

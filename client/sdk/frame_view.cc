@@ -53,6 +53,7 @@ haptics::LocalModel ModelFromProto(const pb::LocalModel& m) {
     plane.gap_m = p.gap_m();
     plane.stiffness_n_per_m = p.material().stiffness_n_per_m();
     plane.damping_ns_per_m = p.material().damping_ns_per_m();
+    plane.separating = p.separating();
     out.planes.push_back(std::move(plane));
   }
   return out;

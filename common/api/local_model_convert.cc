@@ -1,6 +1,8 @@
 #include "common/api/local_model_convert.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include "absl/strings/str_cat.h"
 #include "common/api/proto_convert.h"
@@ -41,6 +43,7 @@ absl::StatusOr<ConstraintPlane> PlaneFromProto(const pb::ConstraintPlane& p,
   HS_ASSIGN_OR_RETURN(
       plane.dynamic_friction,
       NumberIn(m.dynamic_friction(), 0, plane.static_friction, mat + ".dynamic_friction"));
+  plane.separating = p.separating();
   return plane;
 }
 
@@ -68,6 +71,7 @@ void LocalModelToProto(const LocalModel& model, const std::vector<std::string>& 
     m->set_damping_ns_per_m(plane.damping_ns_per_m);
     m->set_static_friction(plane.static_friction);
     m->set_dynamic_friction(plane.dynamic_friction);
+    p->set_separating(plane.separating);
   }
 }
 
@@ -89,10 +93,17 @@ absl::StatusOr<LocalModel> LocalModelFromProto(const pb::LocalModel& model) {
   HS_ASSIGN_OR_RETURN(
       out.p_WD, VectorFromProto(model.device_position_w_m(), "local_model.device_position_W_m"));
   out.planes.reserve(model.planes_size());
+  // The planes' objects, numbered in the order the model first names them:
+  // a device tells one object's planes from another's by them.
+  std::vector<std::string_view> objects;
   for (int i = 0; i < model.planes_size(); ++i) {
     HS_ASSIGN_OR_RETURN(
         ConstraintPlane plane,
         PlaneFromProto(model.planes(i), absl::StrCat("local_model.planes[", i, "]")));
+    const std::string_view name = model.planes(i).object();
+    const auto known = std::find(objects.begin(), objects.end(), name);
+    plane.object = static_cast<int32_t>(known - objects.begin());
+    if (known == objects.end()) objects.push_back(name);
     out.planes.push_back(plane);
   }
   return out;

@@ -1,5 +1,7 @@
 #include "common/collision/faces_in_box.h"
 
+#include <cmath>
+
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/utility.h>
 
@@ -65,6 +67,69 @@ void FindFacesInBox(const fcl::BVHModel<BV>& bvh, const std::vector<uint8_t>& de
   }
 }
 
+// AnyCornerInFront down one hierarchy, the plane (n_O, offset) in the
+// object frame: a point x is in front by n_O . x - offset. Of a node's
+// children the one reaching farther in front is opened first: a plane
+// with the surface in front of it is told so after a short walk.
+template <typename BV>
+bool AnyCornerInFront(const fcl::BVHModel<BV>& bvh, const Isometry3d& X_OW,
+                      const AlignedBox3d& box_W, const Vector3d& n_O, double offset) {
+  fcl::Transform3d X_OB = X_OW;
+  X_OB.translation() = X_OW * box_W.center();
+  const BoxQuery<BV> query(box_W.sizes() / 2, X_OB);
+  // How far node i's volume reaches in front of the plane (> 0: it may
+  // hold a corner in front; every volume but an oriented one may).
+  auto in_front = [&](int i) {
+    const fcl::BVNode<BV>& node = bvh.getBV(i);
+    if constexpr (requires { CullingBox(node.bv); }) {
+      const fcl::OBBd& volume = CullingBox(node.bv);
+      return n_O.dot(volume.To) - offset + volume.extent[0] * std::abs(n_O.dot(volume.axis.col(0))) +
+             volume.extent[1] * std::abs(n_O.dot(volume.axis.col(1))) +
+             volume.extent[2] * std::abs(n_O.dot(volume.axis.col(2)));
+    } else {
+      return 1.0;
+    }
+  };
+  // An oriented volume is opened when its bounding sphere meets the box
+  // (a fifth of the full test's work, and these walks open most volumes
+  // they meet); the other kinds by the box query.
+  const Matrix3d R_BO = X_OB.linear().transpose();
+  const Vector3d half = box_W.sizes() / 2;
+  auto open = [&](int i) {
+    const BV& bv = bvh.getBV(i).bv;
+    if constexpr (requires { CullingBox(bv); }) {
+      const fcl::OBBd& volume = CullingBox(bv);
+      const Vector3d c = R_BO * (volume.To - X_OB.translation());
+      const double outside = (c.cwiseAbs() - half).cwiseMax(0.0).squaredNorm();
+      return outside <= volume.extent.squaredNorm();
+    } else {
+      return query.Meets(bv);
+    }
+  };
+  std::vector<int>& stack = Scratch<NodeStack>().nodes;
+  stack.clear();
+  if (in_front(0) > 0 && open(0)) stack.push_back(0);
+  while (!stack.empty()) {
+    const fcl::BVNode<BV>& node = bvh.getBV(stack.back());
+    stack.pop_back();
+    if (node.isLeaf()) {
+      const fcl::Triangle& t = bvh.tri_indices[node.primitiveId()];
+      for (int k = 0; k < 3; ++k) {
+        if (n_O.dot(bvh.vertices[t[k]]) > offset) return true;
+      }
+      continue;
+    }
+    const int left = node.leftChild(), right = node.rightChild();
+    const double left_front = in_front(left), right_front = in_front(right);
+    const int first = left_front >= right_front ? left : right;
+    const int second = first == left ? right : left;
+    const double second_front = first == left ? right_front : left_front;
+    if (second_front > 0 && open(second)) stack.push_back(second);
+    if (std::max(left_front, right_front) > 0 && open(first)) stack.push_back(first);
+  }
+  return false;
+}
+
 }  // namespace
 
 void FindFacesInBox(const CollisionModel& model, const Isometry3d& X_WO, const AlignedBox3d& box_W,
@@ -78,6 +143,20 @@ void FindFacesInBox(const CollisionModel& model, const Isometry3d& X_WO, const A
         }
       },
       impl.bvh);
+}
+
+bool AnyCornerInFront(const CollisionModel& model, const Isometry3d& X_WO,
+                      const AlignedBox3d& box_W, const Vector3d& point_W, const Vector3d& normal_W,
+                      double slack_m) {
+  if (box_W.isEmpty()) return false;
+  const Isometry3d X_OW = X_WO.inverse();
+  const Vector3d n_O = X_OW.linear() * normal_W;
+  const double offset = n_O.dot(X_OW * point_W) + slack_m;
+  return std::visit(
+      [&](const auto& bvh) {
+        return bvh->getNumBVs() > 0 && AnyCornerInFront(*bvh, X_OW, box_W, n_O, offset);
+      },
+      model.impl().bvh);
 }
 
 }  // namespace hs

@@ -1,6 +1,7 @@
 #pragma once
 // Which faces of an object lie near a region: the faces whose bounding
-// volumes meet a world box, found down the object's hierarchy.
+// volumes meet a world box, found down the object's hierarchy; and whether
+// any of them rises in front of a plane.
 
 #include <vector>
 
@@ -16,5 +17,16 @@ namespace hs {
 /// no particular order.
 void FindFacesInBox(const CollisionModel& model, const Isometry3d& X_WO, const AlignedBox3d& box_W,
                     std::vector<FaceId>& faces);
+
+/// Whether a corner of a face of `model` posed at X_WO near `box_W` (world
+/// frame, metres: every face that meets the box, and some near it,
+/// degenerate faces too) lies more than `slack_m` in front of the plane
+/// through `point_W` with unit normal `normal_W`. Volumes with an oriented
+/// culling box (OBB, OBBRSS) are opened when they reach in front of the
+/// plane and their bounding sphere meets the box; volumes of the other
+/// kinds when they meet the box.
+bool AnyCornerInFront(const CollisionModel& model, const Isometry3d& X_WO,
+                      const AlignedBox3d& box_W, const Vector3d& point_W, const Vector3d& normal_W,
+                      double slack_m);
 
 }  // namespace hs

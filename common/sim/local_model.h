@@ -16,8 +16,8 @@ namespace hs {
 /// A plane the tool must stay in front of: the tangent plane of a face of a
 /// fixed object near the proxy.
 struct ConstraintPlane {
-  /// The object's id in the scene (-1 where unknown: a model read from a
-  /// frame names its objects instead).
+  /// The object's id in the scene (in a model read from a frame, which
+  /// names its objects: 0 for the first object it names, 1 for the next).
   int32_t object = -1;
   /// On the plane: the point nearest the tool at the model's proxy pose,
   /// world frame, metres.
@@ -36,6 +36,12 @@ struct ConstraintPlane {
   double damping_ns_per_m = 0;
   double static_friction = 0;
   double dynamic_friction = 0;
+  /// The plane separates the tool (translated) from its whole object: in
+  /// front of it, the tool meets nothing of that object, whatever the
+  /// object's other planes say. A device keeps the tool out of the region
+  /// behind every separating plane of an object (a convex region), and
+  /// behind each of the object's other planes only while it has none.
+  bool separating = false;
 };
 
 struct LocalModel {

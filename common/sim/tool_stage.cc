@@ -614,6 +614,8 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
         (void)ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
                              scratch.built_model);  // the whole radius
       }
+      MarkSeparatingPlanes(objects_.Posed(tool.id, proxy.X_WP), objects_.obstacles(),
+                           objects_.obstacle_ids(), scratch.separation, scratch.built_model);
       scratch.built_model.revision = scratch.model.revision + 1;
       scratch.model = scratch.built_model;
     } else if (update == ModelUpdate::kAnchor) {

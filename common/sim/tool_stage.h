@@ -21,6 +21,7 @@
 #include "common/sim/pair_caches.h"
 #include "common/sim/scene_objects.h"
 #include "common/sim/scene_options.h"
+#include "common/sim/separating_planes.h"
 #include "common/sim/step_frame.h"
 #include "common/sim/tool_force.h"
 #include "common/sim/tool_islands.h"
@@ -138,6 +139,8 @@ class ToolStage {
     double model_radius_m = 0;
     double searched_radius_m = 0;
     LocalModel built_model;
+    // Which planes of the last model built separate (separating_planes.h).
+    SeparationMemo separation;
     LocalModel model;
   };
   // A piece of a step for one worker: the contacts half of tool `index`

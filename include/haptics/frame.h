@@ -34,6 +34,10 @@ struct Plane {
   double gap_m = 0;
   double stiffness_n_per_m = 0;
   double damping_ns_per_m = 0;
+  /// In front of this plane the tool meets nothing of its object, whatever
+  /// the object's other planes say (docs/remote-haptics.md, Separating
+  /// planes).
+  bool separating = false;
 };
 
 /// A tool's local contact model (the local model part; docs/remote-haptics.md).

@@ -138,7 +138,8 @@ PYBIND11_MODULE(_client, m) {
       .def_property_readonly("normal", [](const haptics::Plane& p) { return Tuple(p.normal_w); })
       .def_readonly("gap", &haptics::Plane::gap_m)
       .def_readonly("stiffness", &haptics::Plane::stiffness_n_per_m)
-      .def_readonly("damping", &haptics::Plane::damping_ns_per_m);
+      .def_readonly("damping", &haptics::Plane::damping_ns_per_m)
+      .def_readonly("separating", &haptics::Plane::separating);
   py::class_<haptics::LocalModel>(m, "LocalModel")
       .def_readonly("revision", &haptics::LocalModel::revision)
       .def_readonly("proxy_pose", &haptics::LocalModel::proxy_pose)

@@ -1,11 +1,15 @@
 // The device's haptic loop on hand-made models: a floor, a corner, a
-// model past its radius, lost frames and the switch bound, bad input.
+// crest of separating planes, a model past its radius, lost frames and the
+// switch bound, bad input.
 
 #include "client/haptic_loop/haptic_loop.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <random>
 
 namespace hs {
 namespace {
@@ -281,6 +285,108 @@ TEST(HapticLoopTest, PassivityControllerLeavesPassiveContactAloneAndFrictionPays
   EXPECT_GT(WorkOnPath(uncontrolled, leave, 0), 0.005);
   EXPECT_LE(WorkOnPath(controlled, leave, 0), 0.002 + options.passivity_reserve_j + 1e-4);
   EXPECT_GT(controlled.passivity_ticks(), 0);
+}
+
+// A roof of one object, its two slopes 30 degrees down from a ridge along
+// y through the origin: planes n1 = (-sin 30, 0, cos 30) and n2 =
+// (sin 30, 0, cos 30), the proxy taken 1 mm left of the ridge and 2 mm up.
+// The device slides over the ridge and down the right slope to 0.6 mm
+// under it. Separating planes (a convex object: in front of either, the
+// tool is clear of it) let the proxy follow it down: it ends on the right
+// slope over the device, pushing it out by k times its depth along n2
+// (hand-computed). Planes that each hold alone keep the proxy on the left
+// slope's plane extended past the ridge, well above the device.
+LocalModel Roof(bool separating) {
+  const double s = 0.5, c = std::sqrt(3.0) / 2;
+  const Vector3d p0(-0.001, 0, 0.002);
+  std::vector<ConstraintPlane> planes;
+  for (const Vector3d& n : {Vector3d(-s, 0, c), Vector3d(s, 0, c)}) {
+    ConstraintPlane plane = Plane(n, n.dot(p0));
+    plane.object = 3;
+    plane.separating = separating;
+    planes.push_back(plane);
+  }
+  return Model(p0, planes);
+}
+
+std::vector<Vector3d> OverTheRidge() {
+  std::vector<Vector3d> path;
+  const Vector3d from(-0.001, 0, 0.002), to(0.01, 0, -0.0064);
+  for (int i = 0; i <= 100; ++i) path.push_back(from + (to - from) * (i / 100.0));
+  return path;
+}
+
+TEST(HapticLoopTest, SeparatingPlanesLetTheProxyDownTheFarSideOfACrest) {
+  const Vector3d n2 = Vector3d(0.5, 0, std::sqrt(3.0) / 2);
+  HapticOutput out;
+  HapticLoop loop({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(loop.SetModel(Roof(true)));
+  for (const Vector3d& device : OverTheRidge()) out = loop.Tick(At(device));
+  const Vector3d device = OverTheRidge().back();
+  const double depth = -n2.dot(device);  // behind the right slope
+  ASSERT_GT(depth, 0);
+  EXPECT_TRUE(out.touching);
+  EXPECT_NEAR((out.p_WP - (device + depth * n2)).norm(), 0, 1e-6);
+  EXPECT_NEAR((out.force_W - kK * depth * n2).norm(), 0, 1e-3);
+
+  HapticLoop held({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(held.SetModel(Roof(false)));
+  for (const Vector3d& d : OverTheRidge()) out = held.Tick(At(d));
+  const Vector3d n1 = Vector3d(-0.5, 0, std::sqrt(3.0) / 2);
+  EXPECT_GE(n1.dot(out.p_WP), -1e-6) << "held in front of the left slope's plane";
+  EXPECT_GT(out.force_W.norm(), 3 * kK * depth);
+}
+
+// Whatever the device does, the proxy never ends a tick behind every
+// separating plane of an object (inside the convex region they bound), nor
+// behind a plane of an object without separating planes: random convex
+// polytopes of 3-6 separating planes about the proxy, a floor of another
+// object below, and random device walks through them.
+TEST(HapticLoopTest, TheProxyStaysClearOfEverySeparatedObject) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss(0, 1);
+  std::uniform_int_distribution<int> count(3, 6);
+  int inside_ticks = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vector3d p0 = Vector3d::Zero();
+    std::vector<ConstraintPlane> planes;
+    // A convex object under the proxy: planes whose normals lean up, each
+    // 0.5-3 mm below the proxy.
+    const int n = count(rng);
+    for (int i = 0; i < n; ++i) {
+      const Vector3d normal =
+          (Vector3d(gauss(rng), gauss(rng), 0) * 0.6 + Vector3d::UnitZ()).normalized();
+      ConstraintPlane plane = Plane(normal, 0.0005 + 0.0025 * std::abs(gauss(rng)) / 2);
+      plane.object = 1;
+      plane.separating = true;
+      planes.push_back(plane);
+    }
+    ConstraintPlane floor = Plane(Vector3d::UnitZ(), 0.006);
+    floor.object = 2;
+    planes.push_back(floor);
+    HapticLoop loop;
+    ASSERT_TRUE(loop.SetModel(Model(p0, planes)));
+    Vector3d device = p0;
+    for (int tick = 0; tick < 200; ++tick) {
+      device += 0.0004 * Vector3d(gauss(rng), gauss(rng), gauss(rng) - 0.3);
+      device = device.cwiseMax(Vector3d::Constant(-0.015)).cwiseMin(Vector3d::Constant(0.015));
+      const HapticOutput out = loop.Tick(At(device));
+      double clear = -std::numeric_limits<double>::infinity();
+      for (int i = 0; i < n; ++i) {
+        clear = std::max(clear, planes[i].gap_m + planes[i].normal_W.dot(out.p_WP - p0));
+      }
+      ASSERT_GE(clear, -1e-9) << "trial " << trial << " tick " << tick;
+      ASSERT_GE(floor.gap_m + floor.normal_W.dot(out.p_WP - p0), -1e-9)
+          << "trial " << trial << " tick " << tick;
+      double device_clear = -std::numeric_limits<double>::infinity();
+      for (int i = 0; i < n; ++i) {
+        device_clear =
+            std::max(device_clear, planes[i].gap_m + planes[i].normal_W.dot(device - p0));
+      }
+      if (device_clear < 0) ++inside_ticks;
+    }
+  }
+  EXPECT_GT(inside_ticks, 1000) << "the walks must go into the objects";
 }
 
 TEST(HapticLoopTest, NonFiniteInputNeverReachesTheForce) {

@@ -230,11 +230,14 @@ TEST_P(RemoteOperatorTest, LocalModelStaysPassiveOverStalls) {
 // device's 250 a second and at one a tick; the press and the tap change
 // the force in a tick by no more than the zero-latency run does plus the
 // switch bound (the slide, which switches between the crest's planes, by
-// 0.9 N: docs/remote-haptics.md). The device loop's passivity controller
-// is what keeps the slide so: without it, models a round trip old hand
-// the hand energy on 7 of 16 draws of this link (seeds 1-8 at both rates,
-// 2026-11-29), 0.92 J on seed 4's at a pose a tick. The press and the tap
-// need it not: the device renders their zero-latency force.
+// up to 1.2 N: docs/remote-haptics.md). The slide stays passive without
+// the device loop's passivity controller too: over the crest the model's
+// separating planes let the proxy down the far side as the surface does.
+// (When every plane held alone, the proxy rode the crest's planes
+// extended past their faces, and models a round trip old handed the hand
+// energy on 7 of 16 draws of this link, 0.92 J on seed 4's at a pose a
+// tick; now none of those 16 does.) The press and the tap need it not:
+// the device renders their zero-latency force.
 TEST_P(RemoteOperatorTest, LocalModelStaysPassiveAt150MsEachWay) {
   const LinkConditions link{.latency_ms = 300, .jitter_ms = 20, .seed = 1};
   for (const double pose_rate_hz : {250.0, 1000.0}) {
@@ -256,13 +259,14 @@ TEST_P(RemoteOperatorTest, LocalModelStaysPassiveAt150MsEachWay) {
     }
   }
   if (GetParam() == OperatorMotion::kSlide) {
-    const LinkConditions draw{.latency_ms = 300, .jitter_ms = 20, .seed = 4};
-    const RemoteSummary controlled = RunOperator(GetParam(), true, draw, 4, nullptr, {}, 30, 1000);
-    const RemoteSummary uncontrolled = RunOperator(GetParam(), true, draw, 4, nullptr, {}, 0, 1000);
-    std::cout << "seed 4: energy " << controlled.energy_j << " J, without the controller "
-              << uncontrolled.energy_j << " J\n";
-    EXPECT_LE(controlled.energy_j, kPassiveBoundJ);
-    EXPECT_GT(uncontrolled.energy_j, kPassiveBoundJ);
+    for (const uint64_t seed : {4, 5}) {
+      const LinkConditions draw{.latency_ms = 300, .jitter_ms = 20, .seed = seed};
+      const RemoteSummary uncontrolled =
+          RunOperator(GetParam(), true, draw, 4, nullptr, {}, 0, 1000);
+      std::cout << "seed " << seed << " without the controller: energy " << uncontrolled.energy_j
+                << " J\n";
+      EXPECT_LE(uncontrolled.energy_j, kPassiveBoundJ) << "seed " << seed;
+    }
   }
 }
 

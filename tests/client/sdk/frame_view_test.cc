@@ -39,6 +39,7 @@ TEST(FrameViewTest, CopiesEveryPartOfAFrame) {
   plane->set_object("organ");
   plane->mutable_normal_w()->set_z(1);
   plane->set_gap_m(0.001);
+  plane->set_separating(true);
   plane->mutable_material()->set_stiffness_n_per_m(400);
 
   const haptics::Frame out = FrameFromProto(frame);
@@ -71,6 +72,7 @@ TEST(FrameViewTest, CopiesEveryPartOfAFrame) {
   ASSERT_EQ(t.local_model.planes.size(), 1u);
   EXPECT_EQ(t.local_model.planes[0].object, "organ");
   EXPECT_EQ(t.local_model.planes[0].gap_m, 0.001);
+  EXPECT_TRUE(t.local_model.planes[0].separating);
   EXPECT_EQ(t.local_model.planes[0].stiffness_n_per_m, 400);
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <random>
@@ -38,14 +39,28 @@ LocalModel RandomModel(std::mt19937& rng, int planes) {
     p.damping_ns_per_m = u(rng);
     p.static_friction = u(rng);
     p.dynamic_friction = p.static_friction * u(rng);
+    p.separating = rng() % 2;
   }
   return model;
 }
 
 const std::vector<std::string> kNames = {"table", "organ", "probe"};
 
+// The number a model read back gives `object`: how many other objects the
+// model names before it first names `object`.
+int32_t FirstNamed(const LocalModel& model, int32_t object) {
+  std::vector<int32_t> seen;
+  for (const ConstraintPlane& p : model.planes) {
+    if (p.object == object) break;
+    if (std::find(seen.begin(), seen.end(), p.object) == seen.end()) seen.push_back(p.object);
+  }
+  return static_cast<int32_t>(seen.size());
+}
+
 // To the proto and back gives the model again, field for field, but the
-// planes' objects, which come back unknown (-1) and go out by name.
+// planes' objects, which go out by name and come back numbered in the
+// order the model first names them: two planes share a number exactly
+// when they share an object.
 TEST(LocalModelConvertTest, RoundTrip) {
   std::mt19937 rng(6);
   for (int k = 0; k < 50; ++k) {
@@ -65,7 +80,8 @@ TEST(LocalModelConvertTest, RoundTrip) {
     for (size_t i = 0; i < model.planes.size(); ++i) {
       const ConstraintPlane &got = back->planes[i], &want = model.planes[i];
       EXPECT_EQ(proto.planes(i).object(), kNames[want.object]);
-      EXPECT_EQ(got.object, -1);
+      EXPECT_EQ(got.object, FirstNamed(model, want.object));
+      EXPECT_EQ(got.separating, want.separating);
       EXPECT_EQ(got.point_W, want.point_W);
       EXPECT_EQ(got.normal_W, want.normal_W);
       EXPECT_EQ(got.gap_m, want.gap_m);

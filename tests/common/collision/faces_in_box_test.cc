@@ -123,6 +123,50 @@ TEST_P(FacesInBoxTest, FindsEveryFaceNearTheBoxAndOnlyThose) {
   EXPECT_GT(found_total, 0);
 }
 
+// Against brute force over every face, for random poses, boxes and planes
+// through the surface: a corner in front of the plane (beyond the slack)
+// of a face meeting the box is always seen, and a corner is said to be in
+// front only when a face that may be found (MayBeFound) has one.
+TEST_P(FacesInBoxTest, SeesACornerInFrontOfAPlaneExactlyNearTheBox) {
+  const HapticObject torus = *HapticObject::Create("torus", MakeTorus(1.0, 0.3, 48, 24));
+  const CollisionModel model(torus, GetParam(), kMargin);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> side(0.01, 0.6);
+  std::normal_distribution<double> gauss(0, 1);
+  constexpr double kSlack = 1e-9;
+  int in_front = 0, not_in_front = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Isometry3d X_WO = RandomPose(rng, 0.5);
+    const FaceId seed_face = std::uniform_int_distribution<FaceId>(0, torus.num_faces() - 1)(rng);
+    const std::array<Vector3d, 3> seed = WorldTriangle(torus, seed_face, X_WO);
+    const Vector3d half(side(rng), side(rng), side(rng));
+    const AlignedBox3d box_W(seed[0] - half, seed[0] + half);
+    // Through a corner of the face, its normal tilted at random: most such
+    // planes have the nearby surface behind them, some not.
+    const Vector3d face_n = (seed[1] - seed[0]).cross(seed[2] - seed[0]).normalized();
+    const Vector3d n = (face_n + 0.03 * Vector3d(gauss(rng), gauss(rng), gauss(rng))).normalized();
+    const bool said = AnyCornerInFront(model, X_WO, box_W, seed[0], n, kSlack);
+    bool near_box = false, may_be_found = false;
+    for (FaceId f = 0; f < torus.num_faces(); ++f) {
+      const std::array<Vector3d, 3> t = WorldTriangle(torus, f, X_WO);
+      const bool front = std::any_of(t.begin(), t.end(), [&](const Vector3d& x) {
+        return n.dot(x - seed[0]) > kSlack + 1e-12;
+      });
+      if (!front) continue;
+      near_box = near_box || TriangleMeetsBox(t, box_W);
+      may_be_found = may_be_found || MayBeFound(GetParam(), t, box_W, X_WO);
+    }
+    if (near_box) EXPECT_TRUE(said) << "trial " << trial;
+    if (said) EXPECT_TRUE(may_be_found) << "trial " << trial;
+    ++(said ? in_front : not_in_front);
+  }
+  EXPECT_GT(in_front, 20);
+  EXPECT_GT(not_in_front, 20);
+  // Nothing is in front of anything in an empty box.
+  EXPECT_FALSE(AnyCornerInFront(model, Isometry3d::Identity(), AlignedBox3d(), Vector3d::Zero(),
+                                Vector3d::UnitZ(), kSlack));
+}
+
 INSTANTIATE_TEST_SUITE_P(AllBvTypes, FacesInBoxTest, testing::ValuesIn(kAllTypes),
                          [](const testing::TestParamInfo<BvType>& info) {
                            return std::string(BvTypeName(info.param));

@@ -209,6 +209,7 @@ void ExpectSamePlanes(const LocalModel& model, const LocalModel& searched, int s
     EXPECT_EQ(model.planes[i].normal_W, searched.planes[i].normal_W) << step;
     EXPECT_EQ(model.planes[i].gap_m, searched.planes[i].gap_m) << step;
     EXPECT_EQ(model.planes[i].tool_point_W, searched.planes[i].tool_point_W) << step;
+    EXPECT_EQ(model.planes[i].separating, searched.planes[i].separating) << step;
   }
 }
 
@@ -221,6 +222,7 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   int anchored = 0;
   int built = 0;
   int brute_forced = 0;
+  long separating = 0;
   uint64_t last_revision = 0;
   LocalModel last_built;
   Vector3d last_proxy = Vector3d::Constant(1);
@@ -269,6 +271,7 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
         EXPECT_TRUE(std::any_of(last_built.planes.begin(), last_built.planes.end(),
                                 [&](const ConstraintPlane& p) {
                                   return p.normal_W == plane.normal_W &&
+                                         p.separating == plane.separating &&
                                          std::abs(std::max(p.gap_m + p.normal_W.dot(slide), 0.0) -
                                                   plane.gap_m) <= 1e-15;
                                 }))
@@ -282,7 +285,10 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
     ++built;
     last_built = model;
     ExpectSamePlanes(model, b.local_model, step);
+    separating += std::count_if(model.planes.begin(), model.planes.end(),
+                                [](const ConstraintPlane& p) { return p.separating; });
   }
+  EXPECT_GT(separating, 0) << "the crest's planes must separate (separating_planes.h)";
   EXPECT_GT(held, 5) << "the path must hold models between revisions";
   EXPECT_GT(pressing, 5) << "the path must press with the proxy held";
   EXPECT_GT(anchored, 5) << "the slide must anchor models";
