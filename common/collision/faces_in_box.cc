@@ -83,7 +83,8 @@ bool AnyCornerInFront(const fcl::BVHModel<BV>& bvh, const Isometry3d& X_OW,
     const fcl::BVNode<BV>& node = bvh.getBV(i);
     if constexpr (requires { CullingBox(node.bv); }) {
       const fcl::OBBd& volume = CullingBox(node.bv);
-      return n_O.dot(volume.To) - offset + volume.extent[0] * std::abs(n_O.dot(volume.axis.col(0))) +
+      return n_O.dot(volume.To) - offset +
+             volume.extent[0] * std::abs(n_O.dot(volume.axis.col(0))) +
              volume.extent[1] * std::abs(n_O.dot(volume.axis.col(1))) +
              volume.extent[2] * std::abs(n_O.dot(volume.axis.col(2)));
     } else {

@@ -14,8 +14,10 @@ constexpr double kSlackFraction = 1e-9;
 // How near two planes' offsets and tool heights may be and still be the
 // same plane for the memo, relative to the slack: their last bits.
 constexpr double kRoundingFraction = 1e-3;
-// The grid the checked region is grown out to, relative to the radius.
-constexpr double kGridFraction = 0.5;
+// The grid the checked region is grown out to, relative to the radius:
+// a proxy's moves cross it once a radius or so (a coarser grid, fewer
+// walks, each over more of the object).
+constexpr double kGridFraction = 1.0;
 
 AlignedBox3d WorldBox(const PosedObject& o) {
   AlignedBox3d box;
@@ -82,13 +84,13 @@ void MarkSeparatingPlanes(const PosedObject& tool, std::span<const PosedObject> 
         .offset = plane.normal_W.dot(plane.point_W),
         .tool_height = plane.normal_W.dot(plane.tool_point_W - tool.X_WO.translation()),
         .region_W = region};
-    const auto known =
-        std::find_if(memo.entries.begin(), memo.entries.end(),
-                     [&](const auto& e) { return SameKey(e, entry, kRoundingFraction * slack); });
+    const auto known = std::find_if(memo.entries.begin(), memo.entries.end(), [&](const auto& e) {
+      return SameKey(e, entry, kRoundingFraction * slack);
+    });
     entry.separating = known != memo.entries.end()
                            ? known->separating
-                           : !AnyCornerInFront(*tool.model, tool.X_WO, tool_box,
-                                               plane.tool_point_W, -plane.normal_W, slack) &&
+                           : !AnyCornerInFront(*tool.model, tool.X_WO, tool_box, plane.tool_point_W,
+                                               -plane.normal_W, slack) &&
                                  !AnyCornerInFront(*object.model, object.X_WO, region,
                                                    plane.point_W, plane.normal_W, slack);
     plane.separating = entry.separating;

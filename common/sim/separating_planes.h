@@ -24,7 +24,7 @@ namespace hs {
 class SeparationMemo {
  public:
   struct Entry {
-    const void* model = nullptr;  ///< The object's hierarchy, and its
+    const void* model = nullptr;    ///< The object's hierarchy, and its
     uint64_t geometry_version = 0;  ///< geometry version,
     Isometry3d X_WO;                ///< and pose.
     Matrix3d R_WT;                  ///< The tool's orientation.
@@ -43,7 +43,7 @@ class SeparationMemo {
 /// near where the tool can reach lies in front of the plane, nor any
 /// corner of the tool behind it through the plane's tool point, each by
 /// more than rounding. Where the tool can reach: the tool's box at the
-/// proxy grown by the validity radius, and then out to a grid of half the
+/// proxy grown by the validity radius, and then out to a grid of the
 /// radius (so that the region, and the answer, stay the same over a
 /// proxy's small moves and `memo` serves them). The same holds for the
 /// tool moved by any translation within the radius, so for the model

@@ -83,8 +83,8 @@ Worst WorstCorners(const Scene& scene, const Isometry3d& X_WP, const ConstraintP
 // marked separating has no object corner near the tool (within the radius
 // of its box) in front of it and no tool corner behind it; one not marked
 // has such a corner somewhere near (the region checked reaches out to a
-// grid of half the radius, and the hierarchy's volumes a face's size
-// beyond it: within three radii).
+// grid of the radius, and the hierarchy's volumes twice a face's size
+// beyond it: within four radii).
 int CheckedSeparating(const Scene& scene, const Isometry3d& X_WP, const LocalModel& model) {
   const double slack = kSlack * scene.object->object.bounding_box().diagonal().norm() * 2;
   int separating = 0;
@@ -95,7 +95,7 @@ int CheckedSeparating(const Scene& scene, const Isometry3d& X_WP, const LocalMod
       EXPECT_LE(worst.tool_behind, slack);
       ++separating;
     } else {
-      const Worst worst = WorstCorners(scene, X_WP, plane, 3 * kRadius);
+      const Worst worst = WorstCorners(scene, X_WP, plane, 4 * kRadius);
       EXPECT_TRUE(worst.object_in_front > 0 || worst.tool_behind > 0);
     }
   }
