@@ -141,7 +141,7 @@ int HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
       // Slid past the edge of a separating plane's face: the tool is in
       // front of another of its object's separating planes, free of the
       // object, and goes on toward the target.
-      if (touched >= 0 && goal != target && LeftPlane(p, touched)) {
+      if (touched >= 0 && goal != target && slide < options_.max_slides && LeftPlane(p, touched)) {
         touched = -1;
         goal = target;
         continue;

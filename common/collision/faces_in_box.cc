@@ -153,6 +153,8 @@ bool AnyCornerInFront(const CollisionModel& model, const Isometry3d& X_WO,
   const Isometry3d X_OW = X_WO.inverse();
   const Vector3d n_O = X_OW.linear() * normal_W;
   const double offset = n_O.dot(X_OW * point_W) + slack_m;
+  // A plane or box that is not a number may have anything in front of it.
+  if (!n_O.allFinite() || !std::isfinite(offset) || !box_W.sizes().allFinite()) return true;
   return std::visit(
       [&](const auto& bvh) {
         return bvh->getNumBVs() > 0 && AnyCornerInFront(*bvh, X_OW, box_W, n_O, offset);

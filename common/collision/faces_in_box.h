@@ -24,7 +24,8 @@ void FindFacesInBox(const CollisionModel& model, const Isometry3d& X_WO, const A
 /// through `point_W` with unit normal `normal_W`. Volumes with an oriented
 /// culling box (OBB, OBBRSS) are opened when they reach in front of the
 /// plane and their bounding sphere meets the box; volumes of the other
-/// kinds when they meet the box.
+/// kinds when they meet the box. True for a plane or box with a number
+/// that is not finite.
 bool AnyCornerInFront(const CollisionModel& model, const Isometry3d& X_WO,
                       const AlignedBox3d& box_W, const Vector3d& point_W, const Vector3d& normal_W,
                       double slack_m);

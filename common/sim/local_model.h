@@ -36,9 +36,9 @@ struct ConstraintPlane {
   double damping_ns_per_m = 0;
   double static_friction = 0;
   double dynamic_friction = 0;
-  /// The plane separates the tool (translated) from its whole object: in
-  /// front of it, the tool meets nothing of that object, whatever the
-  /// object's other planes say. A device keeps the tool out of the region
+  /// The plane separates the tool from its whole object near it: in front
+  /// of it, within the validity radius, the tool meets nothing of that
+  /// object, whatever the object's other planes say. A device keeps the tool out of the region
   /// behind every separating plane of an object (a convex region), and
   /// behind each of the object's other planes only while it has none.
   bool separating = false;

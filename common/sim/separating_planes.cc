@@ -43,6 +43,7 @@ AlignedBox3d OnGrid(const AlignedBox3d& box, double by, double cell) {
 // rounding either way).
 bool SameKey(const SeparationMemo::Entry& a, const SeparationMemo::Entry& b, double rounding) {
   return a.model == b.model && a.geometry_version == b.geometry_version &&
+         a.tool_model == b.tool_model && a.tool_geometry_version == b.tool_geometry_version &&
          (a.normal_W - b.normal_W).lpNorm<Eigen::Infinity>() <= 1e-12 &&
          std::abs(a.offset - b.offset) <= rounding &&
          std::abs(a.tool_height - b.tool_height) <= rounding &&
@@ -56,10 +57,12 @@ void MarkSeparatingPlanes(const PosedObject& tool, std::span<const PosedObject> 
                           std::span<const ObjectId> ids, SeparationMemo& memo, LocalModel& model) {
   const AlignedBox3d tool_box = WorldBox(tool);
   const double r = model.validity_radius_m;
+  for (ConstraintPlane& plane : model.planes) plane.separating = false;
+  // Nothing is said of a model whose reach is not a number.
+  if (!(std::isfinite(r) && r > 0) || !tool_box.sizes().allFinite()) return;
   const AlignedBox3d region = OnGrid(tool_box, r, kGridFraction * r);
   memo.next.clear();
   for (ConstraintPlane& plane : model.planes) {
-    plane.separating = false;
     const auto k = std::find(ids.begin(), ids.end(), plane.object) - ids.begin();
     if (k == static_cast<long>(ids.size())) continue;
     const PosedObject& object = obstacles[k];
@@ -79,6 +82,8 @@ void MarkSeparatingPlanes(const PosedObject& tool, std::span<const PosedObject> 
         .model = object.model,
         .geometry_version = object.model->geometry_version(),
         .X_WO = object.X_WO,
+        .tool_model = tool.model,
+        .tool_geometry_version = tool.model->geometry_version(),
         .R_WT = tool.X_WO.linear(),
         .normal_W = plane.normal_W,
         .offset = plane.normal_W.dot(plane.point_W),

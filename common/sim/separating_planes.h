@@ -24,10 +24,12 @@ namespace hs {
 class SeparationMemo {
  public:
   struct Entry {
-    const void* model = nullptr;    ///< The object's hierarchy, and its
-    uint64_t geometry_version = 0;  ///< geometry version,
-    Isometry3d X_WO;                ///< and pose.
-    Matrix3d R_WT;                  ///< The tool's orientation.
+    const void* model = nullptr;         ///< The object's hierarchy, and its
+    uint64_t geometry_version = 0;       ///< geometry version,
+    Isometry3d X_WO;                     ///< and pose.
+    const void* tool_model = nullptr;    ///< The tool's hierarchy,
+    uint64_t tool_geometry_version = 0;  ///< its geometry version
+    Matrix3d R_WT;                       ///< and orientation.
     Vector3d normal_W;
     double offset = 0;       ///< normal . point on the plane
     double tool_height = 0;  ///< normal . (tool point - tool origin)

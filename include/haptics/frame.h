@@ -34,9 +34,9 @@ struct Plane {
   double gap_m = 0;
   double stiffness_n_per_m = 0;
   double damping_ns_per_m = 0;
-  /// In front of this plane the tool meets nothing of its object, whatever
-  /// the object's other planes say (docs/remote-haptics.md, Separating
-  /// planes).
+  /// In front of this plane, within the validity radius, the tool meets
+  /// nothing of its object (the planes naming it), whatever the object's
+  /// other planes say (docs/remote-haptics.md, Separating planes).
   bool separating = false;
 };
 

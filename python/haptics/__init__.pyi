@@ -40,6 +40,7 @@ class Plane:
     gap: float
     stiffness: float
     damping: float
+    separating: bool
     @property
     def point(self) -> Vector: ...
     @property

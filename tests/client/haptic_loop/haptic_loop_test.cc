@@ -342,6 +342,41 @@ TEST(HapticLoopTest, SeparatingPlanesLetTheProxyDownTheFarSideOfACrest) {
 // behind a plane of an object without separating planes: random convex
 // polytopes of 3-6 separating planes about the proxy, a floor of another
 // object below, and random device walks through them.
+// Separating planes free the tool of their own object only. A floor and a
+// wall of two objects, each plane separating: the device pushed into the
+// corner is held on both, as planes that each hold alone hold it (a
+// device in front of one object's plane is not free of the other). A
+// floor and a wall of one object, the floor separating and the wall not:
+// in front of the floor the tool is clear of that object, and the device
+// behind the wall's plane is not held by it.
+TEST(HapticLoopTest, SeparatingPlanesFreeTheToolOfTheirOwnObjectOnly) {
+  auto two_planes = [](int32_t wall_object, bool wall_separating) {
+    ConstraintPlane floor = Plane(Vector3d::UnitZ(), 0.001);
+    floor.object = 1;
+    floor.separating = true;
+    ConstraintPlane wall = Plane(Vector3d::UnitX(), 0.001);
+    wall.object = wall_object;
+    wall.separating = wall_separating;
+    return Model(Vector3d(0.001, 0, 0.001), {floor, wall});
+  };
+  const Vector3d device(-0.001, 0, -0.002);
+  HapticLoop two({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(two.SetModel(two_planes(2, true)));
+  HapticOutput out;
+  for (int i = 0; i < 3; ++i) out = two.Tick(At(device));
+  EXPECT_NEAR(out.p_WP.x(), 0, 1e-7);
+  EXPECT_NEAR(out.p_WP.z(), 0, 1e-7);
+  EXPECT_NEAR(out.force_W.x(), 1.0, 1e-3);
+  EXPECT_NEAR(out.force_W.z(), 2.0, 1e-3);
+
+  HapticLoop one({.max_switch_step_n = std::numeric_limits<double>::infinity()});
+  ASSERT_TRUE(one.SetModel(two_planes(1, false)));
+  const Vector3d above_floor(-0.003, 0, 0.0005);
+  for (int i = 0; i < 3; ++i) out = one.Tick(At(above_floor));
+  EXPECT_NEAR((out.p_WP - above_floor).norm(), 0, 1e-9);
+  EXPECT_FALSE(out.touching);
+}
+
 TEST(HapticLoopTest, TheProxyStaysClearOfEverySeparatedObject) {
   std::mt19937 rng(7);
   std::normal_distribution<double> gauss(0, 1);
