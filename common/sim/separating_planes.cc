@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/collision/faces_in_box.h"
+#include "common/sim/motion_bounds.h"
 
 namespace hs {
 namespace {
@@ -18,13 +19,6 @@ constexpr double kRoundingFraction = 1e-3;
 // a proxy's moves cross it once a radius or so (a coarser grid, fewer
 // walks, each over more of the object).
 constexpr double kGridFraction = 1.0;
-
-AlignedBox3d WorldBox(const PosedObject& o) {
-  AlignedBox3d box;
-  const AlignedBox3d& local = o.object->bounding_box();
-  for (int c = 0; c < 8; ++c) box.extend(o.X_WO * local.corner(AlignedBox3d::CornerType(c)));
-  return box;
-}
 
 // `box` grown by `by` and out to the grid of side `cell`.
 AlignedBox3d OnGrid(const AlignedBox3d& box, double by, double cell) {
@@ -55,7 +49,7 @@ bool SameKey(const SeparationMemo::Entry& a, const SeparationMemo::Entry& b, dou
 
 void MarkSeparatingPlanes(const PosedObject& tool, std::span<const PosedObject> obstacles,
                           std::span<const ObjectId> ids, SeparationMemo& memo, LocalModel& model) {
-  const AlignedBox3d tool_box = WorldBox(tool);
+  const AlignedBox3d tool_box = WorldBox(*tool.object, tool.X_WO);
   const double r = model.validity_radius_m;
   for (ConstraintPlane& plane : model.planes) plane.separating = false;
   // Nothing is said of a model whose reach is not a number.
