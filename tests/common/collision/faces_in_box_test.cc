@@ -135,7 +135,9 @@ TEST_P(FacesInBoxTest, SeesACornerInFrontOfAPlaneExactlyNearTheBox) {
   std::normal_distribution<double> gauss(0, 1);
   constexpr double kSlack = 1e-9;
   int in_front = 0, not_in_front = 0;
-  for (int trial = 0; trial < 200; ++trial) {
+  // About one plane in nine has nothing in front: 500 trials keep both
+  // counts well clear of the floors below whatever the compiler rounds.
+  for (int trial = 0; trial < 500; ++trial) {
     const Isometry3d X_WO = RandomPose(rng, 0.5);
     const FaceId seed_face = std::uniform_int_distribution<FaceId>(0, torus.num_faces() - 1)(rng);
     const std::array<Vector3d, 3> seed = WorldTriangle(torus, seed_face, X_WO);
