@@ -42,8 +42,10 @@ void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const Fram
   if (sent.scene != s.names.get()) {  // a new scene: its models are new
     sent.scene = s.names.get();
     sent.revisions.clear();
+    sent.surfaces.clear();
   }
   sent.revisions.resize(s.frame.tools.size(), 0);
+  sent.surfaces.resize(s.frame.tools.size(), 0);
   int k = 0;  // the tool's entry in `frame`
   for (size_t i = 0; i < s.frame.tools.size(); ++i) {
     if (without_models.only_tool && *without_models.only_tool != s.frame.tools[i].tool) continue;
@@ -60,8 +62,10 @@ void FillFrameMessage(const StepSnapshot& s, const FrameParts& parts, const Fram
     const LocalModel& model = s.frame.tools[i].local_model;
     if (parts.local_model && model.revision != 0 && sent.revisions[i] != model.revision &&
         (own || !sent.own_tool_only)) {
-      LocalModelToProto(model, *s.names, state.mutable_local_model());
+      LocalModelToProto(model, *s.names, state.mutable_local_model(),
+                        sent.surfaces[i] != model.surface_revision());
       sent.revisions[i] = model.revision;
+      sent.surfaces[i] = model.surface_revision();
     }
   }
   haptics::v1::ServerTimings* timings = frame.mutable_timings();

@@ -22,9 +22,12 @@ struct ModelsSent {
   /// renders from, and the least to send); a viewer every tool's.
   bool own_tool_only = false;
   /// The scene they were sent for (its StepSnapshot::names), and the
-  /// revision sent for each of its frame's tools (0: none).
+  /// revision sent for each of its frame's tools (0: none), and the
+  /// surface whose faces it was sent (a model's surface goes out whole
+  /// once; later models carry its revision alone).
   const void* scene = nullptr;
   std::vector<uint64_t> revisions;
+  std::vector<uint64_t> surfaces;
 };
 
 /// Writes `s` over `frame` (cleared first). `stream` is the stream the

@@ -10,12 +10,64 @@
 namespace hs {
 namespace {
 
-// The proxy stops this far (relative to the validity radius) in front of a
-// plane it meets, so that sliding along it does not meet it again at once;
-// the server's proxy keeps a like stand-off relative to the tool's size.
+// The proxy stops this far (relative to the validity radius on planes, to
+// the tool's size on a surface, as the server's proxy) in front of what it
+// meets, so that sliding along it does not meet it again at once.
 constexpr double kStandOff = 1e-6;
 
 bool Finite(const Isometry3d& X) { return X.matrix().allFinite(); }
+
+ModelMaterial PlaneMaterial(const ConstraintPlane& p) {
+  return {p.stiffness_n_per_m, p.damping_ns_per_m, p.static_friction, p.dynamic_friction};
+}
+
+bool ValidMaterial(const ModelMaterial& m) {
+  return std::isfinite(m.stiffness_n_per_m) && m.stiffness_n_per_m > 0 &&
+         std::isfinite(m.damping_ns_per_m) && m.damping_ns_per_m >= 0 &&
+         std::isfinite(m.static_friction) && m.static_friction >= 0 &&
+         std::isfinite(m.dynamic_friction) && m.dynamic_friction >= 0 &&
+         m.dynamic_friction <= m.static_friction;
+}
+
+bool ValidTriangles(const std::vector<std::array<int32_t, 3>>& triangles, size_t vertices) {
+  return std::all_of(triangles.begin(), triangles.end(), [&](const std::array<int32_t, 3>& t) {
+    return std::all_of(t.begin(), t.end(),
+                       [&](int32_t i) { return i >= 0 && static_cast<size_t>(i) < vertices; });
+  });
+}
+
+// A surface's numbers finite and within 1e6, its radius > 0, its indices
+// within range, its sizes within the caps (local_model.h).
+bool ValidSurface(const ModelSurface& s) {
+  // Finite and within the wire's bounds (proto_convert.h's kMaxCoordinate).
+  const auto finite = [](const Vector3d& x) {
+    return x.allFinite() && x.cwiseAbs().maxCoeff() <= 1e6;
+  };
+  if (!s.center_W.allFinite() || !std::isfinite(s.radius_m) || !(s.radius_m > 0)) return false;
+  if (!s.has_body()) return true;
+  if (s.tool_vertices_T.size() > static_cast<size_t>(kMaxToolHullVertices) ||
+      s.tool_triangles.size() > static_cast<size_t>(kMaxToolHullTriangles) ||
+      s.triangles.size() > static_cast<size_t>(kMaxSurfaceTriangles) ||
+      s.materials.size() > static_cast<size_t>(kMaxSurfaceMaterials)) {
+    return false;
+  }
+  return std::all_of(s.tool_vertices_T.begin(), s.tool_vertices_T.end(), finite) &&
+         std::all_of(s.vertices_W.begin(), s.vertices_W.end(), finite) &&
+         ValidTriangles(s.tool_triangles, s.tool_vertices_T.size()) &&
+         ValidTriangles(s.triangles, s.vertices_W.size()) &&
+         s.triangle_materials.size() == s.triangles.size() &&
+         std::all_of(
+             s.triangle_materials.begin(), s.triangle_materials.end(),
+             [&](int32_t m) { return m >= 0 && static_cast<size_t>(m) < s.materials.size(); }) &&
+         std::all_of(s.materials.begin(), s.materials.end(), ValidMaterial);
+}
+
+// Whether `held` has the faces of the surface `named` names: the same
+// revision, centre and radius.
+bool SameSurface(const std::shared_ptr<const ModelSurface>& held, const ModelSurface& named) {
+  return held && held->has_body() && held->revision == named.revision &&
+         held->center_W == named.center_W && held->radius_m == named.radius_m;
+}
 
 bool ValidModel(const LocalModel& m) {
   if (!Finite(m.X_WP) || !m.touch_point_W.allFinite() || !std::isfinite(m.validity_radius_m) ||
@@ -25,11 +77,7 @@ bool ValidModel(const LocalModel& m) {
   return std::all_of(m.planes.begin(), m.planes.end(), [](const ConstraintPlane& p) {
     return p.point_W.allFinite() && p.normal_W.allFinite() && p.tool_point_W.allFinite() &&
            std::abs(p.normal_W.norm() - 1) <= 1e-6 && std::isfinite(p.gap_m) && p.gap_m >= 0 &&
-           std::isfinite(p.stiffness_n_per_m) && p.stiffness_n_per_m > 0 &&
-           std::isfinite(p.damping_ns_per_m) && p.damping_ns_per_m >= 0 &&
-           std::isfinite(p.static_friction) && p.static_friction >= 0 &&
-           std::isfinite(p.dynamic_friction) && p.dynamic_friction >= 0 &&
-           p.dynamic_friction <= p.static_friction;
+           ValidMaterial(PlaneMaterial(p));
   });
 }
 
@@ -39,7 +87,10 @@ HapticLoop::HapticLoop(const HapticLoopOptions& options)
     : options_(options), history_(std::max(options.history_ticks, 1)) {}
 
 bool HapticLoop::SetModel(const LocalModel& model) {
-  if (!ValidModel(model)) {
+  // A surface the loop holds was checked when it came.
+  const bool held_surface =
+      model.surface && (model.surface == surface_ || model.surface == pending_model_.surface);
+  if (!ValidModel(model) || (model.surface && !held_surface && !ValidSurface(*model.surface))) {
     ++rejected_models_;
     return false;
   }
@@ -50,7 +101,19 @@ bool HapticLoop::SetModel(const LocalModel& model) {
       model.revision == newest.revision) {
     return true;
   }
+  // A model that names its surface alone shares the body the loop already
+  // has (or its last pending model brought).
+  std::shared_ptr<const ModelSurface> body;
+  if (model.surface && !model.surface->has_body()) {
+    for (const auto* held : {&pending_model_.surface, &surface_}) {  // newest first
+      if (SameSurface(*held, *model.surface)) {
+        body = *held;
+        break;
+      }
+    }
+  }
   pending_model_ = model;
+  if (body) pending_model_.surface = std::move(body);
   has_pending_model_ = true;
   return true;
 }
@@ -116,7 +179,20 @@ HapticLoop::Hit HapticLoop::FirstHit(const Vector3d& p, const Vector3d& v) const
   return first;
 }
 
+HapticLoop::Meet HapticLoop::FirstMeet(const Vector3d& p, const Vector3d& v) const {
+  if (on_surface_) {
+    const SurfaceSweep::Touch touch = sweep_.First(p, v);
+    if (touch.triangle < 0) return {};
+    return {touch.triangle, touch.t, touch.normal_W, sweep_.Material(touch.triangle)};
+  }
+  const Hit hit = FirstHit(p, v);
+  if (hit.plane < 0) return {};
+  const ConstraintPlane& plane = model_.planes[hit.plane];
+  return {hit.plane, hit.t, plane.normal_W, PlaneMaterial(plane)};
+}
+
 bool HapticLoop::LeftPlane(const Vector3d& p, int plane) const {
+  if (on_surface_) return false;
   const ConstraintPlane& on = model_.planes[plane];
   if (!on.separating) return false;
   const Vector3d P0 = model_.X_WP.translation();
@@ -127,37 +203,38 @@ bool HapticLoop::LeftPlane(const Vector3d& p, int plane) const {
   });
 }
 
-int HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
-  const double stand_off = kStandOff * model_.validity_radius_m;
+HapticLoop::Meet HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
+  const double stand_off = StandOff();
   Vector3d p = proxy_;
   Vector3d goal = target;
-  int touched = -1;
+  Meet touched;
   for (int slide = 0; slide <= options_.max_slides; ++slide) {
     const Vector3d v = goal - p;
     if (v.norm() <= stand_off * 1e-3) break;
-    const Hit first = FirstHit(p, v);
-    if (first.plane < 0) {
+    const Meet first = FirstMeet(p, v);
+    if (first.index < 0) {
       p = goal;
       // Slid past the edge of a separating plane's face: the tool is in
       // front of another of its object's separating planes, free of the
       // object, and goes on toward the target.
-      if (touched >= 0 && goal != target && slide < options_.max_slides && LeftPlane(p, touched)) {
-        touched = -1;
+      if (touched.index >= 0 && goal != target && slide < options_.max_slides &&
+          LeftPlane(p, touched.index)) {
+        touched = {};
         goal = target;
         continue;
       }
       break;
     }
-    const ConstraintPlane& plane = model_.planes[first.plane];
-    const Vector3d& n = plane.normal_W;
+    const Vector3d& n = first.normal;
     p += first.t * v + stand_off * n;
-    touched = first.plane;
+    touched = first;
     // Slide toward the target as the server's proxy does (proxy_slide.h).
-    const std::optional<Vector3d> next = SlideGoal(
-        p, target, n,
-        friction && model_.friction
-            ? std::optional<SlideFriction>({plane.static_friction, plane.dynamic_friction})
-            : std::nullopt);
+    const std::optional<Vector3d> next =
+        SlideGoal(p, target, n,
+                  friction && model_.friction
+                      ? std::optional<SlideFriction>(
+                            {first.material.static_friction, first.material.dynamic_friction})
+                      : std::nullopt);
     if (!next) break;
     goal = *next;
   }
@@ -165,26 +242,36 @@ int HapticLoop::MoveProxy(const Vector3d& target, bool friction) {
   return touched;
 }
 
-HapticOutput HapticLoop::Render(int plane, const Vector3d& device, const Vector3d& v_WD,
+HapticOutput HapticLoop::Render(const Meet& touched, const Vector3d& device, const Vector3d& v_WD,
                                 bool held) const {
   HapticOutput out;
   out.p_WP = InValidity(proxy_);
-  if (plane < 0) return out;
-  const ConstraintPlane& p = model_.planes[plane];
+  if (touched.index < 0) return out;
+  const Vector3d& n = touched.normal;
   out.touching = true;
   // As the server's common/sim/tool_force.h: spring to the proxy, damper
   // along the normal, clamped; the lever is tool-fixed.
-  out.force_W = p.stiffness_n_per_m * (out.p_WP - device) -
-                p.damping_ns_per_m * v_WD.dot(p.normal_W) * p.normal_W;
+  out.force_W = touched.material.stiffness_n_per_m * (out.p_WP - device) -
+                touched.material.damping_ns_per_m * v_WD.dot(n) * n;
   // There the model knows no more of the surface than that the tool is
   // behind this plane: it pushes out along the normal, and neither drags
   // the hand back toward the sphere nor holds it by friction.
-  if (held) out.force_W = p.normal_W * p.normal_W.dot(out.force_W);
+  if (held) out.force_W = n * n.dot(out.force_W);
   if (out.force_W.norm() > model_.force_clamp_n) {
     out.force_W *= model_.force_clamp_n / out.force_W.norm();
     out.clamped = true;
   }
-  const Vector3d& lever_end = model_.touching ? model_.touch_point_W : p.tool_point_W;
+  if (on_surface_) {
+    // The server's touching point at the model's proxy while it touched
+    // (the lever is tool-fixed), else where the tool reaches against n.
+    const Vector3d lever = model_.touching
+                               ? Vector3d(model_.touch_point_W - model_.X_WP.translation())
+                               : Vector3d(sweep_.TouchPoint(out.p_WP, n) - out.p_WP);
+    out.torque_W = lever.cross(out.force_W);
+    return out;
+  }
+  const Vector3d& lever_end =
+      model_.touching ? model_.touch_point_W : model_.planes[touched.index].tool_point_W;
   out.torque_W = (lever_end - model_.X_WP.translation()).cross(out.force_W);
   return out;
 }
@@ -206,11 +293,32 @@ int HapticLoop::FindInHistory(const Vector3d& p_WD) const {
 
 void HapticLoop::SwitchModel(const Vector3d& device, Vector3d kept) {
   const Vector3d p_WD = pending_model_.p_WD;
+  const bool first = !has_model_;
   std::swap(model_, pending_model_);
   has_pending_model_ = false;
   has_model_ = true;
   const Vector3d P0 = model_.X_WP.translation();
   proxy_ = P0;
+  on_surface_ = model_.surface && model_.surface->has_body();
+  if (on_surface_) {
+    if (surface_ != model_.surface) {
+      surface_ = model_.surface;
+      sweep_.Set(*surface_);
+      oriented_ = false;
+    }
+    // The surface is the objects' own: the proxy the loop has is as good
+    // as the server's, and stays where it is while it is within the
+    // surface's sphere and outside every face; else it restarts at the
+    // server's.
+    Orient(last_orientation_);
+    const Sphere sphere = ValiditySphere();
+    if ((kept - sphere.center).norm() <= sphere.radius && !sweep_.Overlaps(kept, StandOff())) {
+      proxy_ = kept;
+    } else if (!first) {
+      ++restarted_models_;
+    }
+    return;
+  }
   // The loop's own proxy when the device was where the model was taken:
   // this tick's (no latency) or one in the history; else a restart at the
   // server's proxy.
@@ -264,27 +372,44 @@ void HapticLoop::KeepPassive(HapticOutput& out, const Vector3d& v_WD) {
   passivity_dissipated_j_ += (before - out.force_W).dot(v_WD) * dt;
 }
 
+double HapticLoop::StandOff() const {
+  // On a surface, as the server's proxy: relative to the tool's size.
+  return on_surface_ ? kStandOff * sweep_.tool_size() : kStandOff * model_.validity_radius_m;
+}
+
+HapticLoop::Sphere HapticLoop::ValiditySphere() const {
+  if (on_surface_) return {surface_->center_W, surface_->radius_m};
+  return {model_.X_WP.translation(), model_.validity_radius_m};
+}
+
+void HapticLoop::Orient(const Matrix3d& R_WT) {
+  if (!on_surface_ || (oriented_ && R_WT == oriented_to_)) return;
+  sweep_.Orient(R_WT);
+  oriented_to_ = R_WT;
+  oriented_ = true;
+}
+
 Vector3d HapticLoop::InValidity(const Vector3d& point) const {
-  const Vector3d P0 = model_.X_WP.translation();
-  const Vector3d out = point - P0;
-  const double r = model_.validity_radius_m;
-  return out.norm() > r ? Vector3d(P0 + out * (r / out.norm())) : point;
+  const Sphere sphere = ValiditySphere();
+  const Vector3d out = point - sphere.center;
+  const double r = sphere.radius;
+  return out.norm() > r ? Vector3d(sphere.center + out * (r / out.norm())) : point;
 }
 
 HapticOutput HapticLoop::Step(const Vector3d& device, const Vector3d& v_WD) {
-  const int plane = MoveProxy(device, true);
-  const Vector3d P0 = model_.X_WP.translation();
-  const bool held = (proxy_ - P0).norm() > model_.validity_radius_m;
-  HapticOutput out = Render(plane, device, v_WD, held);
-  out.beyond_validity = (device - P0).norm() > model_.validity_radius_m;
-  // The energy the touched plane's spring holds (past the sphere, its
+  const Meet touched = MoveProxy(device, true);
+  const Sphere sphere = ValiditySphere();
+  const bool held = (proxy_ - sphere.center).norm() > sphere.radius;
+  HapticOutput out = Render(touched, device, v_WD, held);
+  out.beyond_validity = (device - sphere.center).norm() > sphere.radius;
+  // The energy the touched face's spring holds (past the sphere, its
   // push along the normal only).
   stored_j_ = 0;
-  if (plane >= 0) {
+  if (touched.index >= 0) {
     const Vector3d stretch = out.p_WP - device;
-    const double along = model_.planes[plane].normal_W.dot(stretch);
-    stored_j_ = 0.5 * model_.planes[plane].stiffness_n_per_m *
-                (held ? along * along : stretch.squaredNorm());
+    const double along = touched.normal.dot(stretch);
+    stored_j_ =
+        0.5 * touched.material.stiffness_n_per_m * (held ? along * along : stretch.squaredNorm());
   }
   return out;
 }
@@ -295,6 +420,8 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
     return last_;
   }
   const Vector3d device = X_WD.translation();
+  last_orientation_ = X_WD.linear();
+  Orient(last_orientation_);
   // The work last tick's force did on the hand as it moved since.
   if (has_last_device_) work_on_hand_j_ += last_.force_W.dot(device - last_device_);
   const Vector3d v_WD =
@@ -302,7 +429,15 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
   last_device_ = device;
   has_last_device_ = true;
   HapticOutput out;
-  if (has_pending_model_) {
+  if (has_pending_model_ && on_surface_ && pending_model_.surface &&
+      pending_model_.surface->has_body()) {
+    // From a surface to the next: the same objects, so the proxy stays
+    // and the force goes on; only a restart's step is spread.
+    const int64_t restarts = restarted_models_;
+    SwitchModel(device, proxy_);
+    out = Step(device, v_WD);
+    if (restarted_models_ != restarts) switch_offset_ += last_rendered_ - out.force_W;
+  } else if (has_pending_model_) {
     // What the old model renders at this pose, against what the new one
     // does from the server's proxy: that step, not the hand's motion, is
     // what gets spread over the next ticks.
@@ -318,6 +453,7 @@ HapticOutput HapticLoop::Tick(const Isometry3d& X_WD) {
     stored_j_ = 0;
   }
   if (out.beyond_validity) ++beyond_validity_ticks_;
+  last_rendered_ = out.force_W;
   const double left = switch_offset_.norm();
   if (left <= options_.max_switch_step_n) {
     switch_offset_.setZero();

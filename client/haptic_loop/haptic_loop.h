@@ -27,9 +27,19 @@
 // does not extrapolate: the proxy is rendered at the sphere's edge, and
 // only the touched plane's push along its normal is felt (no friction and
 // no drag back toward the sphere, which would be forces no surface makes).
+// A model with a surface (local_model.h, ModelSurface: the faces near the
+// tool and the tool's convex hull) is rendered from the surface instead:
+// the proxy sweeps the tool against the faces themselves (surface_sweep.h),
+// as the server's proxy sweeps it against the objects, so what the loop
+// renders does not depend on where or when its model was taken. A new
+// model then leaves the proxy where it is (the objects are the same), as
+// long as it is within the surface's sphere and in no face; else the proxy
+// restarts at the server's and that step is spread as a switch's. The
+// validity sphere is then the surface's. A model that names a surface the
+// loop has not got renders from its planes.
 // A non-finite pose or model is rejected: the loop holds its last force
-// (or model) and counts the rejection. Nothing is allocated after
-// construction.
+// (or model) and counts the rejection. Nothing is allocated once the
+// loop has held its largest model.
 //
 // Time-domain passivity (Hannaford and Ryu 2002): the loop observes the
 // work its force does on the hand (each tick's force times the device's
@@ -48,8 +58,10 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
+#include "client/haptic_loop/surface_sweep.h"
 #include "common/core/types.h"
 #include "common/sim/local_model.h"
 
@@ -114,12 +126,24 @@ class HapticLoop {
   double passivity_dissipated_j() const { return passivity_dissipated_j_; }
 
  private:
-  // Moves proxy_ toward `target` against the model's planes, sliding
-  // toward it (with the model's friction if `friction`); returns the plane
-  // last touched, -1 for none. The proxy may leave the validity sphere
-  // (it is rendered at the sphere's edge): it is the loop's reckoning of
-  // where the server's proxy would be, which the next model corrects.
-  int MoveProxy(const Vector3d& target, bool friction);
+  // MoveProxy moves proxy_ toward `target` against the model's planes or
+  // surface, sliding toward it (with the model's friction if `friction`);
+  // it returns what it last touched. The proxy may leave the validity
+  // sphere (it is rendered at the sphere's edge): it is the loop's
+  // reckoning of where the server's proxy would be, which the next model
+  // corrects (on planes) or restarts (on a surface, when it lies in a face).
+  // What the proxy meets: a plane of the model, or a face of its surface
+  // (index -1: nothing), where along the move (0..1), its normal and its
+  // material.
+  struct Meet {
+    int index = -1;
+    double t = std::numeric_limits<double>::infinity();
+    Vector3d normal = Vector3d::Zero();
+    ModelMaterial material;
+  };
+  Meet MoveProxy(const Vector3d& target, bool friction);
+  // The first plane or face the straight move from `p` by `v` meets.
+  Meet FirstMeet(const Vector3d& p, const Vector3d& v) const;
   // The first plane the straight move from `p` by `v` meets, and where
   // along it (0..1); plane -1 for none.
   struct Hit {
@@ -130,8 +154,19 @@ class HapticLoop {
   // Whether the tool at `p` has slid off separating plane `plane`'s face:
   // it is in front of another separating plane of the same object.
   bool LeftPlane(const Vector3d& p, int plane) const;
+  // Where the model holds: the surface's sphere when the loop renders
+  // from the surface, else the model's validity sphere about its proxy.
+  struct Sphere {
+    Vector3d center;
+    double radius;
+  };
+  Sphere ValiditySphere() const;
+  // How far in front of what it meets the proxy stops, metres.
+  double StandOff() const;
   // The point of the validity sphere nearest `point`.
   Vector3d InValidity(const Vector3d& point) const;
+  // Turns the surface's tool to R_WT, if it is not already.
+  void Orient(const Matrix3d& R_WT);
   // Makes model_ the pending model: the proxy moves from the new model's
   // proxy toward where the loop's own proxy (at `kept` now, with the device
   // at `device`) would be by the server's reckoning. `kept` is a copy: the
@@ -143,10 +178,11 @@ class HapticLoop {
   void Record(const Vector3d& device, const Vector3d& proxy);
   // One tick's proxy move and force against model_.
   HapticOutput Step(const Vector3d& device, const Vector3d& v_WD);
-  // The force of touching plane `plane` with the device at `device`
-  // moving at `v_WD`, the proxy at proxy_ or, past the validity sphere,
-  // at its edge; `held`: the proxy is past it (normal push only).
-  HapticOutput Render(int plane, const Vector3d& device, const Vector3d& v_WD, bool held) const;
+  // The force of touching `touched` with the device at `device` moving
+  // at `v_WD`, the proxy at proxy_ or, past the validity sphere, at its
+  // edge; `held`: the proxy is past it (normal push only).
+  HapticOutput Render(const Meet& touched, const Vector3d& device, const Vector3d& v_WD,
+                      bool held) const;
   // The passivity controller: adds to `out` the damping against `v_WD`
   // that keeps the work done on the hand within what the contact may hand
   // back, if the hand goes on at `v_WD` over the next tick.
@@ -158,6 +194,14 @@ class HapticLoop {
   // The model SetModel took, rendered from the next tick.
   LocalModel pending_model_;
   bool has_pending_model_ = false;
+  // The surface the loop renders from (model_.surface when on_surface_),
+  // held in the sweep, turned to the device's last orientation.
+  bool on_surface_ = false;
+  std::shared_ptr<const ModelSurface> surface_;
+  SurfaceSweep sweep_;
+  bool oriented_ = false;
+  Matrix3d oriented_to_ = Matrix3d::Identity();
+  Matrix3d last_orientation_ = Matrix3d::Identity();
   Vector3d proxy_ = Vector3d::Zero();
   Vector3d last_device_ = Vector3d::Zero();
   bool has_last_device_ = false;
@@ -170,8 +214,11 @@ class HapticLoop {
   std::vector<Rendered> history_;
   int history_next_ = 0;
   int history_size_ = 0;
-  // What a model switch left to spread over the next ticks, newtons.
+  // What a model switch left to spread over the next ticks, newtons, and
+  // the force the last tick's model rendered before it and the passivity
+  // controller's damping.
   Vector3d switch_offset_ = Vector3d::Zero();
+  Vector3d last_rendered_ = Vector3d::Zero();
   HapticOutput last_;
   int64_t rejected_models_ = 0;
   int64_t rejected_poses_ = 0;

@@ -113,6 +113,21 @@ FrameRead DeviceProtocol::Take(const pb::Frame& frame, int64_t now_ns) {
       continue;
     }
     last_revision_ = revision;
+    if (model->surface && model->surface->has_body()) {
+      surfaces_[surfaces_next_++ % surfaces_.size()] = model->surface;
+    } else if (model->surface) {
+      // Newest first: after a scene is rebuilt, revisions start again.
+      for (size_t k = 1; k <= surfaces_.size(); ++k) {
+        const std::shared_ptr<const ModelSurface>& held =
+            surfaces_[(surfaces_next_ - k) % surfaces_.size()];
+        if (held && held->revision == model->surface->revision &&
+            held->center_W == model->surface->center_W &&
+            held->radius_m == model->surface->radius_m) {
+          model->surface = held;
+          break;
+        }
+      }
+    }
     feed_.model = *std::move(model);
     feed_.model_stream = feed_.stream;
     ++feed_.model_serial;

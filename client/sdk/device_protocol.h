@@ -8,6 +8,7 @@
 // (tests/client/remote/simulated_device.h) runs the same over a simulated
 // link, so that both speak as one device.
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 
@@ -66,6 +67,16 @@ class DeviceProtocol {
   Feed feed_;
   bool first_frame_ = false;
   uint64_t last_revision_ = 0;
+  // The faces of the newest surfaces, newest at `surfaces_next_ - 1`: the
+  // models that name one alone (by revision, centre and radius) get its
+  // faces, so that the loop has them even when it never saw the model
+  // that brought them (it takes the newest model at each tick). Kept here,
+  // across streams too, while the tick's loop may hold one (it holds the
+  // last two or three models' surfaces, and a surface lasts half a
+  // validity radius of the proxy's travel), so that the last reference to
+  // a surface, and its freeing, is the network thread's, not the tick's.
+  std::array<std::shared_ptr<const ModelSurface>, 16> surfaces_;
+  size_t surfaces_next_ = 0;
   // The longest round trip read since the last pose went (-1: none):
   // written by the reader, taken by the sender.
   std::atomic<int64_t> round_trip_peak_ns_{-1};

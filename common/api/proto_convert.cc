@@ -168,7 +168,9 @@ void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& na
       for (const PairContact& c : t.contacts) ContactToProto(c, names, tool->add_contacts());
     }
     if (parts.local_model && frame.stages_run.Has(Effect::kLocalModel)) {
-      LocalModelToProto(t.local_model, names, tool->mutable_local_model());
+      // A surface's faces go to a stream once (server/frame_message.cc);
+      // here, as in recordings, its revision stands for them.
+      LocalModelToProto(t.local_model, names, tool->mutable_local_model(), false);
     }
   }
   out->clear_bodies();

@@ -64,7 +64,8 @@ struct FrameParts {
 
 /// Fills `out`'s tools, stages, clashes and bodies from `frame`, keeping
 /// the `parts` asked for; `names` gives object names by ObjectId. Bodies
-/// go out only at steps whose free-body stage ran.
+/// go out only at steps whose free-body stage ran. A local model's surface
+/// goes out as its revision, centre and radius, without its faces.
 void StepFrameToProto(const StepFrame& frame, const std::vector<std::string>& names,
                       const FrameParts& parts, haptics::v1::Frame* out);
 

@@ -6,7 +6,9 @@
 // their materials, and the proxy they were taken at. Plain data, so that a
 // device's loop (client/haptic_loop) can use it without the simulation.
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "common/core/types.h"
@@ -44,6 +46,55 @@ struct ConstraintPlane {
   bool separating = false;
 };
 
+/// A face's material as a model carries it: spring N/m, damper N*s/m,
+/// Coulomb coefficients.
+struct ModelMaterial {
+  double stiffness_n_per_m = 0;
+  double damping_ns_per_m = 0;
+  double static_friction = 0;
+  double dynamic_friction = 0;
+};
+
+/// The most a surface carries: faces, materials, and the tool's hull
+/// vertices (a hull of n vertices has at most 2n - 4 triangles). A tool or
+/// a neighbourhood past them gets planes alone. A device's loop holds
+/// room for the most from the start, so that taking a surface allocates
+/// nothing.
+inline constexpr int kMaxSurfaceTriangles = 8192;
+inline constexpr int kMaxSurfaceMaterials = 256;
+inline constexpr int kMaxToolHullVertices = 64;
+inline constexpr int kMaxToolHullTriangles = 2 * kMaxToolHullVertices - 4;
+
+/// The faces of the fixed objects near a tool and the tool's convex shape:
+/// with them a device's loop moves its proxy against the faces themselves,
+/// as the server's proxy does (docs/remote-haptics.md, The surface), so
+/// that what it renders does not depend on where and when its model was
+/// taken. A tool's models share a surface until its proxy moves on.
+struct ModelSurface {
+  /// Which of its tool's surfaces this is: 1 for the first, +1 per surface
+  /// gathered; 0 for none (the tool is not convex, or too many faces).
+  uint64_t revision = 0;
+  /// Every face of a fixed object that the tool meets with its origin
+  /// within `radius_m` of `center_W`, in any orientation, is here.
+  Vector3d center_W = Vector3d::Zero();
+  double radius_m = 0;
+  /// The tool's convex hull in its own frame (the proxy's), metres: its
+  /// vertices and triangles (indices into them). Empty in a model read
+  /// from a frame that names a surface its stream already has.
+  std::vector<Vector3d> tool_vertices_T;
+  std::vector<std::array<int32_t, 3>> tool_triangles;
+  /// The faces, world frame, metres: vertices, triangles (indices into
+  /// them, counter-clockwise seen from outside), and each triangle's
+  /// material (an index into `materials`).
+  std::vector<Vector3d> vertices_W;
+  std::vector<std::array<int32_t, 3>> triangles;
+  std::vector<int32_t> triangle_materials;
+  std::vector<ModelMaterial> materials;
+
+  /// The faces and the tool are here (not only the revision).
+  bool has_body() const { return !tool_triangles.empty(); }
+};
+
 struct LocalModel {
   /// Which of its tool's models this is: 1 for the first built, +1 per
   /// model built; 0 for none. A frame may carry a model again (the server
@@ -71,6 +122,11 @@ struct LocalModel {
   bool friction = false;
   /// Nearest first; several for edges and corners, none in free space.
   std::vector<ConstraintPlane> planes;
+  /// The surface the model shares with its tool's other models; none
+  /// when null. Shared, not copied: a tool's models and frames hold one.
+  std::shared_ptr<const ModelSurface> surface;
+
+  uint64_t surface_revision() const { return surface ? surface->revision : 0; }
 };
 
 }  // namespace hs

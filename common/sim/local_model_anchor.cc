@@ -19,6 +19,7 @@ bool AnchorLocalModel(const LocalModel& built, const ProxyState& proxy, const Ve
   out.validity_radius_m = radius_m;
   out.force_clamp_n = built.force_clamp_n;
   out.friction = built.friction;
+  out.surface = built.surface;
   out.planes.clear();
   for (const ConstraintPlane& plane : built.planes) {
     const double along = plane.normal_W.dot(t);

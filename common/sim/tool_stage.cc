@@ -111,7 +111,7 @@ void ToolStage::SeatDevice(ObjectId id, const Isometry3d& X_WD) {
 bool ToolStage::NothingToStep() const {
   if (!SameObstacles()) return false;
   for (size_t i = 0; i < tools_.size(); ++i) {
-    if (tools_[i].moved || scratch_[i].model_wanted) return false;
+    if (tools_[i].moved || tools_[i].sliding || scratch_[i].model_wanted) return false;
   }
   return true;
 }
@@ -214,6 +214,11 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
     Tool& tool = tools_[i];
     // A seated proxy came from the home pose: free bodies meet no motion.
     tool.X_WP_previous = tool.seated ? frames[i].X_WP : tool.X_WP;
+    // A proxy that moved less than the stand-off its god object keeps off
+    // a surface (proxy.cc) rests: what is left is the creep of standing
+    // off a curved surface, nanometres a step.
+    tool.sliding = (frames[i].X_WP.translation() - tool.X_WP.translation()).norm() >
+                   1e-6 * objects_[tool.id].object.bounding_box().diagonal().norm();
     tool.X_WP = frames[i].X_WP;
     tool.X_WD_previous = tool.X_WD;
     tool.moved = false;
@@ -250,8 +255,9 @@ void ToolStage::GroupIslands(EffectSet stages) {
 
 bool ToolStage::Holds(int index, EffectSet stages, bool alone) const {
   const Tool& tool = tools_[index];
-  return alone && tool.alone && !tool.moved && !tool.seated && !scratch_[index].model_wanted &&
-         stages == last_stages_ && !stages.Has(Effect::kFreeBodyMotion) && SameObstacles();
+  return alone && tool.alone && !tool.moved && !tool.sliding && !tool.seated &&
+         !scratch_[index].model_wanted && stages == last_stages_ &&
+         !stages.Has(Effect::kFreeBodyMotion) && SameObstacles();
 }
 
 bool ToolStage::SameObstacles() const {
@@ -599,6 +605,12 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
     // last one may be older than its stream.
     ModelUpdate update =
         tool.seated ? ModelUpdate::kBuild : ModelUpdateFor(proxy, model_options, scratch);
+    // The faces near the tool, shared by its models until the proxy moves
+    // on (model_surface.h); a new surface goes out with a new model.
+    const std::shared_ptr<const ModelSurface>& surface =
+        scratch.surfaces.Update(objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP.translation(),
+                                radius_m, objects_.obstacles(), tool.seated);
+    if (scratch.surfaces.changed()) update = ModelUpdate::kBuild;
     if (update == ModelUpdate::kAnchor &&
         !AnchorLocalModel(scratch.built_model, proxy, tool.X_WD.translation(),
                           PlaneTouchTolerance(t), scratch.model)) {
@@ -616,6 +628,7 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       }
       MarkSeparatingPlanes(objects_.Posed(tool.id, proxy.X_WP), objects_.obstacles(),
                            objects_.obstacle_ids(), scratch.separation, scratch.built_model);
+      scratch.built_model.surface = surface;
       scratch.built_model.revision = scratch.model.revision + 1;
       scratch.model = scratch.built_model;
     } else if (update == ModelUpdate::kAnchor) {

@@ -18,6 +18,7 @@
 
 #include "common/core/scratch.h"
 #include "common/sim/local_model_builder.h"
+#include "common/sim/model_surface.h"
 #include "common/sim/pair_caches.h"
 #include "common/sim/scene_objects.h"
 #include "common/sim/scene_options.h"
@@ -45,9 +46,9 @@ class ToolStage {
   /// swept from the last device's pose, and the proxy moves to it from the
   /// tool's home pose (where Add put it).
   void SeatDevice(ObjectId id, const Isometry3d& X_WD);
-  /// No device moved since the last step, no tool wants a fresh local
-  /// model and no object was added: the step holds the last frame
-  /// (docs/simulation.md, Still devices).
+  /// No device moved since the last step, no proxy moved in it, no tool
+  /// wants a fresh local model and no object was added: the step holds the
+  /// last frame (docs/simulation.md, Still devices).
   bool NothingToStep() const;
   /// Tool `id`'s next step builds a fresh local model (its device went past
   /// the last one's validity sphere); `id` must be a tool.
@@ -84,6 +85,9 @@ class ToolStage {
     Isometry3d X_WP_previous;  // proxy pose of the last step
     Isometry3d X_WO_home;      // where Add put it
     bool moved = true;
+    // Its proxy moved in the last step: it may not rest yet (a slide the
+    // step's slides did not finish, friction creep), so it steps on.
+    bool sliding = false;
     bool seated = false;  // SeatDevice since the last step
     // Its proxy's island of the last step held no other tool.
     bool alone = false;
@@ -141,6 +145,8 @@ class ToolStage {
     LocalModel built_model;
     // Which planes of the last model built separate (separating_planes.h).
     SeparationMemo separation;
+    // The surface the tool's models share (model_surface.h).
+    SurfaceKeeper surfaces;
     LocalModel model;
   };
   // A piece of a step for one worker: the contacts half of tool `index`
@@ -158,7 +164,8 @@ class ToolStage {
   // Groups the tools' reach boxes into islands_, and marks each tool that
   // this step holds (Tool::held).
   void GroupIslands(EffectSet stages);
-  // A tool whose device sent no changed pose, that wants no fresh model,
+  // A tool whose device sent no changed pose, whose proxy did not move in
+  // the last step, that wants no fresh model,
   // whose island held no other tool in the last step nor in this one, in a
   // step of the same stages and objects without free bodies: its step
   // would bring no new information (docs/simulation.md, Still devices),

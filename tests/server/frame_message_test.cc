@@ -134,6 +134,44 @@ TEST(FrameMessageTest, EachModelRevisionGoesOutOnce) {
             (std::vector<uint64_t>{2}));
 }
 
+// A surface's faces go to a stream once: the models after that share it
+// by revision alone; a new surface's faces go out again, to each stream on
+// its own, and so do a new scene's.
+TEST(FrameMessageTest, EachSurfacesFacesGoOutOnce) {
+  NoSink device, viewer;
+  auto names = std::make_shared<const std::vector<std::string>>(
+      std::vector<std::string>{"floor", "probe", "stylus"});
+  auto surface = [](uint64_t revision) {
+    auto s = std::make_shared<ModelSurface>();
+    s->revision = revision;
+    s->radius_m = 0.01;
+    s->tool_vertices_T = {Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY()};
+    s->tool_triangles = {{0, 1, 2}};
+    return s;
+  };
+  ModelsSent device_sent = OwnToolOnly(), viewer_sent;
+  haptics::v1::Frame frame;
+  // Tool 1's model of `revision` with surface `surface_revision`: whether
+  // its faces went out, and the surface revision named.
+  auto faces = [&](uint64_t revision, uint64_t surface_revision, const FrameSink* stream,
+                   ModelsSent& sent, std::shared_ptr<const std::vector<std::string>> table) {
+    const std::shared_ptr<StepSnapshot> s = Snapshot(&device, revision, 0, table);
+    s->frame.tools[0].local_model.surface = surface(surface_revision);
+    FillFrameMessage(*s, FrameParts{}, stream, 0, 0, sent, frame);
+    const haptics::v1::ModelSurface& got = frame.tools(0).local_model().surface();
+    EXPECT_EQ(got.revision(), surface_revision);
+    return got.tool_triangles_size() > 0;
+  };
+  EXPECT_TRUE(faces(1, 1, &device, device_sent, names));
+  EXPECT_FALSE(faces(2, 1, &device, device_sent, names));
+  EXPECT_FALSE(faces(3, 1, &device, device_sent, names));
+  EXPECT_TRUE(faces(3, 1, &viewer, viewer_sent, names));
+  EXPECT_TRUE(faces(4, 2, &device, device_sent, names));
+  EXPECT_FALSE(faces(5, 2, &device, device_sent, names));
+  auto rebuilt = std::make_shared<const std::vector<std::string>>(*names);
+  EXPECT_TRUE(faces(5, 2, &device, device_sent, rebuilt));
+}
+
 // A snapshot of `scene`'s last step, `frame`, with no device holding a tool.
 StepSnapshot SnapshotOf(const Scene& scene, const StepFrame& frame) {
   StepSnapshot s;

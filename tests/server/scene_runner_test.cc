@@ -170,6 +170,8 @@ TEST(SceneRunnerTest, ASilentDeviceReleasesItsToolWhereItWas) {
     held = viewer.WaitForOffers(n);
     if (held->applied[0].sequence == 1) break;
   }
+  // A few steps on, the proxy has finished its slide onto the table.
+  held = viewer.WaitForOffers(viewer.offers() + 5);
   ASSERT_NE(held->holders, nullptr);
   EXPECT_EQ(HolderNames(*held), (std::map<std::string, std::string>{{"probe", "alice"}}));
   const absl::Status ended = device.WaitForClose();

@@ -1,6 +1,6 @@
 // The device's haptic loop on hand-made models: a floor, a corner, a
 // crest of separating planes, a model past its radius, lost frames and the
-// switch bound, bad input.
+// switch bound, bad input; and on a surface (a floor's face and a cube).
 
 #include "client/haptic_loop/haptic_loop.h"
 
@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 
 namespace hs {
@@ -446,6 +447,140 @@ TEST(HapticLoopTest, NonFiniteInputNeverReachesTheForce) {
   EXPECT_EQ(loop.rejected_models(), 3);
   // The floor still renders.
   EXPECT_EQ(loop.Tick(At(Vector3d(0, 0, -0.001))).force_W, held.force_W);
+}
+
+// A surface of one big floor triangle (its top z = 0, stiffness kK, the
+// given friction) with a 2 cm cube as the tool, about `center` within
+// `radius`.
+std::shared_ptr<ModelSurface> FloorSurface(uint64_t revision, const Vector3d& center, double radius,
+                                           double static_friction = 0,
+                                           double dynamic_friction = 0) {
+  auto s = std::make_shared<ModelSurface>();
+  s->revision = revision;
+  s->center_W = center;
+  s->radius_m = radius;
+  for (int i = 0; i < 8; ++i) {
+    s->tool_vertices_T.emplace_back(i & 1 ? 0.01 : -0.01, i & 2 ? 0.01 : -0.01,
+                                    i & 4 ? 0.01 : -0.01);
+  }
+  // The cube's faces, two triangles each, counter-clockwise from outside.
+  s->tool_triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                       {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  s->vertices_W = {Vector3d(-1, -1, 0), Vector3d(1, -1, 0), Vector3d(0, 1, 0)};
+  s->triangles = {{0, 1, 2}};
+  s->triangle_materials = {0};
+  s->materials = {{.stiffness_n_per_m = kK,
+                   .static_friction = static_friction,
+                   .dynamic_friction = dynamic_friction}};
+  return s;
+}
+
+// A model at the server's proxy `p` that shares `surface` (and has a plane
+// of its own far away, which the loop on the surface never meets).
+LocalModel SurfaceModel(uint64_t revision, const Vector3d& p,
+                        std::shared_ptr<const ModelSurface> surface) {
+  LocalModel m = Model(p, {Plane(Vector3d::UnitZ(), 0.015)});
+  m.revision = revision;
+  m.surface = std::move(surface);
+  return m;
+}
+
+// On a surface the cube rests with its bottom on the floor: the device
+// 3 mm under the proxy's rest height is pushed up by k * 3 mm (3 N), and
+// the plane of the model, which would hold it 5 mm higher, is not met.
+TEST(HapticLoopTest, OnASurfaceTheToolMeetsTheFacesThemselves) {
+  HapticLoop loop;
+  ASSERT_TRUE(loop.SetModel(
+      SurfaceModel(1, Vector3d(0, 0, 0.02), FloorSurface(1, Vector3d(0, 0, 0.02), 0.05))));
+  loop.Tick(At(Vector3d(0, 0, 0.02)));
+  HapticOutput out;
+  for (int i = 0; i < 3; ++i) out = loop.Tick(At(Vector3d(0, 0, 0.007)));
+  EXPECT_TRUE(out.touching);
+  EXPECT_NEAR(out.p_WP.z(), 0.01, 1e-7);
+  EXPECT_NEAR(out.force_W.z(), 3.0, 1e-3);
+  // The touching point is the cube's bottom's centre: no torque.
+  EXPECT_NEAR(out.torque_W.norm(), 0, 1e-9);
+}
+
+// With friction on the surface, a model that arrives from a server whose
+// proxy is elsewhere (a round trip behind) changes nothing: the loop's
+// proxy stays where the hand has taken it and the force goes on, tick for
+// tick the same as a loop that got no new model; a model naming the
+// surface alone shares the faces the loop has.
+TEST(HapticLoopTest, ModelsOfOneSurfaceLeaveTheProxyWhereItIs) {
+  const auto surface = FloorSurface(1, Vector3d(0, 0, 0.01), 0.05, 0.5, 0.25);
+  auto named = std::make_shared<ModelSurface>(*surface);
+  named->tool_vertices_T.clear();
+  named->tool_triangles.clear();
+  named->vertices_W.clear();
+  named->triangles.clear();
+  named->triangle_materials.clear();
+  named->materials.clear();
+  LocalModel first = SurfaceModel(1, Vector3d(0, 0, 0.01), surface);
+  first.friction = true;
+  HapticLoop fed, alone;
+  ASSERT_TRUE(fed.SetModel(first));
+  ASSERT_TRUE(alone.SetModel(first));
+  for (int i = 0; i < 400; ++i) {
+    const Vector3d device(0.00005 * i, 0.00002 * i, 0.007);
+    if (i % 20 == 10) {
+      LocalModel later = SurfaceModel(2 + i, Vector3d(0.00005 * (i - 100), 0, 0.0100001), named);
+      later.friction = true;
+      ASSERT_TRUE(fed.SetModel(later));
+    }
+    const HapticOutput a = fed.Tick(At(device));
+    const HapticOutput b = alone.Tick(At(device));
+    ASSERT_EQ(a.force_W, b.force_W) << "tick " << i;
+    ASSERT_EQ(a.p_WP, b.p_WP) << "tick " << i;
+  }
+  EXPECT_EQ(fed.restarted_models(), 0);
+  EXPECT_GT(alone.Tick(At(Vector3d(0.02, 0.008, 0.007))).force_W.head<2>().norm(), 0.5)
+      << "friction must hold the proxy back";
+}
+
+// A model naming a surface the loop never got renders from its planes; a
+// proxy inside a new surface's faces (an object moved onto it) restarts at
+// the server's proxy.
+TEST(HapticLoopTest, AnUnknownSurfaceFallsBackToPlanesAndAnOverlapRestarts) {
+  auto named = std::make_shared<ModelSurface>();
+  named->revision = 7;
+  named->center_W = Vector3d(0, 0, 0.01);
+  named->radius_m = 0.05;
+  HapticLoop loop;
+  ASSERT_TRUE(loop.SetModel(SurfaceModel(1, Vector3d(0, 0, 0.01), named)));
+  HapticOutput out;
+  for (int i = 0; i < 3; ++i) out = loop.Tick(At(Vector3d(0, 0, -0.01)));
+  EXPECT_NEAR(out.p_WP.z(), 0.01 - 0.015, 1e-7) << "held by the model's plane";
+
+  HapticLoop moved;
+  ASSERT_TRUE(moved.SetModel(
+      SurfaceModel(1, Vector3d(0, 0, 0.03), FloorSurface(1, Vector3d(0, 0, 0.03), 0.05))));
+  moved.Tick(At(Vector3d(0, 0, 0.012)));
+  // The floor rises 5 mm: the proxy resting 1 cm over the old floor is in it.
+  auto risen = FloorSurface(2, Vector3d(0, 0, 0.03), 0.05);
+  for (Vector3d& v : risen->vertices_W) v.z() += 0.005;
+  ASSERT_TRUE(moved.SetModel(SurfaceModel(2, Vector3d(0, 0, 0.0150001), risen)));
+  out = moved.Tick(At(Vector3d(0, 0, 0.012)));
+  EXPECT_EQ(moved.restarted_models(), 1);
+  EXPECT_NEAR(out.p_WP.z(), 0.0150001, 1e-7);
+}
+
+TEST(HapticLoopTest, ASurfaceWithABadIndexOrNumberIsRejected) {
+  HapticLoop loop;
+  auto bad_index = FloorSurface(1, Vector3d::Zero(), 0.05);
+  bad_index->triangles[0][2] = 3;
+  EXPECT_FALSE(loop.SetModel(SurfaceModel(1, Vector3d::Zero(), bad_index)));
+  auto bad_material = FloorSurface(1, Vector3d::Zero(), 0.05);
+  bad_material->triangle_materials[0] = 1;
+  EXPECT_FALSE(loop.SetModel(SurfaceModel(1, Vector3d::Zero(), bad_material)));
+  auto nan = FloorSurface(1, Vector3d::Zero(), 0.05);
+  nan->vertices_W[1].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(loop.SetModel(SurfaceModel(1, Vector3d::Zero(), nan)));
+  auto no_radius = FloorSurface(1, Vector3d::Zero(), 0.05);
+  no_radius->radius_m = 0;
+  EXPECT_FALSE(loop.SetModel(SurfaceModel(1, Vector3d::Zero(), no_radius)));
+  EXPECT_EQ(loop.rejected_models(), 4);
+  EXPECT_FALSE(loop.has_model());
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "common/api/local_model_convert.h"
@@ -129,6 +130,45 @@ TEST(DeviceProtocolTest, PosesAskForTheModelAsAModelRequesterSays) {
   plain.PoseRequest(Sample(0, 1000, 5), request);
   EXPECT_FALSE(request.pose().model_stale());
   EXPECT_EQ(request.pose().validity_radius_m(), 0);
+}
+
+// A surface's faces come once, in the model that brings them; the models
+// after it that name the surface alone get those faces in the feed, so the
+// loop has them even if it never took the model that brought them.
+TEST(DeviceProtocolTest, ModelsNamingASurfaceGetItsFaces) {
+  const DeviceConfig config = Config();
+  DeviceProtocol protocol(config);
+  protocol.Begin(3);
+  pb::InteractRequest request;
+  protocol.PoseRequest(Sample(0, 1000), request);
+  auto surface = std::make_shared<ModelSurface>();
+  surface->revision = 4;
+  surface->radius_m = 0.015;
+  surface->tool_vertices_T = {Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY()};
+  surface->tool_triangles = {{0, 1, 2}};
+  LocalModel model = Model(1);
+  model.surface = surface;
+  auto read_model = [&](uint64_t revision, bool faces) {
+    model.revision = revision;
+    pb::Frame frame = FrameFor("probe", 1, 1000);
+    LocalModelToProto(model, {}, frame.mutable_tools(0)->mutable_local_model(), faces);
+    EXPECT_TRUE(protocol.Read(frame, 2000).new_model);
+    return protocol.feed().model.surface;
+  };
+  EXPECT_TRUE(read_model(1, true)->has_body());
+  EXPECT_TRUE(read_model(2, false)->has_body());
+  EXPECT_TRUE(read_model(3, false)->has_body());
+  surface->revision = 5;
+  EXPECT_FALSE(read_model(4, false)->has_body()) << "a surface it never got";
+  // Surfaces are kept across streams (the tick may still hold one), and
+  // matched by centre and radius too: a rebuilt scene numbers its
+  // surfaces from 1 again.
+  protocol.Begin(4);
+  protocol.PoseRequest(Sample(0, 1000), request);
+  surface->revision = 4;
+  EXPECT_TRUE(read_model(5, false)->has_body());
+  surface->center_W.x() = 0.5;
+  EXPECT_FALSE(read_model(6, false)->has_body()) << "another scene's surface 4";
 }
 
 TEST(DeviceProtocolTest, FramesConnectAndBringEachModelOnce) {

@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <new>
 
-// Counts the allocations made while `counting` is set, on any thread.
+// Counts the allocations and frees made while `counting` is set, on any
+// thread.
 namespace {
 std::atomic<bool> counting{false};
 std::atomic<int64_t> allocations{0};
@@ -18,8 +21,14 @@ void* operator new(std::size_t size) {
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  if (counting && p != nullptr) ++allocations;
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  if (counting && p != nullptr) ++allocations;
+  std::free(p);
+}
 
 namespace hs::sdk {
 namespace {
@@ -197,14 +206,52 @@ TEST(TickRendererTest, BeyondValidityIsFlaggedAndCounted) {
   EXPECT_EQ(renderer.beyond_validity_ticks(), beyond);
 }
 
+// The floor's model with a surface of `faces` triangles of it (a strip
+// under the origin, each with its own material up to the cap) and a cube
+// tool, or that surface named alone.
+LocalModel FloorSurface(int faces, uint64_t revision, bool body = true) {
+  LocalModel model = Floor(1);
+  auto s = std::make_shared<ModelSurface>();
+  s->revision = revision;
+  s->radius_m = 0.01;
+  if (body) {
+    for (int i = 0; i < 8; ++i) {
+      s->tool_vertices_T.emplace_back(i & 1 ? 0.01 : -0.01, i & 2 ? 0.01 : -0.01,
+                                      i & 4 ? 0.02 : 0.0);
+    }
+    s->tool_triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                         {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    for (int i = 0; i <= faces; ++i) {
+      s->vertices_W.emplace_back(-0.1 + 0.2 * i / faces, -0.1, 0);
+      s->vertices_W.emplace_back(-0.1 + 0.2 * i / faces, 0.1, 0);
+    }
+    for (int i = 0; i < faces; ++i) {
+      s->triangles.push_back(i % 2 == 0 ? std::array<int32_t, 3>{i, i + 2, i + 1}
+                                        : std::array<int32_t, 3>{i, i + 1, i + 2});
+      s->triangle_materials.push_back(std::min(i, kMaxSurfaceMaterials - 1));
+      if (i < kMaxSurfaceMaterials) s->materials.push_back({.stiffness_n_per_m = 400});
+    }
+  }
+  model.surface = std::move(s);
+  return model;
+}
+
 TEST(TickRendererTest, TicksAllocateNothing) {
-  // Ticks taking new models of up to 16 planes, a new stream, a link down
-  // and bad poses allocate nothing once the renderer is built.
+  // Ticks taking new models of up to 16 planes, surfaces of up to the most
+  // faces and materials and models naming them alone, a new stream, a
+  // link down and bad poses allocate and free nothing once the renderer is
+  // built (the feeds hold the surfaces, as the network thread does).
   TickRenderer renderer(haptics::DeviceOptions{});
   Feed feed = Connected(1);
   std::vector<Feed> feeds;
   for (int planes = 0; planes <= 16; ++planes) {
     WithModel(feed, Floor(planes));
+    feeds.push_back(feed);
+  }
+  for (const int faces : {12, 600, kMaxSurfaceTriangles}) {
+    WithModel(feed, FloorSurface(faces, faces));
+    feeds.push_back(feed);
+    WithModel(feed, FloorSurface(faces, faces, false));
     feeds.push_back(feed);
   }
   Feed reconnected = feed;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 
@@ -42,6 +43,28 @@ LocalModel RandomModel(std::mt19937& rng, int planes) {
     p.separating = rng() % 2;
   }
   return model;
+}
+
+// A surface of `faces` random triangles (sharing vertices), a tetrahedron
+// as the tool, and two random materials.
+std::shared_ptr<const ModelSurface> RandomSurface(std::mt19937& rng, int faces) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto s = std::make_shared<ModelSurface>();
+  s->revision = 1 + rng() % 100;
+  s->center_W = Vector3d(u(rng), u(rng), u(rng));
+  s->radius_m = 0.5 + u(rng) / 4;
+  s->tool_vertices_T = {Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
+  s->tool_triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (int i = 0; i < faces + 2; ++i) s->vertices_W.emplace_back(u(rng), u(rng), u(rng));
+  for (int i = 0; i < faces; ++i) {
+    s->triangles.push_back({i, i + 1, i + 2});
+    s->triangle_materials.push_back(static_cast<int32_t>(rng() % 2));
+  }
+  for (int i = 0; i < 2; ++i) {
+    const double mu = (u(rng) + 1) / 2;
+    s->materials.push_back({1000 * mu + 1, mu, mu, mu / 2});
+  }
+  return s;
 }
 
 const std::vector<std::string> kNames = {"table", "organ", "probe"};
@@ -94,12 +117,53 @@ TEST(LocalModelConvertTest, RoundTrip) {
   }
 }
 
-// Each field out of its range makes the whole model INVALID_ARGUMENT,
-// naming that field.
+// A surface goes out and comes back field for field with its faces, and
+// as its revision, centre and radius alone without them (for a stream
+// that has them).
+TEST(LocalModelConvertTest, SurfaceRoundTripsWithAndWithoutItsFaces) {
+  std::mt19937 rng(8);
+  for (int k = 0; k < 20; ++k) {
+    LocalModel model = RandomModel(rng, 1);
+    model.surface = RandomSurface(rng, k);
+    for (const bool faces : {true, false}) {
+      pb::LocalModel proto;
+      LocalModelToProto(model, kNames, &proto, faces);
+      const absl::StatusOr<LocalModel> back = LocalModelFromProto(proto);
+      ASSERT_TRUE(back.ok()) << back.status();
+      ASSERT_TRUE(back->surface);
+      const ModelSurface &got = *back->surface, &want = *model.surface;
+      EXPECT_EQ(got.revision, want.revision);
+      EXPECT_EQ(got.center_W, want.center_W);
+      EXPECT_EQ(got.radius_m, want.radius_m);
+      EXPECT_EQ(got.has_body(), faces);
+      if (!faces) continue;
+      EXPECT_EQ(got.tool_vertices_T, want.tool_vertices_T);
+      EXPECT_EQ(got.tool_triangles, want.tool_triangles);
+      EXPECT_EQ(got.vertices_W, want.vertices_W);
+      EXPECT_EQ(got.triangles, want.triangles);
+      EXPECT_EQ(got.triangle_materials, want.triangle_materials);
+      ASSERT_EQ(got.materials.size(), want.materials.size());
+      for (size_t i = 0; i < got.materials.size(); ++i) {
+        EXPECT_EQ(got.materials[i].stiffness_n_per_m, want.materials[i].stiffness_n_per_m);
+        EXPECT_EQ(got.materials[i].dynamic_friction, want.materials[i].dynamic_friction);
+      }
+    }
+  }
+  pb::LocalModel none;
+  LocalModelToProto(RandomModel(rng, 1), kNames, &none);
+  EXPECT_FALSE(none.has_surface());
+  EXPECT_EQ(LocalModelFromProto(none)->surface, nullptr);
+}
+
+// Each field out of its range, its surface's too (a bad index, a count
+// past its cap, a triple cut short), makes the whole model
+// INVALID_ARGUMENT, naming that field.
 TEST(LocalModelConvertTest, BadFieldsAreNamed) {
   std::mt19937 rng(7);
+  LocalModel model = RandomModel(rng, 2);
+  model.surface = RandomSurface(rng, 3);
   pb::LocalModel good;
-  LocalModelToProto(RandomModel(rng, 2), kNames, &good);
+  LocalModelToProto(model, kNames, &good);
   ASSERT_TRUE(LocalModelFromProto(good).ok());
   struct Case {
     const char* field;
@@ -129,6 +193,71 @@ TEST(LocalModelConvertTest, BadFieldsAreNamed) {
        [](pb::LocalModel& m) {
          pb::Material* material = m.mutable_planes(0)->mutable_material();
          material->set_dynamic_friction(material->static_friction() * 1.5 + 0.1);
+       }},
+      {"surface.radius_m",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.set_radius_m(0);
+       }},
+      {"surface.center_W_m",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.mutable_center_w_m()->set_x(kNaN);
+       }},
+      {"surface.vertices_W_m",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.add_vertices_w_m(0);
+       }},
+      {"surface.vertices_W_m",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.set_vertices_w_m(4, kNaN);
+       }},
+      {"surface.triangles",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.set_triangles(2, 1000);
+       }},
+      {"surface.triangles",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.set_triangles(1, s.triangles(0));
+       }},
+      {"surface.triangles",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.add_triangles(0);
+       }},
+      {"surface.face_materials",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.set_face_materials(0, 2);
+       }},
+      {"surface.face_materials",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.add_face_materials(0);
+       }},
+      {"surface.tool_triangles",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.set_tool_triangles(0, 4);
+       }},
+      {"surface.tool_triangles",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.clear_tool_triangles();
+       }},
+      {"surface.tool_vertices_T_m",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         for (int i = 0; i < 3 * kMaxToolHullVertices; ++i) s.add_tool_vertices_t_m(0);
+       }},
+      {"surface.materials[1].stiffness_n_per_m",
+       [](pb::LocalModel& m) {
+         pb::ModelSurface& s = *m.mutable_surface();
+         s.mutable_materials(1)->set_stiffness_n_per_m(-1);
        }},
   };
   for (const Case& c : cases) {

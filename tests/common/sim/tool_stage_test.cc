@@ -76,8 +76,9 @@ TEST(ToolStageTest, ThreadsGiveIdenticalFrames) {
 
 // Stepped directly: a device moved 1.5 cm into a floor leaves its proxy
 // on the floor (the probe's bottom at z = 0 within the tolerance), which
-// is what free bodies meet (ProxyMotionOf: the pose and the move from the
-// start); a step clears "moved", a new pose sets it again.
+// is what free bodies meet (ProxyMotionOf: the pose and the move over the
+// last step); a step clears "moved", a new pose sets it again, and a
+// proxy that moved steps once more to show it rests.
 TEST(ToolStageTest, ProxyStopsOnTheFloorAndReportsItsMove) {
   SceneObjects objects;
   HapticObject floor = *HapticObject::Create("floor", MakeBox(Vector3d(1, 1, 0.1)));
@@ -98,15 +99,18 @@ TEST(ToolStageTest, ProxyStopsOnTheFloorAndReportsItsMove) {
   stage.SetDevicePose(id, At(0, 0, 0.005));
   EXPECT_FALSE(stage.NothingToStep());
   stage.Step(EffectSet::All(), workers, frames, stats);
+  // The proxy moved: one more step shows whether it rests.
+  EXPECT_FALSE(stage.NothingToStep());
+  stage.Step(EffectSet::All(), workers, frames, stats);
   EXPECT_TRUE(stage.NothingToStep());
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_EQ(frames[0].tool, id);
   const ToolStage::ProxyMotion proxy = stage.ProxyMotionOf(id);
   EXPECT_NEAR(proxy.X_WP.translation().z(), 0.01, 1e-6);
   EXPECT_TRUE(proxy.X_WP.isApprox(frames[0].X_WP));
-  EXPECT_NEAR(proxy.motion_W.z(), 0.01 - 0.02, 1e-6);
+  EXPECT_NEAR(proxy.motion_W.z(), 0, 1e-12) << "at rest";
   EXPECT_GT(frames[0].force_W.z(), 0);
-  EXPECT_EQ(stats[static_cast<int>(Effect::kReversingVector)].runs, 2);
+  EXPECT_EQ(stats[static_cast<int>(Effect::kReversingVector)].runs, 3);
 
   // A device asking for a fresh model makes a step.
   stage.RequestLocalModel(id);
@@ -295,6 +299,42 @@ TEST(ToolStageTest, EachStepsModelIsTheSearchedOne) {
   EXPECT_GT(built, 3) << "the slide must build models";
   EXPECT_GT(brute_forced, 20) << "the anchored models must be checked by brute force";
   EXPECT_EQ(kept->RequestLocalModel(0).code(), absl::StatusCode::kFailedPrecondition);
+}
+
+// Along the press and slide over the crest, every model carries a surface
+// (the probe is convex), the proxy within kSurfaceMoveFraction of the
+// radius of its centre; models share one surface (the same object) until
+// the proxy moves past that, and each new surface comes with a new model.
+TEST(ToolStageTest, ModelsShareASurfaceUntilTheProxyMovesOn) {
+  constexpr double kRadius = 0.01;
+  std::unique_ptr<Scene> scene = RemoteDeviceScene();
+  std::shared_ptr<const ModelSurface> last;
+  uint64_t last_revision = 0;
+  int surfaces = 0;
+  for (int step = 0; step < 70; ++step) {
+    const int s = std::min(step, 60);
+    const double z = 0.095 - 0.0005 * std::min(s, 30);
+    const double x = 0.1 - (s > 30 ? 0.0005 * (s - 30) : 0.0);
+    ASSERT_TRUE(scene->SetDevicePose(2, At(x, 0, z)).ok());
+    const ToolFrame& frame = scene->Step().tools[0];
+    const LocalModel& model = frame.local_model;
+    ASSERT_TRUE(model.surface) << step;
+    const ModelSurface& surface = *model.surface;
+    EXPECT_EQ(surface.radius_m, kSurfaceReachFraction * kRadius);
+    EXPECT_LE((frame.X_WP.translation() - surface.center_W).norm(), kSurfaceMoveFraction * kRadius)
+        << step;
+    EXPECT_GT(surface.triangles.size(), 0u);
+    if (model.surface != last) {
+      ++surfaces;
+      EXPECT_EQ(surface.revision, last ? last->revision + 1 : 1u) << step;
+      EXPECT_NE(model.revision, last_revision) << "a new surface, a new model, step " << step;
+    } else {
+      EXPECT_EQ(surface.revision, last->revision);
+    }
+    last = model.surface;
+    last_revision = model.revision;
+  }
+  EXPECT_GE(surfaces, 3) << "the 15 mm slide must move past two surfaces";
 }
 
 // A device that turns now and then: the pairs a proxy that did not turn
