@@ -214,11 +214,13 @@ void ToolStage::Step(EffectSet stages, WorkerPool& workers, std::vector<ToolFram
     Tool& tool = tools_[i];
     // A seated proxy came from the home pose: free bodies meet no motion.
     tool.X_WP_previous = tool.seated ? frames[i].X_WP : tool.X_WP;
-    // A proxy that moved less than the stand-off its god object keeps off
-    // a surface (proxy.cc) rests: what is left is the creep of standing
-    // off a curved surface, nanometres a step.
-    tool.sliding = (frames[i].X_WP.translation() - tool.X_WP.translation()).norm() >
-                   1e-6 * objects_[tool.id].object.bounding_box().diagonal().norm();
+    // A proxy that reached its device, or moved less than the stand-off
+    // its god object keeps off a surface (proxy.cc), rests: what is left
+    // is the creep of standing off a curved surface, nanometres a step.
+    const double stand_off = 1e-6 * objects_[tool.id].object.bounding_box().diagonal().norm();
+    const Vector3d& p_WP = frames[i].X_WP.translation();
+    tool.sliding = (p_WP - tool.X_WP.translation()).norm() > stand_off &&
+                   (p_WP - tool.X_WD.translation()).norm() > stand_off;
     tool.X_WP = frames[i].X_WP;
     tool.X_WD_previous = tool.X_WD;
     tool.moved = false;
@@ -606,11 +608,12 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
     ModelUpdate update =
         tool.seated ? ModelUpdate::kBuild : ModelUpdateFor(proxy, model_options, scratch);
     // The faces near the tool, shared by its models until the proxy moves
-    // on (model_surface.h); a new surface goes out with a new model.
+    // on (model_surface.h); a new surface goes out with a new model, its
+    // planes the last ones (they do not depend on the surface).
     const std::shared_ptr<const ModelSurface>& surface =
         scratch.surfaces.Update(objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP.translation(),
                                 radius_m, objects_.obstacles(), tool.seated);
-    if (scratch.surfaces.changed()) update = ModelUpdate::kBuild;
+    scratch.built_model.surface = surface;
     if (update == ModelUpdate::kAnchor &&
         !AnchorLocalModel(scratch.built_model, proxy, tool.X_WD.translation(),
                           PlaneTouchTolerance(t), scratch.model)) {
@@ -628,10 +631,12 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       }
       MarkSeparatingPlanes(objects_.Posed(tool.id, proxy.X_WP), objects_.obstacles(),
                            objects_.obstacle_ids(), scratch.separation, scratch.built_model);
-      scratch.built_model.surface = surface;
       scratch.built_model.revision = scratch.model.revision + 1;
       scratch.model = scratch.built_model;
     } else if (update == ModelUpdate::kAnchor) {
+      ++scratch.model.revision;
+    } else if (scratch.surfaces.changed()) {
+      scratch.model.surface = surface;
       ++scratch.model.revision;
     }
     if (update != ModelUpdate::kKeep) scratch.steps_since_model = 0;
