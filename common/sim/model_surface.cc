@@ -1,7 +1,6 @@
 #include "common/sim/model_surface.h"
 
 #include <algorithm>
-#include <atomic>
 
 #include "common/collision/faces_in_box.h"
 
@@ -127,26 +126,24 @@ const std::shared_ptr<const ModelSurface>& SurfaceKeeper::Update(
         {o.model, o.model->geometry_version(), o.object->material_version(), o.X_WO});
   }
   const bool had = surface_ != nullptr;
-  surface_.reset();  // so that its buffer may be gathered into
   if (!convex_) {
+    surface_.reset();
     changed_ = had;
     return surface_;
   }
-  std::shared_ptr<ModelSurface>* buffer =
-      std::find_if(std::begin(buffers_), std::end(buffers_),
-                   [](const std::shared_ptr<ModelSurface>& b) { return b.use_count() <= 1; });
-  // What the last holder of a buffer did with it happens before it is
-  // written again (use_count is a relaxed read).
-  std::atomic_thread_fence(std::memory_order_acquire);
-  if (buffer == std::end(buffers_)) {
-    buffer = &buffers_[0];  // both held by frames: a new one
-    buffers_[0] = nullptr;
+  // A new object rather than one a frame no longer holds: frames are
+  // read and released on other threads.
+  auto out = std::make_shared<ModelSurface>();
+  if (surface_) {
+    out->tool_vertices_T.reserve(surface_->tool_vertices_T.size());
+    out->vertices_W.reserve(surface_->vertices_W.size());
+    out->triangles.reserve(surface_->triangles.size());
+    out->triangle_materials.reserve(surface_->triangle_materials.size());
   }
-  if (!*buffer) *buffer = std::make_shared<ModelSurface>();
-  ModelSurface& out = **buffer;
-  if (Gather(tool, p_WP, radius_m, obstacles, out)) {
-    out.revision = ++revisions_;
-    surface_ = *buffer;
+  surface_.reset();
+  if (Gather(tool, p_WP, radius_m, obstacles, *out)) {
+    out->revision = ++revisions_;
+    surface_ = std::move(out);
   }
   changed_ = had || surface_ != nullptr;
   return surface_;

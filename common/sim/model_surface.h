@@ -29,7 +29,9 @@ bool IsConvexTool(const HapticObject& tool);
 
 /// A tool's surfaces: gathers one when the last no longer serves, and
 /// keeps what that needs (whether the tool is convex, per geometry
-/// version; buffers that stop growing).
+/// version; search buffers that stop growing). Each surface is a new
+/// object (frames on other threads may hold the last ones), sized as the
+/// last one was.
 class SurfaceKeeper {
  public:
   /// The tool's surface for its proxy at `p_WP` with validity radius
@@ -72,9 +74,6 @@ class SurfaceKeeper {
   bool changed_ = false;
   uint64_t revisions_ = 0;
   std::shared_ptr<const ModelSurface> surface_;
-  // Two buffers, so that a new surface is gathered into the one no frame
-  // holds any more without allocating.
-  std::shared_ptr<ModelSurface> buffers_[2];
   std::vector<FaceId> faces_;
   std::vector<int32_t> vertex_index_;
 };
