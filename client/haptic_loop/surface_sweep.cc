@@ -140,30 +140,50 @@ struct AxisSweep {
   }
 };
 
+// Calls visit(axis, low, high) with each candidate separating axis of the
+// tool and a face (unit), and the tool's shadow on it about its origin:
+// the face's normal (none for a face without area), the tool's face
+// normals (`lows`, `highs` their shadows), each tool edge crossed with
+// each face edge (parallel ones skipped). False as soon as visit is.
+template <class ShadowOf, class Visit>
+bool WalkAxes(const Vector3d& face_normal, const Vector3d (&face_edges)[3],
+              const std::vector<Vector3d>& normals, const std::vector<double>& lows,
+              const std::vector<double>& highs, const std::vector<Vector3d>& edges, ShadowOf shadow,
+              Visit visit) {
+  double low, high;
+  if (!face_normal.isZero()) {
+    shadow(face_normal, low, high);
+    if (!visit(face_normal, low, high)) return false;
+  }
+  for (size_t i = 0; i < normals.size(); ++i) {
+    if (!visit(normals[i], lows[i], highs[i])) return false;
+  }
+  for (const Vector3d& e : edges) {
+    for (const Vector3d& f : face_edges) {
+      const Vector3d axis = e.cross(f);
+      const double length = axis.norm();
+      if (length <= kParallelSine) continue;
+      const Vector3d unit = axis / length;
+      shadow(unit, low, high);
+      if (!visit(unit, low, high)) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 bool SurfaceSweep::Sweep(const Face& face, const Vector3d& p, const Vector3d& v, double& enter,
                          Vector3d& normal) const {
   AxisSweep s;
-  double low, high;
-  if (!face.normal.isZero()) {
-    Shadow(face.normal, low, high);
-    if (!s.Narrow(face.normal, low, high, face.a, face.b, face.c, p, v)) return false;
-  }
-  for (size_t i = 0; i < normals_W_.size(); ++i) {
-    if (!s.Narrow(normals_W_[i], normal_low_[i], normal_high_[i], face.a, face.b, face.c, p, v)) {
-      return false;
-    }
-  }
-  for (const Vector3d& e : edges_W_) {
-    for (const Vector3d& f : face.edges) {
-      const Vector3d axis = e.cross(f);
-      const double length = axis.norm();
-      if (length <= kParallelSine) continue;
-      const Vector3d unit = axis / length;
-      Shadow(unit, low, high);
-      if (!s.Narrow(unit, low, high, face.a, face.b, face.c, p, v)) return false;
-    }
+  const auto shadow = [this](const Vector3d& axis, double& low, double& high) {
+    Shadow(axis, low, high);
+  };
+  if (!WalkAxes(face.normal, face.edges, normals_W_, normal_low_, normal_high_, edges_W_, shadow,
+                [&](const Vector3d& axis, double low, double high) {
+                  return s.Narrow(axis, low, high, face.a, face.b, face.c, p, v);
+                })) {
+    return false;
   }
   if (s.leave < 0 || s.enter > 1) return false;
   if (s.enter >= 0) {
@@ -201,32 +221,20 @@ SurfaceSweep::Touch SurfaceSweep::First(const Vector3d& p, const Vector3d& v) co
 bool SurfaceSweep::Overlaps(const Vector3d& p, double depth_m) const {
   if (tool_box_.isEmpty()) return false;
   const AlignedBox3d at(tool_box_.min() + p, tool_box_.max() + p);
+  const auto shadow = [this](const Vector3d& axis, double& low, double& high) {
+    Shadow(axis, low, high);
+  };
   for (const Face& face : faces_) {
     if (!at.intersects(face.box)) continue;
     AxisSweep s;
-    double low, high;
-    bool apart = false;
-    const auto overlap = [&](const Vector3d& axis, double lo, double hi) {
-      (void)s.Narrow(axis, lo, hi, face.a, face.b, face.c, p, Vector3d::Zero());
-      apart = apart || s.depth <= depth_m;
-    };
-    if (!face.normal.isZero()) {
-      Shadow(face.normal, low, high);
-      overlap(face.normal, low, high);
+    // In it by more than depth_m along every axis: no axis sets it apart.
+    if (WalkAxes(face.normal, face.edges, normals_W_, normal_low_, normal_high_, edges_W_, shadow,
+                 [&](const Vector3d& axis, double low, double high) {
+                   (void)s.Narrow(axis, low, high, face.a, face.b, face.c, p, Vector3d::Zero());
+                   return s.depth > depth_m;
+                 })) {
+      return true;
     }
-    for (size_t i = 0; i < normals_W_.size() && !apart; ++i) {
-      overlap(normals_W_[i], normal_low_[i], normal_high_[i]);
-    }
-    for (const Vector3d& e : edges_W_) {
-      for (const Vector3d& f : face.edges) {
-        const Vector3d axis = e.cross(f);
-        if (apart || axis.norm() <= kParallelSine) continue;
-        const Vector3d unit = axis.normalized();
-        Shadow(unit, low, high);
-        overlap(unit, low, high);
-      }
-    }
-    if (!apart) return true;
   }
   return false;
 }
