@@ -171,6 +171,7 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
       // `id` is a tool and the radius was checked at the edge.
       if (pose.model.stale) (void)scene.RequestLocalModel(id);
       (void)scene.SetLocalModelRadius(id, pose.model.validity_radius_m);
+      (void)scene.SetSurfaceOnly(id, pose.model.surface_only);
       applied_[id] = pose;
       snapshot->inputs.push_back({id, pose.X_WD, pose.stamp, pose.seat});
     }

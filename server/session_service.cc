@@ -216,6 +216,7 @@ class InteractReactor
       return false;
     }
     opened_ = true;
+    surface_only_ = open.surface_only();
     return true;
   }
 
@@ -235,15 +236,18 @@ class InteractReactor
            "Interact");
       return false;
     }
-    runner_->SetDevicePose(
-        this, *X_WD, AppliedPose{pose.sequence(), pose.device_time_ns()},
-        {.stale = pose.model_stale(), .validity_radius_m = pose.validity_radius_m()});
+    runner_->SetDevicePose(this, *X_WD, AppliedPose{pose.sequence(), pose.device_time_ns()},
+                           {.stale = pose.model_stale(),
+                            .validity_radius_m = pose.validity_radius_m(),
+                            .surface_only = surface_only_});
     return true;
   }
 
   grpc::ByteBuffer read_;
   pb::InteractRequest request_;
   bool opened_ = false;
+  // The device reads its local model's surface alone (Open.surface_only).
+  bool surface_only_ = false;
 };
 
 // What a viewer's parts need the scene to compute.

@@ -130,7 +130,8 @@ StreamChange StreamRegistry::SetPose(FrameSink* sink, const Isometry3d& X_WD,
                         .fresh = true,
                         .seat = seat,
                         .model = {.stale = model.stale || (pending.fresh && pending.model.stale),
-                                  .validity_radius_m = model.validity_radius_m}};
+                                  .validity_radius_m = model.validity_radius_m,
+                                  .surface_only = model.surface_only}};
   it->second.sent_pose = true;
   it->second.heard = std::chrono::steady_clock::now();
   return {.tool = std::nullopt, .devices_fresh_since = DevicesFreshLocked()};

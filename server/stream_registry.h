@@ -47,6 +47,8 @@ struct LocalModelRequest {
   /// The validity radius wanted, metres (ToolPose.validity_radius_m; 0:
   /// the scene's).
   double validity_radius_m = 0;
+  /// The device reads no planes beside a surface (Open.surface_only).
+  bool surface_only = false;
 };
 
 /// A device pose waiting for the next step.

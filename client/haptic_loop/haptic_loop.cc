@@ -111,6 +111,15 @@ bool HapticLoop::SetModel(const LocalModel& model) {
         break;
       }
     }
+    // A model with no planes beside its surface (a device that reads
+    // surfaces alone) whose faces did not come: the newest surface the loop
+    // holds serves within its own sphere, as its objects have not moved
+    // (had they, the proxy restarts where it lies in a face). With none,
+    // the loop meets nothing and asks for a fresh model (Step).
+    for (const auto* held : {&pending_model_.surface, &surface_}) {
+      if (body || !model.planes.empty()) break;
+      if (*held && (*held)->has_body()) body = *held;
+    }
   }
   pending_model_ = model;
   if (body) pending_model_.surface = std::move(body);
@@ -401,7 +410,10 @@ HapticOutput HapticLoop::Step(const Vector3d& device, const Vector3d& v_WD) {
   const Sphere sphere = ValiditySphere();
   const bool held = (proxy_ - sphere.center).norm() > sphere.radius;
   HapticOutput out = Render(touched, device, v_WD, held);
-  out.beyond_validity = (device - sphere.center).norm() > sphere.radius;
+  // A model whose surface's faces the loop lacks, with no planes beside,
+  // holds nowhere.
+  out.beyond_validity = (device - sphere.center).norm() > sphere.radius ||
+                        (model_.surface && !on_surface_ && model_.planes.empty());
   // The energy the touched face's spring holds (past the sphere, its
   // push along the normal only).
   stored_j_ = 0;

@@ -21,6 +21,8 @@ DeviceStream::DeviceStream(pb::SessionService::Stub& stub, const DeviceOpen& ope
   first.set_tool(open.tool);
   SetNeeds(open.needs, first);
   SetFrameRate(first, open.frame_rate_hz);
+  // As the SDK's device, which renders from a model's surface alone.
+  first.set_surface_only(true);
   stream_->Write(request);
 }
 

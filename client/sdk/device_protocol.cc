@@ -19,7 +19,12 @@ pb::InteractRequest::Open DeviceProtocol::Open() const {
   open.set_frame_rate_hz(options.frame_rate_hz > 0 ? options.frame_rate_hz : options.rate_hz);
   open.add_needs(pb::EFFECT_FORCE);
   open.add_needs(pb::EFFECT_FRICTION);
-  if (options.local_model) open.add_needs(pb::EFFECT_LOCAL_MODEL);
+  if (options.local_model) {
+    open.add_needs(pb::EFFECT_LOCAL_MODEL);
+    // The loop renders from a model's surface where it has one
+    // (client/haptic_loop) and needs no planes beside it.
+    open.set_surface_only(true);
+  }
   for (pb::Effect effect : config_.extra_needs) open.add_needs(effect);
   return open;
 }

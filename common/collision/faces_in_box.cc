@@ -38,6 +38,24 @@ class BoxQuery {
       return node.overlap(converted_);
     }
   }
+  /// Whether `node`'s volume lies wholly inside the box: every face below
+  /// it meets the box. Only oriented volumes tell; the others never do.
+  bool Holds(const BV& node) const {
+    if constexpr (kOriented) {
+      const fcl::OBBd& volume = CullingBox(node);
+      const Vector3d offset = volume.To - box_.center;
+      for (int i = 0; i < 3; ++i) {
+        const Vector3d axis = box_.axis.col(i);
+        double reach = std::abs(axis.dot(offset));
+        for (int j = 0; j < 3; ++j)
+          reach += volume.extent[j] * std::abs(axis.dot(volume.axis.col(j)));
+        if (reach > box_.extent[i]) return false;
+      }
+      return true;
+    } else {
+      return false;
+    }
+  }
 
  private:
   static constexpr bool kOriented = requires(const BV& bv) { CullingBox(bv); };
@@ -46,7 +64,7 @@ class BoxQuery {
 };
 
 template <typename BV>
-void FindFacesInBox(const fcl::BVHModel<BV>& bvh, const std::vector<uint8_t>& degenerate,
+void FindFacesInBox(const fcl::BVHModel<BV>& bvh, const CollisionModel::Impl& impl,
                     const Isometry3d& X_OW, const AlignedBox3d& box_W, std::vector<FaceId>& faces) {
   // The box in the object frame, tested against each node's volume.
   fcl::Transform3d X_OB = X_OW;
@@ -59,7 +77,15 @@ void FindFacesInBox(const fcl::BVHModel<BV>& bvh, const std::vector<uint8_t>& de
     stack.pop_back();
     if (!query.Meets(node.bv)) continue;
     if (node.isLeaf()) {
-      if (!degenerate[node.primitiveId()]) faces.push_back(node.primitiveId());
+      if (!impl.degenerate[node.primitiveId()]) faces.push_back(node.primitiveId());
+    } else if (query.Holds(node.bv)) {
+      // Every leaf below, in the walk's order, without a test each: most
+      // of a large box's faces lie well inside it.
+      const int end = node.first_primitive + node.num_primitives;
+      for (int i = node.first_primitive; i < end; ++i) {
+        const int face = impl.leaf_faces[i];
+        if (!impl.degenerate[face]) faces.push_back(face);
+      }
     } else {
       stack.push_back(node.rightChild());
       stack.push_back(node.leftChild());
@@ -140,7 +166,7 @@ void FindFacesInBox(const CollisionModel& model, const Isometry3d& X_WO, const A
   std::visit(
       [&](const auto& bvh) {
         if (bvh->getNumBVs() > 0) {
-          FindFacesInBox(*bvh, impl.degenerate, X_WO.inverse(), box_W, faces);
+          FindFacesInBox(*bvh, impl, X_WO.inverse(), box_W, faces);
         }
       },
       impl.bvh);

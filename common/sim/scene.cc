@@ -115,6 +115,12 @@ absl::Status Scene::SetLocalModelRadius(ObjectId id, double radius_m) {
   return absl::OkStatus();
 }
 
+absl::Status Scene::SetSurfaceOnly(ObjectId id, bool surface_only) {
+  HS_RETURN_IF_ERROR(CheckTool(id));
+  tools_.SetSurfaceOnly(id, surface_only);
+  return absl::OkStatus();
+}
+
 absl::Status Scene::SetDevicePose(ObjectId id, const Isometry3d& X_WD) {
   HS_RETURN_IF_ERROR(CheckDevicePose(id, X_WD));
   tools_.SetDevicePose(id, X_WD);

@@ -64,6 +64,12 @@ class Scene {
   /// the scene's. INVALID_ARGUMENT when not finite or negative; NOT_FOUND
   /// or FAILED_PRECONDITION, as SetDevicePose, when `id` is no tool.
   absl::Status SetLocalModelRadius(ObjectId id, double radius_m);
+  /// Whether tool `id`'s device reads its local model's surface alone
+  /// (InteractRequest.Open.surface_only): from its next step, a model
+  /// with a surface then carries no planes, and costs no plane search.
+  /// NOT_FOUND or FAILED_PRECONDITION, as SetDevicePose, when `id` is no
+  /// tool.
+  absl::Status SetSurfaceOnly(ObjectId id, bool surface_only);
 
   /// Steps the tools on up to `threads` threads (the stepping one
   /// included): each tool's contacts apart from its proxy and force, the

@@ -71,6 +71,37 @@ double SearchReach(const LocalModel& last, const LocalModelOptions& options, dou
   return std::min(options.radius_m, 2 * (last.planes.back().gap_m + margin_m));
 }
 
+// Whether a tool whose device reads the surface alone needs a new model
+// beside `last` (no planes): what the model tells besides the surface
+// changed. That is the proxy, for a touching proxy that slid (where the
+// tool touches, the torque's lever, goes with it, as an anchored model's
+// does) or one in free space that moved kModelMoveFraction of the radius;
+// whether it touches; the options; or the longest period passed.
+bool SurfaceModelStale(const LocalModel& last, const ProxyState& proxy,
+                       const LocalModelOptions& options, int steps_since_model, double step_s) {
+  if (last.revision == 0 || !last.planes.empty() || last.validity_radius_m != options.radius_m ||
+      last.friction != options.friction || last.force_clamp_n != options.force_clamp_n ||
+      last.touching != proxy.touching || steps_since_model * step_s > kLongestModelPeriodS) {
+    return true;
+  }
+  if (proxy.touching) return !proxy.X_WP.isApprox(last.X_WP, 0.0);
+  return (proxy.X_WP.translation() - last.X_WP.translation()).norm() >
+         kModelMoveFraction * options.radius_m;
+}
+
+// The next model, after `model`, of a device that reads the surface alone.
+void SurfaceOnlyModel(const ProxyState& proxy, const Vector3d& p_WD,
+                      const LocalModelOptions& options,
+                      const std::shared_ptr<const ModelSurface>& surface, LocalModel& model) {
+  SetModelProxy(proxy, p_WD, model);
+  model.validity_radius_m = options.radius_m;
+  model.force_clamp_n = options.force_clamp_n;
+  model.friction = options.friction;
+  model.planes.clear();
+  model.surface = surface;
+  ++model.revision;
+}
+
 void AddStats(StageStatsTable& to, StageStatsTable& from) {
   for (int e = 0; e < kNumEffects; ++e) {
     to[e].runs += from[e].runs;
@@ -120,6 +151,14 @@ void ToolStage::RequestLocalModel(ObjectId id) { scratch_[index_[id]].model_want
 
 void ToolStage::SetLocalModelRadius(ObjectId id, double radius_m) {
   scratch_[index_[id]].model_radius_m = radius_m;
+}
+
+void ToolStage::SetSurfaceOnly(ObjectId id, bool surface_only) {
+  ToolScratch& scratch = scratch_[index_[id]];
+  // A model of the other kind at the next step: the last built one may be
+  // of long ago.
+  if (scratch.surface_only != surface_only) scratch.model_wanted = true;
+  scratch.surface_only = surface_only;
 }
 
 ToolStage::ModelUpdate ToolStage::ModelUpdateFor(const ProxyState& proxy,
@@ -602,44 +641,58 @@ void ToolStage::StepProxy(int index, std::span<const int> island, EffectSet stag
       scratch.steps_since_search = 0;
       scratch.searched_radius_m = scratch.model_radius_m;
     };
-    const HapticObject& t = objects_[tool.id].object;
-    // A device that takes the tool gets a model of its first pose: the
-    // last one may be older than its stream.
-    ModelUpdate update =
-        tool.seated ? ModelUpdate::kBuild : ModelUpdateFor(proxy, model_options, scratch);
     // The faces near the tool, shared by its models until the proxy moves
-    // on (model_surface.h); a new surface goes out with a new model, its
-    // planes the last ones (they do not depend on the surface).
-    const std::shared_ptr<const ModelSurface>& surface =
-        scratch.surfaces.Update(objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP.translation(),
-                                radius_m, objects_.obstacles(), tool.seated);
-    scratch.built_model.surface = surface;
-    if (update == ModelUpdate::kAnchor &&
-        !AnchorLocalModel(scratch.built_model, proxy, tool.X_WD.translation(),
-                          PlaneTouchTolerance(t), scratch.model)) {
-      update = ModelUpdate::kBuild;
-    }
-    if (update == ModelUpdate::kBuild) {
-      if (!PairsServe(proxy.X_WP, scratch))
-        gather(SearchReach(scratch.built_model, model_options, margin));
-      if (!ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
-                          scratch.built_model)) {
-        // The model's farthest plane lies beyond a short search's pairs.
-        gather(model_options.radius_m);
-        (void)ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
-                             scratch.built_model);  // the whole radius
+    // on (model_surface.h), gathered anew for a device that takes the tool
+    // or asks for a fresh model (it is past the surface, or lost its faces).
+    const std::shared_ptr<const ModelSurface>& surface = scratch.surfaces.Update(
+        objects_.Posed(tool.id, proxy.X_WP), proxy.X_WP.translation(), radius_m,
+        objects_.obstacles(), tool.seated || scratch.model_wanted);
+    if (scratch.surface_only && surface) {
+      // The device reads the surface alone: a model is the proxy's state
+      // beside it, with no planes and no face search.
+      if (tool.seated || scratch.model_wanted || scratch.surfaces.changed() ||
+          SurfaceModelStale(scratch.model, proxy, model_options, ++scratch.steps_since_model,
+                            options_.step_s)) {
+        SurfaceOnlyModel(proxy, tool.X_WD.translation(), model_options, surface, scratch.model);
+        scratch.steps_since_model = 0;
       }
-      MarkSeparatingPlanes(objects_.Posed(tool.id, proxy.X_WP), objects_.obstacles(),
-                           objects_.obstacle_ids(), scratch.separation, scratch.built_model);
-      scratch.built_model.revision = scratch.model.revision + 1;
-      scratch.model = scratch.built_model;
-    } else if (update == ModelUpdate::kAnchor) {
-      ++scratch.model.revision;
-    } else if (scratch.surfaces.changed()) {
-      scratch.model.surface = surface;
-      ++scratch.model.revision;
+    } else {
+      const HapticObject& t = objects_[tool.id].object;
+      // A device that takes the tool gets a model of its first pose: the
+      // last one may be older than its stream.
+      ModelUpdate update =
+          tool.seated ? ModelUpdate::kBuild : ModelUpdateFor(proxy, model_options, scratch);
+      // A new surface goes out with a new model, its planes the last ones
+      // (they do not depend on the surface).
+      scratch.built_model.surface = surface;
+      if (update == ModelUpdate::kAnchor &&
+          !AnchorLocalModel(scratch.built_model, proxy, tool.X_WD.translation(),
+                            PlaneTouchTolerance(t), scratch.model)) {
+        update = ModelUpdate::kBuild;
+      }
+      if (update == ModelUpdate::kBuild) {
+        if (!PairsServe(proxy.X_WP, scratch))
+          gather(SearchReach(scratch.built_model, model_options, margin));
+        if (!ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs, model_options,
+                            scratch.built_model)) {
+          // The model's farthest plane lies beyond a short search's pairs.
+          gather(model_options.radius_m);
+          (void)ModelFromPairs(t, proxy, tool.X_WD.translation(), scratch.model_pairs,
+                               model_options,
+                               scratch.built_model);  // the whole radius
+        }
+        MarkSeparatingPlanes(objects_.Posed(tool.id, proxy.X_WP), objects_.obstacles(),
+                             objects_.obstacle_ids(), scratch.separation, scratch.built_model);
+        scratch.built_model.revision = scratch.model.revision + 1;
+        scratch.model = scratch.built_model;
+      } else if (update == ModelUpdate::kAnchor) {
+        ++scratch.model.revision;
+      } else if (scratch.surfaces.changed()) {
+        scratch.model.surface = surface;
+        ++scratch.model.revision;
+      }
+      if (update != ModelUpdate::kKeep) scratch.steps_since_model = 0;
     }
-    if (update != ModelUpdate::kKeep) scratch.steps_since_model = 0;
     scratch.model_wanted = false;
     frame.local_model = scratch.model;
   }

@@ -57,6 +57,8 @@ class ToolStage {
   /// > 0, already within the scene's bounds) from its next step; `id`
   /// must be a tool.
   void SetLocalModelRadius(ObjectId id, double radius_m);
+  /// Tool `id`'s models carry no planes beside a surface (Scene::SetSurfaceOnly).
+  void SetSurfaceOnly(ObjectId id, bool surface_only);
 
   /// Steps every tool through `stages` on `workers`: `frames` takes one
   /// entry per tool (in the order added), `stats` each stage's runs and
@@ -142,6 +144,9 @@ class ToolStage {
     // and the one the pairs were searched with.
     double model_radius_m = 0;
     double searched_radius_m = 0;
+    // The tool's device reads the surface alone: a model with a surface
+    // carries no planes.
+    bool surface_only = false;
     LocalModel built_model;
     // Which planes of the last model built separate (separating_planes.h).
     SeparationMemo separation;

@@ -55,6 +55,8 @@ constexpr DemoScene kScenes[] = {
 
 // What a haptic device needs: its force, with friction.
 const EffectSet kHapticDevice{Effect::kForce, Effect::kFriction};
+// What a remote device needs: that and its local contact model.
+const EffectSet kRemoteDevice{Effect::kForce, Effect::kFriction, Effect::kLocalModel};
 
 std::vector<Isometry3d> ReadPath(const std::string& file) {
   std::vector<Isometry3d> poses;
@@ -129,9 +131,10 @@ std::vector<Isometry3d> Resampled(const std::vector<Isometry3d>& path, int per_s
 
 // Steps `demo` along its path at `rate_hz` (1,000: the scene's own step),
 // `per_step` of the path's 1 kHz samples a step (0.1: ten steps from one
-// sample to the next).
+// sample to the next). `surface_only`: the device reads its local model's
+// surface alone, as the SDK's does (Scene::SetSurfaceOnly).
 void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, int threads,
-             int rate_hz, double per_step) {
+             int rate_hz, double per_step, bool surface_only) {
   const std::string dir = hs::ScenesDir() + "/";
   absl::StatusOr<haptics::v1::SceneSpec> spec = ReadSceneFile(dir + demo.scene);
   if (!spec.ok()) {
@@ -145,6 +148,7 @@ void BM_Step(benchmark::State& state, const DemoScene& demo, EffectSet needs, in
     return;
   }
   loaded->scene->SetNeeded(needs);
+  (void)loaded->scene->SetSurfaceOnly(loaded->tools.front(), surface_only);
   if (absl::Status s = loaded->scene->SetThreads(threads); !s.ok()) {
     state.SkipWithError(std::string(s.message()).c_str());
     return;
@@ -206,20 +210,23 @@ void Register() {
     for (const DemoScene& demo : kScenes) {
       const std::string name = std::string("Step/") + demo.name;
       benchmark::RegisterBenchmark((name + "/all_effects" + suffix).c_str(), BM_Step, demo,
-                                   EffectSet::Default(), threads, 1000, 1.0);
+                                   EffectSet::Default(), threads, 1000, 1.0, false);
       benchmark::RegisterBenchmark((name + "/force_only" + suffix).c_str(), BM_Step, demo,
-                                   kHapticDevice, threads, 1000, 1.0);
-      benchmark::RegisterBenchmark(
-          (name + "/remote_device" + suffix).c_str(), BM_Step, demo,
-          EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel}, threads, 1000, 1.0);
+                                   kHapticDevice, threads, 1000, 1.0, false);
+      // The SDK's remote device, which reads the surface alone.
+      benchmark::RegisterBenchmark((name + "/remote_device" + suffix).c_str(), BM_Step, demo,
+                                   kRemoteDevice, threads, 1000, 1.0, true);
       // A hand's speed: the paths' 1 mm a step slowed to 0.1 mm (0.1 m/s).
-      benchmark::RegisterBenchmark(
-          (name + "/remote_device_hand" + suffix).c_str(), BM_Step, demo,
-          EffectSet{Effect::kForce, Effect::kFriction, Effect::kLocalModel}, threads, 1000, 0.1);
+      benchmark::RegisterBenchmark((name + "/remote_device_hand" + suffix).c_str(), BM_Step, demo,
+                                   kRemoteDevice, threads, 1000, 0.1, true);
+      // A device that reads the model's planes (one that does not say it
+      // reads the surface alone): every model has both.
+      benchmark::RegisterBenchmark((name + "/remote_device_planes" + suffix).c_str(), BM_Step, demo,
+                                   kRemoteDevice, threads, 1000, 1.0, false);
       benchmark::RegisterBenchmark((name + "/collision_only" + suffix).c_str(), BM_Step, demo,
-                                   EffectSet{Effect::kCollision}, threads, 1000, 1.0);
+                                   EffectSet{Effect::kCollision}, threads, 1000, 1.0, false);
       benchmark::RegisterBenchmark((name + "/force_only_10khz" + suffix).c_str(), BM_Step, demo,
-                                   kHapticDevice, threads, 10000, 1.0);
+                                   kHapticDevice, threads, 10000, 1.0, false);
     }
     if (server_threads == 1) break;  // one run is both
   }

@@ -29,11 +29,12 @@ const std::string kScenes = hs::ScenesDir();
 class Device {
  public:
   Device(TestServer& server, const std::string& scene, const std::string& tool,
-         std::vector<pb::Effect> needs = {})
+         std::vector<pb::Effect> needs = {}, bool surface_only = false)
       : context_(ContextWithin(60)), stream_(server.sessions().Interact(context_.get())) {
     pb::InteractRequest open;
     open.mutable_open()->set_scene(scene);
     open.mutable_open()->set_tool(tool);
+    open.mutable_open()->set_surface_only(surface_only);
     for (pb::Effect e : needs) open.mutable_open()->add_needs(e);
     stream_->Write(open);
   }
@@ -233,6 +234,27 @@ TEST(SessionServiceTest, TwoDevicesAndViewerSeeTheSameSteps) {
 
 // A second device claiming a held tool is refused (FAILED_PRECONDITION);
 // once the first device cancels mid-stream the tool is free again.
+// A device that says it reads the surface alone (Open.surface_only) gets
+// models with the surface's faces and no planes; one that does not, the
+// planes too. The probe rests on the table.
+TEST(SessionServiceTest, ADeviceThatReadsTheSurfaceAloneGetsNoPlanes) {
+  TestServer server;
+  for (const bool surface_only : {true, false}) {
+    const std::string name = surface_only ? "alone" : "planes";
+    server.Create(SmallScene(name));
+    Device device(server, name, "probe", {pb::EFFECT_FORCE, pb::EFFECT_LOCAL_MODEL}, surface_only);
+    ASSERT_TRUE(device.Send(1, PoseAt(0, 0, 0.0195)));
+    pb::Frame frame;
+    ASSERT_TRUE(device.ReadUntil(1, frame));
+    ASSERT_EQ(frame.tools_size(), 1);
+    const pb::LocalModel& model = frame.tools(0).local_model();
+    EXPECT_TRUE(model.touching()) << name;
+    EXPECT_GT(model.surface().triangles_size(), 0) << name;
+    EXPECT_EQ(model.planes_size() == 0, surface_only) << name;
+    EXPECT_TRUE(device.Finish().ok()) << name;
+  }
+}
+
 TEST(SessionServiceTest, ToolHeldUntilCancelled) {
   TestServer server;
   server.Create(SmallScene("claim"));

@@ -565,6 +565,45 @@ TEST(HapticLoopTest, AnUnknownSurfaceFallsBackToPlanesAndAnOverlapRestarts) {
   EXPECT_NEAR(out.p_WP.z(), 0.0150001, 1e-7);
 }
 
+// A model with no planes beside its surface (a device that reads surfaces
+// alone) whose faces were lost: the surface the loop holds serves (the
+// floor still holds the cube, with the same force); a loop that holds
+// none meets nothing and counts its ticks past validity, so that its
+// device asks for a fresh model.
+TEST(HapticLoopTest, ALostSurfaceWithoutPlanesKeepsTheLastOrAsksForAnother) {
+  auto named = std::make_shared<ModelSurface>();
+  named->revision = 2;
+  named->center_W = Vector3d(0.002, 0, 0.01);
+  named->radius_m = 0.05;
+  LocalModel first =
+      SurfaceModel(1, Vector3d(0, 0, 0.01), FloorSurface(1, Vector3d(0, 0, 0.01), 0.05));
+  first.planes.clear();
+  LocalModel lost = SurfaceModel(2, Vector3d(0.002, 0, 0.0100001), named);
+  lost.planes.clear();
+  HapticLoop loop, kept;
+  ASSERT_TRUE(loop.SetModel(first));
+  ASSERT_TRUE(kept.SetModel(first));
+  loop.Tick(At(Vector3d(0, 0, 0.01)));
+  kept.Tick(At(Vector3d(0, 0, 0.01)));
+  ASSERT_TRUE(loop.SetModel(lost));
+  for (int i = 0; i < 5; ++i) {
+    const Vector3d device(0.0004 * i, 0, 0.007);
+    const HapticOutput a = loop.Tick(At(device));
+    const HapticOutput b = kept.Tick(At(device));
+    EXPECT_EQ(a.force_W, b.force_W) << i;
+    EXPECT_FALSE(a.beyond_validity) << i;
+    EXPECT_NEAR(a.force_W.z(), 3.0, 1e-3) << i;
+  }
+  EXPECT_EQ(loop.beyond_validity_ticks(), 0);
+
+  HapticLoop none;
+  ASSERT_TRUE(none.SetModel(lost));
+  const HapticOutput out = none.Tick(At(Vector3d(0, 0, 0.007)));
+  EXPECT_FALSE(out.touching);
+  EXPECT_TRUE(out.beyond_validity);
+  EXPECT_EQ(none.beyond_validity_ticks(), 1);
+}
+
 TEST(HapticLoopTest, ASurfaceWithABadIndexOrNumberIsRejected) {
   HapticLoop loop;
   auto bad_index = FloorSurface(1, Vector3d::Zero(), 0.05);

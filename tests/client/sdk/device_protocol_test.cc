@@ -63,6 +63,7 @@ TEST(DeviceProtocolTest, OpenAsksForWhatTheDeviceRenders) {
   EXPECT_EQ(open.needs(1), pb::EFFECT_FRICTION);
   EXPECT_EQ(open.needs(2), pb::EFFECT_LOCAL_MODEL);
   EXPECT_EQ(open.needs(3), pb::EFFECT_CONTACT_SET);
+  EXPECT_TRUE(open.surface_only()) << "the loop reads a model's surface alone";
 
   DeviceConfig force_only = Config(false);
   force_only.options.frame_rate_hz = 500;
@@ -70,6 +71,7 @@ TEST(DeviceProtocolTest, OpenAsksForWhatTheDeviceRenders) {
   EXPECT_EQ(plain.frame_rate_hz(), 500);
   ASSERT_EQ(plain.needs_size(), 2);
   EXPECT_EQ(plain.needs(1), pb::EFFECT_FRICTION);
+  EXPECT_FALSE(plain.surface_only());
 }
 
 TEST(DeviceProtocolTest, PosesCountFromOneOnEachStreamAndCarryTheSample) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 #include <set>
 #include <vector>
@@ -121,6 +122,28 @@ TEST_P(FacesInBoxTest, FindsEveryFaceNearTheBoxAndOnlyThose) {
     }
   }
   EXPECT_GT(found_total, 0);
+}
+
+// A box that holds the whole object (its root volume, and every one below,
+// lies inside: an oriented volume's faces are then taken without a test
+// each) finds every face once.
+TEST_P(FacesInBoxTest, ABoxHoldingTheObjectFindsEveryFaceOnce) {
+  const HapticObject torus = *HapticObject::Create("torus", MakeTorus(1.0, 0.3, 48, 24));
+  const CollisionModel model(torus, GetParam(), kMargin);
+  std::mt19937 rng(12);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Isometry3d X_WO = RandomPose(rng, 0.5);
+    AlignedBox3d box_W;
+    for (FaceId f = 0; f < torus.num_faces(); ++f) {
+      for (const Vector3d& x : WorldTriangle(torus, f, X_WO)) box_W.extend(x);
+    }
+    std::vector<FaceId> found;
+    FindFacesInBox(model, X_WO, Grown(box_W, 1.0), found);
+    std::sort(found.begin(), found.end());
+    std::vector<FaceId> every(torus.num_faces());
+    std::iota(every.begin(), every.end(), 0);
+    EXPECT_EQ(found, every) << "trial " << trial;
+  }
 }
 
 // Against brute force over every face, for random poses, boxes and planes

@@ -337,6 +337,58 @@ TEST(ToolStageTest, ModelsShareASurfaceUntilTheProxyMovesOn) {
   EXPECT_GE(surfaces, 3) << "the 15 mm slide must move past two surfaces";
 }
 
+// A device that reads the surface alone: along the press and slide, every
+// model carries the surface of a device that reads planes too, no planes,
+// and the same proxy state (where it is, whether and where it touches: the
+// torque's lever); a touching proxy that slid gets a new model each step,
+// as an anchored one. Back to planes, the next model has the planes a
+// fresh search makes. Not a tool: NOT_FOUND.
+TEST(ToolStageTest, ADeviceThatReadsTheSurfaceAloneGetsNoPlanes) {
+  std::unique_ptr<Scene> alone = RemoteDeviceScene();
+  std::unique_ptr<Scene> planes = RemoteDeviceScene();
+  ASSERT_TRUE(alone->SetSurfaceOnly(2, true).ok());
+  EXPECT_EQ(alone->SetSurfaceOnly(99, true).code(), absl::StatusCode::kNotFound);
+  uint64_t last_revision = 0;
+  Isometry3d last_X_WP = Isometry3d::Identity();
+  int touching = 0;
+  for (int step = 0; step < 60; ++step) {
+    const double z = 0.095 - 0.0005 * std::min(step, 30);
+    const double x = 0.1 - (step > 30 ? 0.0005 * (step - 30) : 0.0);
+    ASSERT_TRUE(alone->SetDevicePose(2, At(x, 0, z)).ok());
+    ASSERT_TRUE(planes->SetDevicePose(2, At(x, 0, z)).ok());
+    const LocalModel& model = alone->Step().tools[0].local_model;
+    const LocalModel& both = planes->Step().tools[0].local_model;
+    ASSERT_TRUE(model.surface && both.surface) << step;
+    EXPECT_TRUE(model.planes.empty()) << step;
+    EXPECT_EQ(model.surface->vertices_W, both.surface->vertices_W) << step;
+    EXPECT_EQ(model.surface->triangles, both.surface->triangles) << step;
+    EXPECT_EQ(model.touching, both.touching) << step;
+    EXPECT_TRUE(model.X_WP.isApprox(both.X_WP, 0.0)) << step;
+    // The whole radius: an anchored model of planes loses its slide.
+    EXPECT_EQ(model.validity_radius_m, 0.01) << step;
+    EXPECT_LE(both.validity_radius_m, model.validity_radius_m) << step;
+    if (model.touching) {
+      ++touching;
+      EXPECT_EQ(model.touch_point_W, both.touch_point_W) << step;
+      if (!model.X_WP.isApprox(last_X_WP, 0.0)) {
+        EXPECT_GT(model.revision, last_revision) << "a touching proxy slid, step " << step;
+      }
+    }
+    last_revision = model.revision;
+    last_X_WP = model.X_WP;
+  }
+  EXPECT_GT(touching, 20);
+  ASSERT_TRUE(alone->SetSurfaceOnly(2, false).ok());
+  ASSERT_TRUE(alone->SetDevicePose(2, At(0.085, 0, 0.08)).ok());
+  ASSERT_TRUE(planes->SetDevicePose(2, At(0.085, 0, 0.08)).ok());
+  ASSERT_TRUE(planes->RequestLocalModel(2).ok());
+  const LocalModel& model = alone->Step().tools[0].local_model;
+  const LocalModel& fresh = planes->Step().tools[0].local_model;
+  EXPECT_GT(model.revision, last_revision);
+  EXPECT_FALSE(model.planes.empty());
+  ExpectSamePlanes(model, fresh, 60);
+}
+
 // A device that turns now and then: the pairs a proxy that did not turn
 // was searched for (shifts alone) must not serve the first turn after, and
 // those of a turn serve the shifts that follow. Down onto the crest and
