@@ -116,9 +116,13 @@ bool HapticLoop::SetModel(const LocalModel& model) {
     // holds serves within its own sphere, as its objects have not moved
     // (had they, the proxy restarts where it lies in a face). With none,
     // the loop meets nothing and asks for a fresh model (Step).
-    for (const auto* held : {&pending_model_.surface, &surface_}) {
-      if (body || !model.planes.empty()) break;
-      if (*held && (*held)->has_body()) body = *held;
+    if (!body && model.planes.empty()) {
+      for (const auto* held : {&pending_model_.surface, &surface_}) {
+        if (*held && (*held)->has_body()) {
+          body = *held;
+          break;
+        }
+      }
     }
   }
   pending_model_ = model;

@@ -736,13 +736,18 @@ void GatherLocalModelPairs(const PosedObject& tool, const Isometry3d& X_WP,
   }
 }
 
-bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
-                    const LocalModelPairs& pairs, const LocalModelOptions& options,
-                    LocalModel& model) {
+void SetModelState(const ProxyState& proxy, const Vector3d& p_WD, const LocalModelOptions& options,
+                   LocalModel& model) {
   SetModelProxy(proxy, p_WD, model);
   model.validity_radius_m = options.radius_m;
   model.force_clamp_n = options.force_clamp_n;
   model.friction = options.friction;
+}
+
+bool ModelFromPairs(const HapticObject& tool, const ProxyState& proxy, const Vector3d& p_WD,
+                    const LocalModelPairs& pairs, const LocalModelOptions& options,
+                    LocalModel& model) {
+  SetModelState(proxy, p_WD, options, model);
   const double size = tool.bounding_box().diagonal().norm();
   const double behind = PlaneTouchTolerance(tool);
   CandidatePlanes& candidate_planes = Scratch<CandidatePlanes>();

@@ -105,6 +105,11 @@ bool NearerPlane(const ConstraintPlane& x, const ConstraintPlane& y);
 /// proxy's origin when it touches nothing).
 void SetModelProxy(const ProxyState& proxy, const Vector3d& p_WD, LocalModel& model);
 
+/// Sets what `model` says besides its planes and surface: the proxy, as
+/// SetModelProxy, and the options it is made with.
+void SetModelState(const ProxyState& proxy, const Vector3d& p_WD, const LocalModelOptions& options,
+                   LocalModel& model);
+
 /// How far behind a plane a tool may lie and still count as resting on it:
 /// the proxy stands 1e-6 of the tool's size in front of what it touches,
 /// so a pair farther behind is not one the tool rests on.

@@ -71,17 +71,26 @@ double SearchReach(const LocalModel& last, const LocalModelOptions& options, dou
   return std::min(options.radius_m, 2 * (last.planes.back().gap_m + margin_m));
 }
 
+// Whether `last` says what a model at `proxy` with `options` must no more,
+// whatever the proxy did: it was made with other options or another touch,
+// or is older than the longest period. Both kinds of model are renewed so.
+bool ModelOutdated(const LocalModel& last, const ProxyState& proxy,
+                   const LocalModelOptions& options, int steps_since_model, double step_s) {
+  return last.validity_radius_m != options.radius_m || last.friction != options.friction ||
+         last.force_clamp_n != options.force_clamp_n || last.touching != proxy.touching ||
+         steps_since_model * step_s > kLongestModelPeriodS;
+}
+
 // Whether a tool whose device reads the surface alone needs a new model
 // beside `last` (no planes): what the model tells besides the surface
 // changed. That is the proxy, for a touching proxy that slid (where the
 // tool touches, the torque's lever, goes with it, as an anchored model's
 // does) or one in free space that moved kModelMoveFraction of the radius;
-// whether it touches; the options; or the longest period passed.
+// or the model is outdated.
 bool SurfaceModelStale(const LocalModel& last, const ProxyState& proxy,
                        const LocalModelOptions& options, int steps_since_model, double step_s) {
-  if (last.revision == 0 || !last.planes.empty() || last.validity_radius_m != options.radius_m ||
-      last.friction != options.friction || last.force_clamp_n != options.force_clamp_n ||
-      last.touching != proxy.touching || steps_since_model * step_s > kLongestModelPeriodS) {
+  if (last.revision == 0 || !last.planes.empty() ||
+      ModelOutdated(last, proxy, options, steps_since_model, step_s)) {
     return true;
   }
   if (proxy.touching) return !proxy.X_WP.isApprox(last.X_WP, 0.0);
@@ -93,10 +102,7 @@ bool SurfaceModelStale(const LocalModel& last, const ProxyState& proxy,
 void SurfaceOnlyModel(const ProxyState& proxy, const Vector3d& p_WD,
                       const LocalModelOptions& options,
                       const std::shared_ptr<const ModelSurface>& surface, LocalModel& model) {
-  SetModelProxy(proxy, p_WD, model);
-  model.validity_radius_m = options.radius_m;
-  model.force_clamp_n = options.force_clamp_n;
-  model.friction = options.friction;
+  SetModelState(proxy, p_WD, options, model);
   model.planes.clear();
   model.surface = surface;
   ++model.revision;
@@ -165,15 +171,9 @@ ToolStage::ModelUpdate ToolStage::ModelUpdateFor(const ProxyState& proxy,
                                                  const LocalModelOptions& options,
                                                  ToolScratch& scratch) const {
   const LocalModel& built = scratch.built_model;
-  if (scratch.model.revision == 0 || scratch.model_wanted) return ModelUpdate::kBuild;
-  if (built.validity_radius_m != options.radius_m || built.friction != options.friction) {
-    return ModelUpdate::kBuild;
-  }
-  if (built.touching != proxy.touching) return ModelUpdate::kBuild;
-  if (scratch.model_pairs.obstacle_count != objects_.obstacles().size()) {
-    return ModelUpdate::kBuild;
-  }
-  if (++scratch.steps_since_model * options_.step_s > kLongestModelPeriodS) {
+  if (scratch.model.revision == 0 || scratch.model_wanted ||
+      scratch.model_pairs.obstacle_count != objects_.obstacles().size() ||
+      ModelOutdated(built, proxy, options, ++scratch.steps_since_model, options_.step_s)) {
     return ModelUpdate::kBuild;
   }
   const double moved = MovedBy(built.X_WP, proxy.X_WP, scratch.model_pairs.lever_m);

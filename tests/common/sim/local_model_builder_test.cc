@@ -143,6 +143,29 @@ TEST(LocalModelBuilderTest, TouchPointIsTheContactOrTheProxyOrigin) {
   EXPECT_EQ(model.touch_point_W, proxy.p_WC);
 }
 
+// SetModelState writes the proxy and every option over what a model held,
+// and leaves its planes, surface and revision as they were.
+TEST(LocalModelBuilderTest, ModelStateIsTheProxyAndTheOptions) {
+  ProxyState proxy = ProxyAt(At(0.1, 0.05, 0.2));
+  proxy.touching = true;
+  proxy.p_WC = Vector3d(0.1, 0.05, 0.19);
+  const LocalModelOptions options{
+      .radius_m = 0.03, .max_planes = 4, .force_clamp_n = 7, .friction = true};
+  LocalModel model;
+  model.planes.resize(2);
+  model.revision = 5;
+  SetModelState(proxy, Vector3d(0.1, 0.05, 0.18), options, model);
+  EXPECT_TRUE(model.X_WP.isApprox(proxy.X_WP, 0.0));
+  EXPECT_EQ(model.p_WD, Vector3d(0.1, 0.05, 0.18));
+  EXPECT_TRUE(model.touching);
+  EXPECT_EQ(model.touch_point_W, proxy.p_WC);
+  EXPECT_EQ(model.validity_radius_m, 0.03);
+  EXPECT_EQ(model.force_clamp_n, 7);
+  EXPECT_TRUE(model.friction);
+  EXPECT_EQ(model.planes.size(), 2u);
+  EXPECT_EQ(model.revision, 5u);
+}
+
 // In an inside corner (a floor and a wall at x = 0.2) the tool gets both
 // planes, nearest first; a cap of one keeps the nearer.
 TEST(LocalModelBuilderTest, PlanesAreNearestFirstAndCapped) {
