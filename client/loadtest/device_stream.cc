@@ -11,19 +11,22 @@ namespace hs::cli {
 
 namespace pb = haptics::v1;
 
-DeviceStream::DeviceStream(pb::SessionService::Stub& stub, const DeviceOpen& open,
-                           std::vector<TimedPose> path, std::atomic<int64_t>& frame_bytes)
-    : path_(std::move(path)), trips_(path_.size()), frame_bytes_out_(frame_bytes) {
-  stream_ = stub.Interact(&context_);
+pb::InteractRequest OpenRequest(const DeviceOpen& open) {
   pb::InteractRequest request;
   pb::InteractRequest::Open& first = *request.mutable_open();
   first.set_scene(open.scene);
   first.set_tool(open.tool);
   SetNeeds(open.needs, first);
   SetFrameRate(first, open.frame_rate_hz);
-  // As the SDK's device, which renders from a model's surface alone.
-  first.set_surface_only(true);
-  stream_->Write(request);
+  first.set_surface_only(open.surface_only);
+  return request;
+}
+
+DeviceStream::DeviceStream(pb::SessionService::Stub& stub, const DeviceOpen& open,
+                           std::vector<TimedPose> path, std::atomic<int64_t>& frame_bytes)
+    : path_(std::move(path)), trips_(path_.size()), frame_bytes_out_(frame_bytes) {
+  stream_ = stub.Interact(&context_);
+  stream_->Write(OpenRequest(open));
 }
 
 DeviceStream::~DeviceStream() { context_.TryCancel(); }

@@ -27,7 +27,12 @@ struct DeviceOpen {
   EffectSet needs = EffectSet::Default();
   /// Frames a second (frame_rate_args.h); 0: the server's own rate.
   double frame_rate_hz = 0;
+  /// Whether the device reads a local model's surface alone (no planes).
+  bool surface_only = true;
 };
+
+/// The message that opens a device's stream.
+haptics::v1::InteractRequest OpenRequest(const DeviceOpen& open);
 
 class DeviceStream {
  public:

@@ -49,6 +49,8 @@ struct LoadReport {
   double step_s = 0;
   /// What each device asked the scene for.
   EffectSet needs;
+  /// Whether devices read the local model's planes (LoadtestOptions).
+  bool planes = false;
   bool tools_meet = false;
   /// Tool pairs in contact where they start (start_contacts.h); -1 when
   /// not known.

@@ -54,6 +54,7 @@ LoadReport Settings(const LoadtestOptions& options) {
   report.load_average_1m = LoadAverage1m();
   report.scene = "loadtest-" + std::to_string(getpid());
   report.tools_meet = options.tools_meet;
+  report.planes = options.planes;
   return report;
 }
 
@@ -101,7 +102,8 @@ absl::StatusOr<Devices> OpenDevices(pb::SessionService::Stub& sessions, const pb
     const DeviceOpen open{.scene = spec.name(),
                           .tool = "tool-" + std::to_string(i),
                           .needs = options.needs,
-                          .frame_rate_hz = options.frame_rate_hz};
+                          .frame_rate_hz = options.frame_rate_hz,
+                          .surface_only = !options.planes};
     devices.push_back(
         std::make_unique<DeviceStream>(sessions, open, std::move((*paths)[i]), frame_bytes));
   }

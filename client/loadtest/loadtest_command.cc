@@ -77,6 +77,9 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
       "--no-echo", [&o](int64_t) { o.echo = false; }, "Skip the echo baseline");
   cmd->add_flag("--tools-meet", o.tools_meet,
                 "Devices in pairs whose paths cross: tool-tool contact in every press");
+  cmd->add_flag("--planes", o.planes,
+                "With local_model: devices read its planes beside its surface (SDKs before "
+                "1.3), which costs the server a face search");
   AddNeedsOption(*cmd, args->needs);
   cmd->callback(
       [args, &exit_code] { exit_code = RunLoadtestCommand(*args, std::cout, std::cerr); });

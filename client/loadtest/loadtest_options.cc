@@ -32,6 +32,9 @@ absl::Status CheckLoadtestOptions(const LoadtestOptions& options) {
   if (std::llround(options.duration_s * options.rate_hz) < 1) {
     return absl::InvalidArgumentError("--duration x --rate must make at least one pose");
   }
+  if (options.planes && !options.needs.Has(Effect::kLocalModel)) {
+    return absl::InvalidArgumentError("--planes needs local_model among --needs");
+  }
   if (!options.server_metrics_url.empty()) {
     if (absl::Status s = CheckMetricsUrl(options.server_metrics_url); !s.ok()) return s;
   }

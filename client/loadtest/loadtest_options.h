@@ -57,6 +57,10 @@ struct LoadtestOptions {
   /// Devices in pairs whose paths cross (LoadtestScene, MeetingPaths):
   /// tool-tool contact in every press.
   bool tools_meet = false;
+  /// With the local model among the needs, devices read its planes beside
+  /// its surface (as the SDK's devices before 1.3 did), so the server
+  /// searches faces for them; else the surface alone, as the SDK's device.
+  bool planes = false;
   /// What each device needs; a haptic device needs its force (with friction).
   EffectSet needs = EffectSet::Default();
   /// Where a progress line goes once a second (none when null).

@@ -39,6 +39,7 @@ std::string LoadReportJson(const LoadReport& r) {
                                  {"step_s", r.step_s},
                                  {"duration_s", r.duration_s},
                                  {"needs", NeedsNames(r.needs)},
+                                 {"planes", r.planes},
                                  {"load_average_1m", r.load_average_1m},
                                  {"devices", StreamJson(r.devices)},
                                  {"per_device", per_device},

@@ -22,7 +22,8 @@ void PrintLoadReport(const LoadReport& r, std::ostream& out) {
   out << "loadtest: " << r.clients << " device(s) x " << r.rate_hz << " Hz for " << r.duration_s
       << " s, " << r.viewers << " viewer(s), scene '" << r.scene << "' (" << r.triangles
       << " triangles, steps of " << r.step_s * 1e3 << " ms); devices need: " << NeedsNames(r.needs)
-      << "; load average " << r.load_average_1m << " at start\n";
+      << (r.planes ? " (local model with planes)" : "") << "; load average " << r.load_average_1m
+      << " at start\n";
   out << "round trip, ms      count      p50      p99    p99.9      max  frames/s  dropped\n";
   PrintRow("devices", r.devices, out);
   for (size_t i = 0; i < r.per_device.size(); ++i) {

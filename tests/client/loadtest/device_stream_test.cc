@@ -50,6 +50,20 @@ TEST(DeviceStreamTest, Requests) {
   EXPECT_EQ(device.MeanRequestBytes(), static_cast<int64_t>(request.ByteSizeLong()));
 }
 
+// The open message names the scene and tool, and says whether the device
+// reads a local model's surface alone (the default, as the SDK's device)
+// or its planes too.
+TEST(DeviceStreamTest, OpenSaysWhetherTheDeviceReadsPlanes) {
+  const haptics::v1::InteractRequest surface =
+      OpenRequest({.scene = "s", .tool = "probe", .needs = {Effect::kForce, Effect::kLocalModel}});
+  EXPECT_EQ(surface.open().scene(), "s");
+  EXPECT_EQ(surface.open().tool(), "probe");
+  EXPECT_TRUE(surface.open().surface_only());
+  const haptics::v1::InteractRequest planes = OpenRequest(
+      {.scene = "s", .tool = "probe", .needs = {Effect::kLocalModel}, .surface_only = false});
+  EXPECT_FALSE(planes.open().surface_only());
+}
+
 // A tool the scene does not have: the device never attaches, and Finish
 // says why.
 TEST(DeviceStreamTest, NoSuchTool) {

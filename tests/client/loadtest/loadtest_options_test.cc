@@ -38,6 +38,11 @@ TEST(LoadtestOptionsTest, Bounds) {
   ExpectRefused(with([](LoadtestOptions& x) { x.rate_hz = kMaxLoadRateHz + 1; }), "--rate");
   ExpectRefused(with([](LoadtestOptions& x) { x.step_s = 2; }), "--step-s");
   ExpectRefused(with([](LoadtestOptions& x) { x.duration_s = 1e-4; }), "at least one pose");
+  ExpectRefused(with([](LoadtestOptions& x) { x.planes = true; }), "--planes");
+  EXPECT_TRUE(CheckLoadtestOptions(with([](LoadtestOptions& x) {
+                x.planes = true;
+                x.needs = x.needs.With(Effect::kLocalModel);
+              })).ok());
   ExpectRefused(with([](LoadtestOptions& x) { x.server.address = "192.0.2.1:1"; }),
                 "--allow-remote");
   LoadtestOptions remote;

@@ -32,6 +32,7 @@ TEST(ReportJsonTest, FieldsAndValues) {
                                              "step_s",
                                              "duration_s",
                                              "needs",
+                                             "planes",
                                              "load_average_1m",
                                              "devices",
                                              "per_device",
