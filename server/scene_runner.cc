@@ -169,11 +169,9 @@ int64_t SceneRunner::StepOnce(int64_t start_lag_ns) {
       // Poses are validated at the edge.
       if (!ApplyDevicePose(scene, id, pose.X_WD, pose.seat).ok()) continue;
       // `id` is a tool and the radius was checked at the edge.
-      if (pose.model.stale) (void)scene.RequestLocalModel(id);
-      (void)scene.SetLocalModelRadius(id, pose.model.validity_radius_m);
-      (void)scene.SetSurfaceOnly(id, pose.model.surface_only);
+      (void)ApplyLocalModelRequest(scene, id, pose.model);
       applied_[id] = pose;
-      snapshot->inputs.push_back({id, pose.X_WD, pose.stamp, pose.seat});
+      snapshot->inputs.push_back({id, pose.X_WD, pose.stamp, pose.seat, pose.model});
     }
     snapshot->needs = needs;
     scene.SetNeeded(needs);

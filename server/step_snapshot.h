@@ -9,6 +9,7 @@
 
 #include "absl/status/status.h"
 #include "common/sim/effects.h"
+#include "common/sim/local_model_request.h"
 #include "common/sim/step_frame.h"
 
 namespace hs {
@@ -28,6 +29,8 @@ struct AppliedInput {
   AppliedPose stamp;
   /// The first pose of a device that had just taken the tool.
   bool seat = false;
+  /// What the device asked of the tool's local model with the pose.
+  LocalModelRequest model;
 };
 
 class FrameSink;

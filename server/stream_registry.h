@@ -40,17 +40,6 @@ struct SceneTools {
   ObjectId Find(const std::string& name) const;
 };
 
-/// What a device asks of its tool's local model with a pose.
-struct LocalModelRequest {
-  /// A fresh model at the next step (ToolPose.model_stale).
-  bool stale = false;
-  /// The validity radius wanted, metres (ToolPose.validity_radius_m; 0:
-  /// the scene's).
-  double validity_radius_m = 0;
-  /// The device reads no planes beside a surface (Open.surface_only).
-  bool surface_only = false;
-};
-
 /// A device pose waiting for the next step.
 struct PendingPose {
   Isometry3d X_WD = Isometry3d::Identity();

@@ -44,6 +44,15 @@ class ReplayedScene {
     const ObjectId id = FindTool(*loaded_, input.tool());
     if (id >= 0 && ApplyDevicePose(*loaded_->scene, id, *X_WD, input.seat()).ok()) {
       applied_[input.tool()] = *X_WD;
+      const absl::Status model =
+          ApplyLocalModelRequest(*loaded_->scene, id,
+                                 {.stale = input.model_stale(),
+                                  .validity_radius_m = input.validity_radius_m(),
+                                  .surface_only = input.surface_only()});
+      if (!model.ok()) {
+        return absl::InvalidArgumentError(
+            absl::StrCat("device input at step ", input.step(), ": ", model.message()));
+      }
     }
     return absl::OkStatus();
   }

@@ -168,4 +168,11 @@ const StepFrame& Scene::Step() {
   return frame_;
 }
 
+absl::Status ApplyLocalModelRequest(Scene& scene, ObjectId id, const LocalModelRequest& model) {
+  // The radius first: refused, it leaves the tool as it was.
+  HS_RETURN_IF_ERROR(scene.SetLocalModelRadius(id, model.validity_radius_m));
+  if (model.stale) HS_RETURN_IF_ERROR(scene.RequestLocalModel(id));
+  return scene.SetSurfaceOnly(id, model.surface_only);
+}
+
 }  // namespace hs

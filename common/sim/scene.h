@@ -11,6 +11,7 @@
 
 #include "absl/status/statusor.h"
 #include "common/sim/free_bodies.h"
+#include "common/sim/local_model_request.h"
 #include "common/sim/scene_objects.h"
 #include "common/sim/scene_options.h"
 #include "common/sim/step_frame.h"
@@ -121,5 +122,10 @@ class Scene {
 inline absl::Status ApplyDevicePose(Scene& scene, ObjectId id, const Isometry3d& X_WD, bool seat) {
   return seat ? scene.SeatDevice(id, X_WD) : scene.SetDevicePose(id, X_WD);
 }
+
+/// Asks the scene for what `model` says of tool `id`'s local model
+/// (RequestLocalModel when stale, SetLocalModelRadius, SetSurfaceOnly):
+/// their errors, the first one met.
+absl::Status ApplyLocalModelRequest(Scene& scene, ObjectId id, const LocalModelRequest& model);
 
 }  // namespace hs

@@ -213,6 +213,9 @@ bool SessionRecorder::WriteEntry(const Entry& entry) {
     input->set_sequence(applied.stamp.sequence);
     input->set_device_time_ns(applied.stamp.device_time_ns);
     input->set_seat(applied.seat);
+    input->set_model_stale(applied.model.stale);
+    input->set_validity_radius_m(applied.model.validity_radius_m);
+    input->set_surface_only(applied.model.surface_only);
     if (!Append(record_)) return false;
   }
   record_.Clear();

@@ -1,5 +1,6 @@
 #include "tests/common/recording/recorded_run.h"
 
+#include <algorithm>
 #include <optional>
 
 #include "common/api/scene_file.h"
@@ -73,11 +74,21 @@ std::vector<pb::Record> RecordRun(const RunOptions& options) {
     ExactPoseToProto(X_WD, input->mutable_device_pose());
     input->set_sequence(step);
     input->set_seat(!device.has_value());
-    HS_CHECK(ApplyDevicePose(*loaded.scene, FindTool(loaded, "probe"), X_WD, !device).ok());
+    const ObjectId probe = FindTool(loaded, "probe");
+    HS_CHECK(ApplyDevicePose(*loaded.scene, probe, X_WD, !device).ok());
     device = X_WD;
-    loaded.scene->SetNeeded(kNeeds);
+    const EffectSet needs = options.remote_device ? kNeeds.With(Effect::kLocalModel) : kNeeds;
+    if (options.remote_device) {
+      LocalModelRequest model = options.model;
+      model.stale = std::ranges::count(options.model_stale_at, step) > 0;
+      input->set_model_stale(model.stale);
+      input->set_validity_radius_m(model.validity_radius_m);
+      input->set_surface_only(model.surface_only);
+      HS_CHECK(ApplyLocalModelRequest(*loaded.scene, probe, model).ok());
+    }
+    loaded.scene->SetNeeded(needs);
     const StepFrame& frame = loaded.scene->Step();
-    FillRecordedFrame(step, step * spec.step_s(), frame, loaded.names, kNeeds, options.frames,
+    FillRecordedFrame(step, step * spec.step_s(), frame, loaded.names, needs, options.frames,
                       records.emplace_back().mutable_frame());
   }
   pb::RecordingEnd* end = records.emplace_back().mutable_end();

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/sim/local_model_request.h"
 #include "haptics/v1/recording.pb.h"
 
 namespace hs::testing_recording {
@@ -22,6 +23,12 @@ struct RunOptions {
   int steps = 12;
   /// The step after which an edit moves the table 1 mm down; 0: none.
   int edit_after = 0;
+  /// A remote device: the steps also compute the probe's local model, and
+  /// every pose asks what `model` says of it (a fresh model at the steps
+  /// in `model_stale_at` besides), as the server records it.
+  bool remote_device = false;
+  LocalModelRequest model;
+  std::vector<int> model_stale_at;
 };
 
 /// The records of one run: its start, then per step the device input and

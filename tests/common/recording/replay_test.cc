@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,52 @@ TEST(ReplayTest, ExtraNeedsChangeTheFrames) {
   ASSERT_TRUE(report.ok()) << report.status();
   EXPECT_EQ(report->steps_compared, 4);
   EXPECT_LT(report->identical, 4);
+}
+
+// A remote device's requests of its local model (a radius, the surface
+// alone, a fresh model now and then) are replayed with its poses: the
+// replay is bit for bit, and the same records without them diverge (the
+// models then carry planes and the scene's radius).
+TEST(ReplayTest, LocalModelRequestsReplayWithTheirPoses) {
+  const std::vector<pb::Record> records =
+      RecordRun({.steps = 12,
+                 .remote_device = true,
+                 .model = {.validity_radius_m = 0.02, .surface_only = true},
+                 .model_stale_at = {5, 9}});
+  absl::StatusOr<ReplayReport> report = ReplayRecording(Write("model.hsrec", records), {});
+  ASSERT_TRUE(report.ok()) << report.status();
+  EXPECT_EQ(report->steps_compared, 12);
+  EXPECT_TRUE(report->all_identical()) << report->first_divergent_field;
+
+  std::vector<pb::Record> without = records;
+  for (pb::Record& record : without) {
+    if (!record.has_input()) continue;
+    record.mutable_input()->clear_validity_radius_m();
+    record.mutable_input()->clear_surface_only();
+    record.mutable_input()->clear_model_stale();
+  }
+  report = ReplayRecording(Write("model_dropped.hsrec", without), {});
+  ASSERT_TRUE(report.ok()) << report.status();
+  EXPECT_EQ(report->steps_compared, 12);
+  EXPECT_FALSE(report->all_identical());
+}
+
+// A radius no device could have sent (non-finite, negative) is
+// INVALID_ARGUMENT naming its step.
+TEST(ReplayTest, ImpossibleLocalModelRadiusIsRefused) {
+  for (const double radius :
+       {-0.01, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    std::vector<pb::Record> records = RecordRun({.steps = 3, .remote_device = true});
+    for (pb::Record& record : records) {
+      if (record.has_input() && record.input().step() == 2) {
+        record.mutable_input()->set_validity_radius_m(radius);
+      }
+    }
+    const absl::StatusOr<ReplayReport> report =
+        ReplayRecording(Write("bad_radius.hsrec", records), {});
+    EXPECT_EQ(report.status().code(), absl::StatusCode::kInvalidArgument) << radius;
+    EXPECT_NE(report.status().message().find("step 2"), std::string::npos) << report.status();
+  }
 }
 
 // A later part of a session, records out of order and a scene that does

@@ -66,9 +66,11 @@ std::string Record(const pb::SceneSpec& spec, const std::string& tool, Recording
 }
 
 // Runs the demo scene with a recorder, walks the device path once (each
-// pose waits for its frame), and with `edit` moves the organ 1 mm up
-// halfway. Returns the session's first file.
-std::string RecordDemo(RecordingOptions options, bool edit) {
+// pose waits for its frame, and asks `model` of the local model, a fresh
+// one every `stale_every` poses when > 0), and with `edit` moves the organ
+// 1 mm up halfway. Returns the session's first file.
+std::string RecordDemo(RecordingOptions options, bool edit, LocalModelRequest model = {},
+                       size_t stale_every = 0) {
   absl::StatusOr<pb::SceneSpec> spec = ReadSceneFile(kScenes + "/probe_on_torus.textproto");
   EXPECT_TRUE(spec.ok());
   const absl::StatusOr<std::vector<Isometry3d>> path =
@@ -85,7 +87,8 @@ std::string RecordDemo(RecordingOptions options, bool edit) {
         EXPECT_TRUE(runner.Replace(moved, *std::move(rebuilt)).ok());
       }
       const int64_t before = device.last_step();
-      runner.SetDevicePose(&device, (*path)[i], AppliedPose{++sequence, 0});
+      model.stale = stale_every > 0 && i % stale_every == 0;
+      runner.SetDevicePose(&device, (*path)[i], AppliedPose{++sequence, 0}, model);
       while (device.last_step() <= before + 1) std::this_thread::yield();
     }
   });
@@ -122,6 +125,32 @@ TEST(SessionRecorderTest, FullFramesReplayBitForBit) {
   EXPECT_TRUE(report->all_identical())
       << report->first_divergent_step << " " << report->first_divergent_field;
   EXPECT_EQ(report->steps_compared, summary->steps);
+}
+
+// A remote device's requests of its local model (its radius, the surface
+// alone, a fresh model now and then) are recorded with its poses, and the
+// replay asks the same: bit for bit.
+TEST(SessionRecorderTest, LocalModelRequestsAreRecordedWithThePoses) {
+  const std::string file =
+      RecordDemo(Options("model"), /*edit=*/false,
+                 {.validity_radius_m = 0.02, .surface_only = true}, /*stale_every=*/10);
+  absl::StatusOr<RecordFileContents> contents = ReadRecordFile(file);
+  ASSERT_TRUE(contents.ok());
+  int inputs = 0, stale = 0;
+  for (const pb::Record& r : contents->records) {
+    if (!r.has_input()) continue;
+    ++inputs;
+    EXPECT_EQ(r.input().validity_radius_m(), 0.02);
+    EXPECT_TRUE(r.input().surface_only());
+    stale += r.input().model_stale();
+  }
+  EXPECT_GT(inputs, 50);
+  EXPECT_GT(stale, 0);
+  EXPECT_LT(stale, inputs);
+  absl::StatusOr<ReplayReport> report = ReplayRecording(file, {});
+  ASSERT_TRUE(report.ok()) << report.status();
+  EXPECT_TRUE(report->all_identical())
+      << report->first_divergent_step << " " << report->first_divergent_field;
 }
 
 // Digests only: as exact, in a fraction of the bytes.
