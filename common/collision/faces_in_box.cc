@@ -102,12 +102,20 @@ bool AnyCornerInFront(const fcl::BVHModel<BV>& bvh, const Isometry3d& X_OW,
                       const AlignedBox3d& box_W, const Vector3d& n_O, double offset) {
   fcl::Transform3d X_OB = X_OW;
   X_OB.translation() = X_OW * box_W.center();
-  const BoxQuery<BV> query(box_W.sizes() / 2, X_OB);
+  constexpr bool kOriented = requires(const BV& bv) { CullingBox(bv); };
+  // The box query serves the volumes that are not oriented (open, below).
+  const auto query = [&] {
+    if constexpr (kOriented) {
+      return nullptr;
+    } else {
+      return BoxQuery<BV>(box_W.sizes() / 2, X_OB);
+    }
+  }();
   // How far node i's volume reaches in front of the plane (> 0: it may
   // hold a corner in front; every volume but an oriented one may).
   auto in_front = [&](int i) {
     const fcl::BVNode<BV>& node = bvh.getBV(i);
-    if constexpr (requires { CullingBox(node.bv); }) {
+    if constexpr (kOriented) {
       const fcl::OBBd& volume = CullingBox(node.bv);
       return n_O.dot(volume.To) - offset +
              volume.extent[0] * std::abs(n_O.dot(volume.axis.col(0))) +
@@ -124,7 +132,7 @@ bool AnyCornerInFront(const fcl::BVHModel<BV>& bvh, const Isometry3d& X_OW,
   const Vector3d half = box_W.sizes() / 2;
   auto open = [&](int i) {
     const BV& bv = bvh.getBV(i).bv;
-    if constexpr (requires { CullingBox(bv); }) {
+    if constexpr (kOriented) {
       const fcl::OBBd& volume = CullingBox(bv);
       const Vector3d c = R_BO * (volume.To - X_OB.translation());
       const double outside = (c.cwiseAbs() - half).cwiseMax(0.0).squaredNorm();
