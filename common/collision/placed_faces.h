@@ -11,10 +11,9 @@
 #include <fcl/math/triangle.h>
 
 #include <algorithm>
-#include <cstdint>
-#include <vector>
 
 #include "common/collision/triangle_sat.h"
+#include "common/core/id_memo.h"
 #include "common/core/types.h"
 
 namespace hs {
@@ -54,20 +53,14 @@ class PlacedFaces {
  public:
   /// Starts a query over the faces `triangles` (indices into `vertices`,
   /// object frame) mapped into the query frame by X.
-  void Start(const fcl::Vector3d* vertices, const fcl::Triangle* triangles, int num_faces,
-             const Isometry3d& X) {
-    if (static_cast<int>(faces_.size()) < num_faces) {
-      faces_.resize(num_faces);
-      stamps_.resize(num_faces, 0);
-    }
+  void Start(const fcl::Vector3d* vertices, int num_vertices, const fcl::Triangle* triangles,
+             int num_faces, const Isometry3d& X) {
+    faces_.Reset(num_faces);
+    vertices_placed_.Reset(num_vertices);
     vertices_ = vertices;
     triangles_ = triangles;
     R_ = X.linear();
     T_ = X.translation();
-    if (++stamp_ == 0) {  // wrapped: forget every stamp
-      std::fill(stamps_.begin(), stamps_.end(), 0);
-      stamp_ = 1;
-    }
   }
 
   /// The faces by id; face f is placed once Get(f) was called in this
@@ -76,20 +69,20 @@ class PlacedFaces {
 
   /// Face `f` in the query frame.
   const PlacedFace& Get(int f) {
-    PlacedFace& placed = faces_[f];
-    if (stamps_[f] != stamp_) {
-      stamps_[f] = stamp_;
+    return faces_.Get(f, [&] {
       const fcl::Triangle& t = triangles_[f];
-      placed = PlaceFace(
-          {R_ * vertices_[t[0]] + T_, R_ * vertices_[t[1]] + T_, R_ * vertices_[t[2]] + T_});
-    }
-    return placed;
+      return PlaceFace({Vertex(t[0]), Vertex(t[1]), Vertex(t[2])});
+    });
   }
 
  private:
-  std::vector<PlacedFace> faces_;
-  std::vector<uint32_t> stamps_;
-  uint32_t stamp_ = 0;
+  // Vertex `v` in the query frame: each once, for the faces around it.
+  const Vector3d& Vertex(int v) {
+    return vertices_placed_.Get(v, [&] { return Vector3d(R_ * vertices_[v] + T_); });
+  }
+
+  IdMemo<PlacedFace> faces_;
+  IdMemo<Vector3d> vertices_placed_;
   const fcl::Vector3d* vertices_ = nullptr;
   const fcl::Triangle* triangles_ = nullptr;
   Matrix3d R_ = Matrix3d::Identity();

@@ -162,7 +162,7 @@ class BucketTest {
         faces_b_(Scratch<PlacedFacesOfB>().faces),
         skip_begin_(Scratch<SkipStarts>().begin),
         buffers_(Scratch<RunBuffers>()) {
-    faces_b_.Start(mb.vertices, mb.tri_indices, mb.num_tris, X_AB);
+    faces_b_.Start(mb.vertices, mb.num_vertices, mb.tri_indices, mb.num_tris, X_AB);
     if (!skip_.empty()) {  // where each face of A starts in `skip`, sorted by A's face
       std::vector<int>& begin = skip_begin_;
       begin.assign(ia.leaf_faces.size() + 1, 0);

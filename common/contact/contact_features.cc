@@ -9,6 +9,7 @@
 
 #include "common/contact/closest_points.h"
 #include "common/contact/side_contact.h"
+#include "common/core/id_memo.h"
 #include "common/core/scratch.h"
 
 namespace hs {
@@ -79,22 +80,26 @@ class Locator {
   Locator(const ContactContext& c, const Isometry3d& X_FM)
       : c_(c), X_FM_(X_FM), s_(storage()), points_(s_.points) {
     s_.Reset();
+    s_.first_face[0].Reset(c.moving.num_vertices());
+    s_.first_face[1].Reset(c.fixed.num_vertices());
+    s_.moving_positions.Reset(c.moving.num_vertices());
+    s_.normals[0].Reset(c.moving.num_faces());
+    s_.normals[1].Reset(c.fixed.num_faces());
   }
   Locator(const Locator&) = delete;
   Locator& operator=(const Locator&) = delete;
 
   void AddPair(const TrianglePair& pair) {
     const auto& mv = c_.moving.face(pair.a).vertices;
-    const PosedFace m{&c_.moving,
-                      pair.a,
-                      {X_FM_ * c_.moving.position(mv[0]), X_FM_ * c_.moving.position(mv[1]),
-                       X_FM_ * c_.moving.position(mv[2])}};
+    const PosedFace m{
+        &c_.moving, pair.a, {MovingPosition(mv[0]), MovingPosition(mv[1]), MovingPosition(mv[2])}};
     const PosedFace f{&c_.fixed, pair.b, c_.FixedTriangle(pair.b)};
     const double tol = c_.tolerance_m;
     // Cheap rejections first: most corners and edge pairs of a touching
     // pair are nowhere near the other triangle. Signed distances of each
     // face's corners from the other's plane (0 for a flat face: never off).
-    const Vector3d n_m = UnitNormal(m.corners), n_f = UnitNormal(f.corners);
+    const Vector3d& n_m = s_.normals[0].Get(m.id, [&] { return UnitNormal(m.corners); });
+    const Vector3d& n_f = s_.normals[1].Get(f.id, [&] { return UnitNormal(f.corners); });
     std::array<double, 3> m_off, f_off;
     for (int i = 0; i < 3; ++i) {
       m_off[i] = n_f.dot(m.corners[i] - f.corners[0]);
@@ -104,7 +109,7 @@ class Locator {
     // (corner, face) is located once.
     for (int i = 0; i < 3; ++i) {
       const Vector3d& p = m.corners[i];
-      if (std::abs(m_off[i]) > tol || !s_.Locate(CornerKey(0, m.vertex(i), f.id))) {
+      if (std::abs(m_off[i]) > tol || !s_.Locate(0, m.vertex(i), f.id)) {
         continue;
       }
       const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
@@ -114,7 +119,7 @@ class Locator {
     }
     for (int j = 0; j < 3; ++j) {
       const Vector3d& p = f.corners[j];
-      if (std::abs(f_off[j]) > tol || !s_.Locate(CornerKey(1, f.vertex(j), m.id))) {
+      if (std::abs(f_off[j]) > tol || !s_.Locate(1, f.vertex(j), m.id)) {
         continue;
       }
       const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
@@ -124,15 +129,20 @@ class Locator {
     }
     // An edge whose ends lie beyond the tolerance on one side of the other
     // face's plane is farther than it from every edge of that face.
-    auto beyond = [tol](const std::array<double, 3>& off, int i) {
-      const double a = off[i], b = off[(i + 1) % 3];
-      return (a > tol && b > tol) || (a < -tol && b < -tol);
+    auto beyond = [tol](const std::array<double, 3>& off) {
+      std::array<bool, 3> edge_beyond;
+      for (int i = 0; i < 3; ++i) {
+        const double a = off[i], b = off[(i + 1) % 3];
+        edge_beyond[i] = (a > tol && b > tol) || (a < -tol && b < -tol);
+      }
+      return edge_beyond;
     };
+    const std::array<bool, 3> m_beyond = beyond(m_off), f_beyond = beyond(f_off);
     for (int i = 0; i < 3; ++i) {
-      if (beyond(m_off, i)) continue;
+      if (m_beyond[i]) continue;
       const Vector3d &p1 = m.corners[i], &q1 = m.corners[(i + 1) % 3];
       for (int j = 0; j < 3; ++j) {
-        if (beyond(f_off, j)) continue;
+        if (f_beyond[j]) continue;
         const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
         if (SegmentBoxesApart(p1, q1, p2, q2, tol)) continue;
         // The lines through the edges more than 2 tolerances apart (the
@@ -212,6 +222,11 @@ class Locator {
     return normal;
   }
 
+  // M's vertex `v` in F's frame.
+  const Vector3d& MovingPosition(VertexId v) {
+    return s_.moving_positions.Get(v, [&] { return Vector3d(X_FM_ * c_.moving.position(v)); });
+  }
+
   // Records a contact point with its normal, oriented.
   void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, const Vector3d& normal,
            const Vector3d& outward) {
@@ -248,15 +263,32 @@ class Locator {
   // that a steady stream of queries does not allocate.
   struct Storage {
     std::vector<Entry> points;
-    // CornerKeys located so far: a set emptied key by key (its clear()
+    // The first face each corner of a side (0: moving, 1: fixed) was
+    // located against: most corners meet one face only. The CornerKeys of
+    // the others located so far: a set emptied key by key (its clear()
     // gives a large table back), with the keys in order of insertion.
+    IdMemo<FaceId> first_face[2];
     absl::flat_hash_set<uint64_t> located;
     std::vector<uint64_t> located_keys;
     std::vector<VertexId> vertices[2];
     std::vector<EdgeId> edges[2];
     std::vector<FaceId> faces[2];
+    // M's vertices in F's frame, and the unit normals of the faces of
+    // either side (0: moving, 1: fixed), each computed once per call.
+    IdMemo<Vector3d> moving_positions;
+    IdMemo<Vector3d> normals[2];
 
-    bool Locate(uint64_t key) {
+    // Whether `corner` of `side` is yet to be located against `face`; from
+    // now on it is.
+    bool Locate(int side, VertexId corner, FaceId face) {
+      bool first = false;
+      const FaceId first_face_located = first_face[side].Get(corner, [&] {
+        first = true;
+        return face;
+      });
+      if (first) return true;
+      if (first_face_located == face) return false;
+      const uint64_t key = CornerKey(side, corner, face);
       if (!located.insert(key).second) return false;
       located_keys.push_back(key);
       return true;

@@ -8,6 +8,7 @@
 #include "common/collision/plane_bounds_batch.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_features.h"
+#include "common/core/id_memo.h"
 #include "common/core/scratch.h"
 
 namespace hs {
@@ -44,6 +45,7 @@ class KnownPairs {
         scratch_(s_.scratch),
         reaching_(s_.reaching) {
     s_.Clear();
+    s_.moving_positions.Reset(c.moving.num_vertices());
   }
   KnownPairs(const KnownPairs&) = delete;
   KnownPairs& operator=(const KnownPairs&) = delete;
@@ -69,7 +71,8 @@ class KnownPairs {
     for (const TrianglePair& pair : pairs) {
       if (std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
       if (pair.a != moving_face) {
-        placed = c_.MovingTriangle(pair.a);
+        const auto& v = c_.moving.face(pair.a).vertices;
+        placed = {MovingPosition(v[0]), MovingPosition(v[1]), MovingPosition(v[2])};
         moving_face = pair.a;
       }
       moving.push_back(placed);
@@ -182,6 +185,8 @@ class KnownPairs {
     std::vector<SweptIntervals> bounds;
     std::vector<Interval> scratch;
     std::vector<KnownPair*> reaching;
+    // M's vertices placed at c.X_FM, each once per query.
+    IdMemo<Vector3d> moving_positions;
     void Clear() {
       known.clear();
       pairs.clear();
@@ -189,6 +194,11 @@ class KnownPairs {
     }
   };
   static Storage& storage() { return Scratch<Storage>(); }
+
+  // M's vertex `v` in F's frame (as c.MovingTriangle places it).
+  const Vector3d& MovingPosition(VertexId v) {
+    return s_.moving_positions.Get(v, [&] { return Vector3d(c_.X_FM * c_.moving.position(v)); });
+  }
 
   const ContactContext& c_;
   Storage& s_;
@@ -221,7 +231,7 @@ bool Penetrating(const ContactContext& c) {
 
 // ReconstructBySweep's pair lists and located contacts.
 struct SweepBuffers {
-  std::vector<TrianglePair> at_t_star, found_at_t1, swept;
+  std::vector<TrianglePair> at_t_star, found_at_t1, swept, merged;
   LocatedContacts located;
 };
 
@@ -296,9 +306,14 @@ void ReconstructBySweep(const ContactContext& c, ContactSetF& set) {
     // bounds' rounding says.
     known.MayTouchAt(t_star, at_t_star);
     if (t_star == t1 && !found_at_t1.empty()) {
-      at_t_star.insert(at_t_star.end(), found_at_t1.begin(), found_at_t1.end());
-      std::sort(at_t_star.begin(), at_t_star.end());
-      at_t_star.erase(std::unique(at_t_star.begin(), at_t_star.end()), at_t_star.end());
+      // at_t_star is sorted as the known pairs are, found_at_t1 short: its
+      // own sort and a merge, not a sort of both.
+      std::sort(found_at_t1.begin(), found_at_t1.end());
+      found_at_t1.erase(std::unique(found_at_t1.begin(), found_at_t1.end()), found_at_t1.end());
+      buffers.merged.clear();
+      std::set_union(at_t_star.begin(), at_t_star.end(), found_at_t1.begin(), found_at_t1.end(),
+                     std::back_inserter(buffers.merged));
+      at_t_star.swap(buffers.merged);
     }
   }
 
