@@ -17,6 +17,12 @@ struct NodeStack {
   std::vector<int> nodes;
 };
 
+// Whether volumes of kind BV have an oriented culling box (OBB, OBBRSS).
+template <typename BV>
+constexpr bool kOrientedVolume = requires(const BV& bv) {
+  CullingBox(bv);
+};
+
 // A box (half sides `half`, pose X_OB in the object frame) as a query on
 // volumes of kind BV. Volumes with an oriented culling box (OBB, OBBRSS)
 // are tested against the box itself, with the pair traversal's lean test
@@ -28,10 +34,10 @@ class BoxQuery {
   BoxQuery(const Vector3d& half, const fcl::Transform3d& X_OB) {
     box_ = {
         .axis = X_OB.linear(), .center = X_OB.translation(), .extent = half, .radius = half.norm()};
-    if constexpr (!kOriented) fcl::computeBV(fcl::Boxd(2 * half), X_OB, converted_);
+    if constexpr (!kOrientedVolume<BV>) fcl::computeBV(fcl::Boxd(2 * half), X_OB, converted_);
   }
   bool Meets(const BV& node) const {
-    if constexpr (kOriented) {
+    if constexpr (kOrientedVolume<BV>) {
       const fcl::OBBd& volume = CullingBox(node);
       return !BoxesDisjoint(volume, volume.extent.norm(), box_);
     } else {
@@ -41,7 +47,7 @@ class BoxQuery {
   /// Whether `node`'s volume lies wholly inside the box: every face below
   /// it meets the box. Only oriented volumes tell; the others never do.
   bool Holds(const BV& node) const {
-    if constexpr (kOriented) {
+    if constexpr (kOrientedVolume<BV>) {
       const fcl::OBBd& volume = CullingBox(node);
       const Vector3d offset = volume.To - box_.center;
       for (int i = 0; i < 3; ++i) {
@@ -58,7 +64,6 @@ class BoxQuery {
   }
 
  private:
-  static constexpr bool kOriented = requires(const BV& bv) { CullingBox(bv); };
   PlacedBox box_;
   BV converted_;
 };
@@ -102,20 +107,12 @@ bool AnyCornerInFront(const fcl::BVHModel<BV>& bvh, const Isometry3d& X_OW,
                       const AlignedBox3d& box_W, const Vector3d& n_O, double offset) {
   fcl::Transform3d X_OB = X_OW;
   X_OB.translation() = X_OW * box_W.center();
-  constexpr bool kOriented = requires(const BV& bv) { CullingBox(bv); };
-  // The box query serves the volumes that are not oriented (open, below).
-  const auto query = [&] {
-    if constexpr (kOriented) {
-      return nullptr;
-    } else {
-      return BoxQuery<BV>(box_W.sizes() / 2, X_OB);
-    }
-  }();
+  const BoxQuery<BV> query(box_W.sizes() / 2, X_OB);
   // How far node i's volume reaches in front of the plane (> 0: it may
   // hold a corner in front; every volume but an oriented one may).
   auto in_front = [&](int i) {
     const fcl::BVNode<BV>& node = bvh.getBV(i);
-    if constexpr (kOriented) {
+    if constexpr (kOrientedVolume<BV>) {
       const fcl::OBBd& volume = CullingBox(node.bv);
       return n_O.dot(volume.To) - offset +
              volume.extent[0] * std::abs(n_O.dot(volume.axis.col(0))) +
@@ -132,7 +129,7 @@ bool AnyCornerInFront(const fcl::BVHModel<BV>& bvh, const Isometry3d& X_OW,
   const Vector3d half = box_W.sizes() / 2;
   auto open = [&](int i) {
     const BV& bv = bvh.getBV(i).bv;
-    if constexpr (kOriented) {
+    if constexpr (kOrientedVolume<BV>) {
       const fcl::OBBd& volume = CullingBox(bv);
       const Vector3d c = R_BO * (volume.To - X_OB.translation());
       const double outside = (c.cwiseAbs() - half).cwiseMax(0.0).squaredNorm();
