@@ -8,6 +8,7 @@
 #include "absl/container/flat_hash_set.h"
 
 #include "common/contact/closest_points.h"
+#include "common/contact/placed_vertices.h"
 #include "common/contact/side_contact.h"
 #include "common/core/id_memo.h"
 #include "common/core/scratch.h"
@@ -82,7 +83,7 @@ class Locator {
     s_.Reset();
     s_.first_face[0].Reset(c.moving.num_vertices());
     s_.first_face[1].Reset(c.fixed.num_vertices());
-    s_.moving_positions.Reset(c.moving.num_vertices());
+    s_.moving_vertices.Reset(c.moving, X_FM);
     s_.normals[0].Reset(c.moving.num_faces());
     s_.normals[1].Reset(c.fixed.num_faces());
   }
@@ -90,9 +91,7 @@ class Locator {
   Locator& operator=(const Locator&) = delete;
 
   void AddPair(const TrianglePair& pair) {
-    const auto& mv = c_.moving.face(pair.a).vertices;
-    const PosedFace m{
-        &c_.moving, pair.a, {MovingPosition(mv[0]), MovingPosition(mv[1]), MovingPosition(mv[2])}};
+    const PosedFace m{&c_.moving, pair.a, s_.moving_vertices.Face(pair.a)};
     const PosedFace f{&c_.fixed, pair.b, c_.FixedTriangle(pair.b)};
     const double tol = c_.tolerance_m;
     // Cheap rejections first: most corners and edge pairs of a touching
@@ -222,11 +221,6 @@ class Locator {
     return normal;
   }
 
-  // M's vertex `v` in F's frame.
-  const Vector3d& MovingPosition(VertexId v) {
-    return s_.moving_positions.Get(v, [&] { return Vector3d(X_FM_ * c_.moving.position(v)); });
-  }
-
   // Records a contact point with its normal, oriented.
   void Add(const Vector3d& p, const Feature& moving, const Feature& fixed, const Vector3d& normal,
            const Vector3d& outward) {
@@ -275,7 +269,7 @@ class Locator {
     std::vector<FaceId> faces[2];
     // M's vertices in F's frame, and the unit normals of the faces of
     // either side (0: moving, 1: fixed), each computed once per call.
-    IdMemo<Vector3d> moving_positions;
+    PlacedVertices moving_vertices;
     IdMemo<Vector3d> normals[2];
 
     // Whether `corner` of `side` is yet to be located against `face`; from

@@ -8,7 +8,7 @@
 #include "common/collision/plane_bounds_batch.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/contact/contact_features.h"
-#include "common/core/id_memo.h"
+#include "common/contact/placed_vertices.h"
 #include "common/core/scratch.h"
 
 namespace hs {
@@ -45,7 +45,7 @@ class KnownPairs {
         scratch_(s_.scratch),
         reaching_(s_.reaching) {
     s_.Clear();
-    s_.moving_positions.Reset(c.moving.num_vertices());
+    s_.moving_vertices.Reset(c.moving, c.X_FM);
   }
   KnownPairs(const KnownPairs&) = delete;
   KnownPairs& operator=(const KnownPairs&) = delete;
@@ -71,8 +71,7 @@ class KnownPairs {
     for (const TrianglePair& pair : pairs) {
       if (std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
       if (pair.a != moving_face) {
-        const auto& v = c_.moving.face(pair.a).vertices;
-        placed = {MovingPosition(v[0]), MovingPosition(v[1]), MovingPosition(v[2])};
+        placed = s_.moving_vertices.Face(pair.a);
         moving_face = pair.a;
       }
       moving.push_back(placed);
@@ -186,7 +185,7 @@ class KnownPairs {
     std::vector<Interval> scratch;
     std::vector<KnownPair*> reaching;
     // M's vertices placed at c.X_FM, each once per query.
-    IdMemo<Vector3d> moving_positions;
+    PlacedVertices moving_vertices;
     void Clear() {
       known.clear();
       pairs.clear();
@@ -194,11 +193,6 @@ class KnownPairs {
     }
   };
   static Storage& storage() { return Scratch<Storage>(); }
-
-  // M's vertex `v` in F's frame (as c.MovingTriangle places it).
-  const Vector3d& MovingPosition(VertexId v) {
-    return s_.moving_positions.Get(v, [&] { return Vector3d(c_.X_FM * c_.moving.position(v)); });
-  }
 
   const ContactContext& c_;
   Storage& s_;
