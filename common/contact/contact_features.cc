@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <tuple>
 
@@ -42,17 +43,67 @@ struct PosedFace {
   }
 };
 
-// Whether the boxes of segments [p1, q1] and [p2, q2] are more than `tol`
-// apart along some axis.
-bool SegmentBoxesApart(const Vector3d& p1, const Vector3d& q1, const Vector3d& p2,
-                       const Vector3d& q2, double tol) {
-  for (int d = 0; d < 3; ++d) {
-    if (std::max(p1[d], q1[d]) + tol < std::min(p2[d], q2[d]) ||
-        std::max(p2[d], q2[d]) + tol < std::min(p1[d], q1[d])) {
-      return true;
+// Bit i set when edge i of a face (corners i and i + 1) is not beyond the
+// tolerance on one side of the other face's plane, given the corners'
+// signed distances `off` from it.
+unsigned NearEdges(const std::array<double, 3>& off, double tol) {
+  const unsigned above0 = off[0] > tol, above1 = off[1] > tol, above2 = off[2] > tol;
+  const unsigned below0 = off[0] < -tol, below1 = off[1] < -tol, below2 = off[2] < -tol;
+  const unsigned beyond = ((above0 & above1) | (below0 & below1)) |
+                          ((above1 & above2) | (below1 & below2)) << 1 |
+                          ((above2 & above0) | (below2 & below0)) << 2;
+  return ~beyond & 7u;
+}
+
+// A face's edges, each with its vector and box (edge i joins corners i and
+// i + 1).
+struct FaceEdges {
+  FaceEdges() = default;
+  explicit FaceEdges(const Triangle3d& corners) {
+    for (int i = 0; i < 3; ++i) {
+      const Vector3d &p = corners[i], &q = corners[(i + 1) % 3];
+      along[i] = q - p;
+      for (int d = 0; d < 3; ++d) {
+        lo[i][d] = std::min(p[d], q[d]);
+        hi[i][d] = std::max(p[d], q[d]);
+      }
     }
   }
+  std::array<Vector3d, 3> along, lo, hi;
+};
+
+// A face of F's edges, with the unit vector across each in the face's
+// plane (zero for a degenerate face or edge).
+struct FixedFaceEdges {
+  FixedFaceEdges(const Triangle3d& corners, const Vector3d& unit_normal) : edges(corners) {
+    for (int i = 0; i < 3; ++i) {
+      const Vector3d a = unit_normal.cross(edges.along[i]);
+      across[i] = a.squaredNorm() > 0 ? a.normalized() : Vector3d::Zero();
+    }
+  }
+  FaceEdges edges;
+  std::array<Vector3d, 3> across;
+};
+
+// Whether boxes [lo1, hi1] and [lo2, hi2] are more than `tol` apart along
+// some axis.
+bool BoxesApart(const Vector3d& lo1, const Vector3d& hi1, const Vector3d& lo2, const Vector3d& hi2,
+                double tol) {
+  for (int d = 0; d < 3; ++d) {
+    if (hi1[d] + tol < lo2[d] || hi2[d] + tol < lo1[d]) return true;
+  }
   return false;
+}
+
+// Whether the corners of a face lie more than 2 `tol` (the slack of the
+// lines' test in AddPair) on one side of the plane through an edge starting
+// at `start`, perpendicular to its face, whose unit normal is `across`:
+// then no point of the face is within `tol` of the edge.
+bool BesideEdge(const Triangle3d& corners, const Vector3d& start, const Vector3d& across,
+                double tol) {
+  const double d0 = across.dot(corners[0] - start), d1 = across.dot(corners[1] - start),
+               d2 = across.dot(corners[2] - start);
+  return std::min({d0, d1, d2}) > 2 * tol || std::max({d0, d1, d2}) < -2 * tol;
 }
 
 Vector3d UnitNormal(const Triangle3d& t) {
@@ -86,6 +137,7 @@ class Locator {
     s_.moving_vertices.Reset(c.moving, X_FM);
     s_.normals[0].Reset(c.moving.num_faces());
     s_.normals[1].Reset(c.fixed.num_faces());
+    s_.fixed_edges_at.Reset(c.fixed.num_faces());
   }
   Locator(const Locator&) = delete;
   Locator& operator=(const Locator&) = delete;
@@ -127,36 +179,48 @@ class Locator {
       }
     }
     // An edge whose ends lie beyond the tolerance on one side of the other
-    // face's plane is farther than it from every edge of that face.
-    auto beyond = [tol](const std::array<double, 3>& off) {
-      std::array<bool, 3> edge_beyond;
-      for (int i = 0; i < 3; ++i) {
-        const double a = off[i], b = off[(i + 1) % 3];
-        edge_beyond[i] = (a > tol && b > tol) || (a < -tol && b < -tol);
+    // face's plane is farther than it from every edge of that face (bit i:
+    // edge i), and so is an edge of F whose box is apart from M's face's
+    // (M's edges' boxes lie inside it): most edges of F are far from a
+    // small face of M. M's edges are taken only for F's edges left.
+    const unsigned m_near = NearEdges(m_off, tol);
+    unsigned f_near = m_near == 0 ? 0 : NearEdges(f_off, tol);
+    if (f_near == 0) return;
+    const FixedFaceEdges& fixed_edges = s_.FixedEdges(f.id, f.corners, n_f);
+    const FaceEdges& f_edges = fixed_edges.edges;
+    Vector3d m_lo, m_hi;
+    for (int d = 0; d < 3; ++d) {
+      m_lo[d] = std::min({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
+      m_hi[d] = std::max({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
+    }
+    for (unsigned j_bits = f_near; j_bits != 0; j_bits &= j_bits - 1) {
+      const int j = std::countr_zero(j_bits);
+      if (BoxesApart(m_lo, m_hi, f_edges.lo[j], f_edges.hi[j], tol) ||
+          BesideEdge(m.corners, f.corners[j], fixed_edges.across[j], tol)) {
+        f_near &= ~(1u << j);
       }
-      return edge_beyond;
-    };
-    const std::array<bool, 3> m_beyond = beyond(m_off), f_beyond = beyond(f_off);
-    for (int i = 0; i < 3; ++i) {
-      if (m_beyond[i]) continue;
+    }
+    if (f_near == 0) return;
+    const FaceEdges m_edges(m.corners);
+    for (unsigned i_bits = m_near; i_bits != 0; i_bits &= i_bits - 1) {
+      const int i = std::countr_zero(i_bits);
       const Vector3d &p1 = m.corners[i], &q1 = m.corners[(i + 1) % 3];
-      for (int j = 0; j < 3; ++j) {
-        if (f_beyond[j]) continue;
+      for (unsigned j_bits = f_near; j_bits != 0; j_bits &= j_bits - 1) {
+        const int j = std::countr_zero(j_bits);
+        if (BoxesApart(m_edges.lo[i], m_edges.hi[i], f_edges.lo[j], f_edges.hi[j], tol)) continue;
         const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
-        if (SegmentBoxesApart(p1, q1, p2, q2, tol)) continue;
         // The lines through the edges more than 2 tolerances apart (the
         // segments are at least as far): no edge-edge contact.
-        const Vector3d across = (q1 - p1).cross(q2 - p2);
+        const Vector3d across = m_edges.along[i].cross(f_edges.along[j]);
         const double gap = across.dot(p2 - p1);
         if (gap * gap > 4 * tol * tol * across.squaredNorm()) continue;
         const SegmentClosest s = ClosestPointsOfSegments(p1, q1, p2, q2);
         if ((s.on_first - s.on_second).norm() > tol) continue;
         // Ends within the tolerance are vertex contacts, found above.
-        if (std::min(s.s, 1 - s.s) * (q1 - p1).norm() <= tol) continue;
-        if (std::min(s.t, 1 - s.t) * (q2 - p2).norm() <= tol) continue;
-        const Vector3d n = (q1 - p1).cross(q2 - p2);
+        if (std::min(s.s, 1 - s.s) * m_edges.along[i].norm() <= tol) continue;
+        if (std::min(s.t, 1 - s.t) * f_edges.along[j].norm() <= tol) continue;
         Add((s.on_first + s.on_second) / 2, m.edge_feature(i), f.edge_feature(j),
-            n.squaredNorm() > 0 ? n.normalized() : n, n_f);
+            across.squaredNorm() > 0 ? across.normalized() : across, n_f);
       }
     }
   }
@@ -271,6 +335,18 @@ class Locator {
     // either side (0: moving, 1: fixed), each computed once per call.
     PlacedVertices moving_vertices;
     IdMemo<Vector3d> normals[2];
+    // The edges of F's faces met so far (an index into fixed_edges), each
+    // face's taken once per call: a face of F is in many pairs.
+    IdMemo<int> fixed_edges_at;
+    std::vector<FixedFaceEdges> fixed_edges;
+
+    const FixedFaceEdges& FixedEdges(FaceId face, const Triangle3d& corners,
+                                     const Vector3d& unit_normal) {
+      return fixed_edges[fixed_edges_at.Get(face, [&] {
+        fixed_edges.emplace_back(corners, unit_normal);
+        return static_cast<int>(fixed_edges.size()) - 1;
+      })];
+    }
 
     // Whether `corner` of `side` is yet to be located against `face`; from
     // now on it is.
@@ -291,6 +367,7 @@ class Locator {
       for (const uint64_t key : located_keys) located.erase(key);
       located_keys.clear();
       points.clear();
+      fixed_edges.clear();
       for (int side = 0; side < 2; ++side) {
         vertices[side].clear();
         edges[side].clear();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -49,13 +50,14 @@ struct Touch {
 
 // Locates the contacts of `touch` over every face pair within the
 // tolerance, M moving along `direction_F`.
-LocatedContacts Locate(const Touch& touch, const Vector3d& direction_F, LocatedContacts out = {}) {
+LocatedContacts Locate(const Touch& touch, const Vector3d& direction_F, LocatedContacts out = {},
+                       double tolerance = kTolerance) {
   std::vector<TrianglePair> pairs;
   FindIntersectingTriangles(touch.m->model, touch.X_FM, touch.f->model, Isometry3d::Identity(),
-                            kTolerance, pairs);
+                            tolerance, pairs);
   EXPECT_FALSE(pairs.empty()) << "the bodies do not touch";
   const ContactContext context{touch.m->object, touch.m->model, touch.f->object, touch.f->model,
-                               touch.X_FM,      direction_F,    kTolerance,      pairs};
+                               touch.X_FM,      direction_F,    tolerance,       pairs};
   LocateContacts(context, touch.X_FM, pairs, out);
   return out;
 }
@@ -271,6 +273,79 @@ TEST(ContactFeaturesTest, NormalOpposesTheMotion) {
   const Vector3d slanted = Vector3d(0.3, 0.2, -1).normalized();
   EXPECT_LT(Locate(touch, slanted).normal_F.dot(slanted), 0);
   EXPECT_LT(Locate(touch, -slanted).normal_F.dot(-slanted), 0);
+}
+
+// Whether `feature` is edge `e` of `object`, or one of its faces when the
+// edge only splits a source polygon (such an edge counts as the face).
+bool IsEdgeFeature(const HapticObject& object, EdgeId e, const Feature& feature) {
+  if (feature == Feature{FeatureKind::kEdge, e}) return true;
+  if (feature.kind != FeatureKind::kFace) return false;
+  const auto faces = object.EdgeFaces(e);
+  return faces.size() == 2 && object.face(faces[0]).source_polygon != kNoPolygon &&
+         object.face(faces[0]).source_polygon == object.face(faces[1]).source_polygon &&
+         (feature.id == faces[0] || feature.id == faces[1]);
+}
+
+// Brute force over every pair of edges at random touching poses of a torus
+// on a box (edges of every slant, polygons split by diagonals): each pair of
+// edges within the tolerance of each other at points more than the
+// tolerance from their ends is an edge-edge contact located, whatever the
+// locator rules out early to spare most pairs their closest points.
+TEST(ContactFeaturesTest, EveryEdgeCrossingIsLocated) {
+  constexpr double kWide = 0.01;
+  // Hierarchies grown by the tolerance, which is far wider than MakeBody's.
+  const auto wide_body = [&](MeshInput mesh) {
+    HapticObject object = *HapticObject::Create("body", std::move(mesh));
+    CollisionModel model(object, BvType::kObbRss, kWide);
+    return std::make_unique<Body>(Body{std::move(object), std::move(model)});
+  };
+  const std::unique_ptr<Body> m = wide_body(MakeTorus(0.3, 0.1, 12, 8));
+  const std::unique_ptr<Body> f = wide_body(MakeBox(Vector3d(1, 0.8, 0.6)));
+  std::mt19937 rng(41);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  int poses = 0, crossings = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Quaterniond q =
+        Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
+    // Centres about a torus' reach (0.4) off the box's surface along a
+    // random direction, so that the surfaces touch or cross a little.
+    const Vector3d toward = Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized();
+    const Vector3d centre = toward.cwiseProduct(Vector3d(0.5, 0.4, 0.3)) + 0.32 * toward;
+    const Touch touch{nullptr, nullptr, Translation(centre.x(), centre.y(), centre.z()) * Turn(q)};
+    std::vector<TrianglePair> pairs;
+    FindIntersectingTriangles(m->model, touch.X_FM, f->model, Isometry3d::Identity(), kWide, pairs);
+    if (pairs.empty()) continue;
+    ++poses;
+    const ContactContext context{m->object,  m->model, f->object, f->model,
+                                 touch.X_FM, -toward,  kWide,     pairs};
+    LocatedContacts out;
+    LocateContacts(context, touch.X_FM, pairs, out);
+    for (EdgeId e1 = 0; e1 < m->object.num_edges(); ++e1) {
+      const Edge& a = m->object.edge(e1);
+      const Vector3d p1 = touch.X_FM * m->object.position(a.vertices[0]);
+      const Vector3d q1 = touch.X_FM * m->object.position(a.vertices[1]);
+      for (EdgeId e2 = 0; e2 < f->object.num_edges(); ++e2) {
+        const Edge& b = f->object.edge(e2);
+        const Vector3d &p2 = f->object.position(b.vertices[0]),
+                       &q2 = f->object.position(b.vertices[1]);
+        const SegmentClosest c = ClosestPointsOfSegments(p1, q1, p2, q2);
+        if ((c.on_first - c.on_second).norm() > kWide) continue;
+        if (std::min(c.s, 1 - c.s) * (q1 - p1).norm() <= kWide) continue;
+        if (std::min(c.t, 1 - c.t) * (q2 - p2).norm() <= kWide) continue;
+        ++crossings;
+        EXPECT_TRUE(std::any_of(out.points.begin(), out.points.end(),
+                                [&](const ContactPointF& point) {
+                                  return IsEdgeFeature(m->object, e1, point.moving) &&
+                                         IsEdgeFeature(f->object, e2, point.fixed);
+                                }))
+            << "trial " << trial << ": edges " << e1 << " and " << e2 << " not located";
+      }
+    }
+  }
+  // Enough of both for the test to mean something.
+  EXPECT_GT(poses, 300);
+  EXPECT_GT(crossings, 800);
 }
 
 // A second call writes its output over the first's: the same result as into
