@@ -5,7 +5,6 @@
 #include <bit>
 #include <cstdint>
 #include <limits>
-#include <numeric>
 #include <utility>
 
 #include "common/collision/face_test_batch.h"
@@ -13,6 +12,7 @@
 #include "common/collision/obb_overlap.h"
 #include "common/collision/placed_faces.h"
 #include "common/core/check.h"
+#include "common/core/id_memo.h"
 #include "common/core/scratch.h"
 
 namespace hs {
@@ -140,9 +140,14 @@ struct Query {
 struct PlacedFacesOfB {
   PlacedFaces faces;
 };
-// Where each face of A starts in a query's `skip`.
-struct SkipStarts {
-  std::vector<int> begin;
+// Each face of A's run of pairs in a query's `skip` (sorted by A's face):
+// [begin, end) there. Stamped per query, so a short `skip` costs no pass
+// over every face of A.
+struct SkipRun {
+  int begin = 0, end = 0;
+};
+struct SkipRuns {
+  IdMemo<SkipRun> runs;
 };
 
 // The faces of both objects in A's frame, for the leaf buckets.
@@ -160,14 +165,16 @@ class BucketTest {
         skip_(query.skip),
         candidates_(query.candidates),
         faces_b_(Scratch<PlacedFacesOfB>().faces),
-        skip_begin_(Scratch<SkipStarts>().begin),
+        skip_runs_(Scratch<SkipRuns>().runs),
         buffers_(Scratch<RunBuffers>()) {
     faces_b_.Start(mb.vertices, mb.num_vertices, mb.tri_indices, mb.num_tris, X_AB);
-    if (!skip_.empty()) {  // where each face of A starts in `skip`, sorted by A's face
-      std::vector<int>& begin = skip_begin_;
-      begin.assign(ia.leaf_faces.size() + 1, 0);
-      for (const TrianglePair& p : skip_) ++begin[p.a + 1];
-      std::partial_sum(begin.begin(), begin.end(), begin.begin());
+    if (!skip_.empty()) {
+      skip_runs_.Reset(ia.leaf_faces.size());
+      for (int k = 0, n = static_cast<int>(skip_.size()); k < n;) {
+        const int a = skip_[k].a, begin = k;
+        while (k < n && skip_[k].a == a) ++k;
+        skip_runs_.Get(a, [&] { return SkipRun{begin, k}; });
+      }
     }
   }
 
@@ -413,8 +420,8 @@ class BucketTest {
   // The pairs of `skip_` with A's face `a`.
   std::span<const TrianglePair> Skipped(int a) const {
     if (skip_.empty()) return {};
-    const std::vector<int>& begin = skip_begin_;
-    return skip_.subspan(begin[a], begin[a + 1] - begin[a]);
+    const SkipRun run = skip_runs_.Get(a, [] { return SkipRun{}; });
+    return skip_.subspan(run.begin, run.end - run.begin);
   }
 
   // Keeps the entries whose boxes meet A's bucket box [lo_a, hi_a] within
@@ -461,7 +468,7 @@ class BucketTest {
   const std::span<const TrianglePair> skip_;
   std::vector<PairCache::Candidate>* const candidates_;
   PlacedFaces& faces_b_;
-  std::vector<int>& skip_begin_;
+  IdMemo<SkipRun>& skip_runs_;
   RunBuffers& buffers_;
 };
 
