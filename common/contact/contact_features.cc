@@ -130,7 +130,7 @@ class Locator {
   // Takes the current scratch space's storage (one locator at a time per
   // space), empty.
   Locator(const ContactContext& c, const Isometry3d& X_FM)
-      : c_(c), X_FM_(X_FM), s_(storage()), points_(s_.points) {
+      : c_(c), X_FM_(X_FM), corner_slack_(CornerSlack(c, X_FM)), s_(storage()), points_(s_.points) {
     s_.Reset();
     s_.first_face[0].Reset(c.moving.num_vertices());
     s_.first_face[1].Reset(c.fixed.num_vertices());
@@ -147,15 +147,11 @@ class Locator {
     const PosedFace f{&c_.fixed, pair.b, c_.FixedTriangle(pair.b)};
     const double tol = c_.tolerance_m;
     // Cheap rejections first: most corners and edge pairs of a touching
-    // pair are nowhere near the other triangle. Signed distances of each
-    // face's corners from the other's plane (0 for a flat face: never off).
-    const Vector3d& n_m = s_.normals[0].Get(m.id, [&] { return UnitNormal(m.corners); });
+    // pair are nowhere near the other triangle. Signed distances of M's
+    // corners from F's plane (0 for a flat face: never off).
     const Vector3d& n_f = s_.normals[1].Get(f.id, [&] { return UnitNormal(f.corners); });
-    std::array<double, 3> m_off, f_off;
-    for (int i = 0; i < 3; ++i) {
-      m_off[i] = n_f.dot(m.corners[i] - f.corners[0]);
-      f_off[i] = n_m.dot(f.corners[i] - m.corners[0]);
-    }
+    std::array<double, 3> m_off;
+    for (int i = 0; i < 3; ++i) m_off[i] = n_f.dot(m.corners[i] - f.corners[0]);
     // A corner meets the other face alike from every face around it: each
     // (corner, face) is located once.
     for (int i = 0; i < 3; ++i) {
@@ -168,7 +164,44 @@ class Locator {
         Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol), n_f, n_f);
       }
     }
+    // F's side needs M's face's normal only for what is near M's face (a
+    // face of F is mostly far larger): its corners within the face's box
+    // grown by twice the tolerance and the rounding, and the edges left
+    // below. An edge whose ends lie beyond the tolerance on one side of the
+    // other face's plane is farther than it from every edge of that face
+    // (bit i: edge i), and so is an edge of F whose box is apart from M's
+    // face's (M's edges' boxes lie inside it) or that M's face stays
+    // beside.
+    Vector3d m_lo, m_hi;
+    for (int d = 0; d < 3; ++d) {
+      m_lo[d] = std::min({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
+      m_hi[d] = std::max({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
+    }
+    unsigned f_corners = 0;
     for (int j = 0; j < 3; ++j) {
+      const Vector3d& p = f.corners[j];
+      const bool inside = (p.array() >= m_lo.array() - corner_slack_).all() &&
+                          (p.array() <= m_hi.array() + corner_slack_).all();
+      f_corners |= unsigned{inside} << j;
+    }
+    const unsigned m_near = NearEdges(m_off, tol);
+    const FixedFaceEdges* fixed_edges = nullptr;
+    unsigned f_near = 0;
+    if (m_near != 0) {
+      fixed_edges = &s_.FixedEdges(f.id, f.corners, n_f);
+      for (int j = 0; j < 3; ++j) {
+        if (!BoxesApart(m_lo, m_hi, fixed_edges->edges.lo[j], fixed_edges->edges.hi[j], tol) &&
+            !BesideEdge(m.corners, f.corners[j], fixed_edges->across[j], tol)) {
+          f_near |= 1u << j;
+        }
+      }
+    }
+    if (f_corners == 0 && f_near == 0) return;
+    const Vector3d& n_m = s_.normals[0].Get(m.id, [&] { return UnitNormal(m.corners); });
+    std::array<double, 3> f_off;
+    for (int j = 0; j < 3; ++j) f_off[j] = n_m.dot(f.corners[j] - m.corners[0]);
+    for (unsigned j_bits = f_corners; j_bits != 0; j_bits &= j_bits - 1) {
+      const int j = std::countr_zero(j_bits);
       const Vector3d& p = f.corners[j];
       if (std::abs(f_off[j]) > tol || !s_.Locate(1, f.vertex(j), m.id)) {
         continue;
@@ -178,29 +211,9 @@ class Locator {
         Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)}, -n_m, -n_m);
       }
     }
-    // An edge whose ends lie beyond the tolerance on one side of the other
-    // face's plane is farther than it from every edge of that face (bit i:
-    // edge i), and so is an edge of F whose box is apart from M's face's
-    // (M's edges' boxes lie inside it): most edges of F are far from a
-    // small face of M. M's edges are taken only for F's edges left.
-    const unsigned m_near = NearEdges(m_off, tol);
-    unsigned f_near = m_near == 0 ? 0 : NearEdges(f_off, tol);
+    f_near &= NearEdges(f_off, tol);
     if (f_near == 0) return;
-    const FixedFaceEdges& fixed_edges = s_.FixedEdges(f.id, f.corners, n_f);
-    const FaceEdges& f_edges = fixed_edges.edges;
-    Vector3d m_lo, m_hi;
-    for (int d = 0; d < 3; ++d) {
-      m_lo[d] = std::min({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
-      m_hi[d] = std::max({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
-    }
-    for (unsigned j_bits = f_near; j_bits != 0; j_bits &= j_bits - 1) {
-      const int j = std::countr_zero(j_bits);
-      if (BoxesApart(m_lo, m_hi, f_edges.lo[j], f_edges.hi[j], tol) ||
-          BesideEdge(m.corners, f.corners[j], fixed_edges.across[j], tol)) {
-        f_near &= ~(1u << j);
-      }
-    }
-    if (f_near == 0) return;
+    const FaceEdges& f_edges = fixed_edges->edges;
     const FaceEdges m_edges(m.corners);
     for (unsigned i_bits = m_near; i_bits != 0; i_bits &= i_bits - 1) {
       const int i = std::countr_zero(i_bits);
@@ -377,8 +390,22 @@ class Locator {
   };
   static Storage& storage() { return Scratch<Storage>(); }
 
+  // How far outside a face of M's box a corner of F may be and still be
+  // within the tolerance of the face, as computed: twice the tolerance,
+  // and 1e-12 of the largest coordinate either object can have here for
+  // the rounding of the closest point and its distance.
+  static double CornerSlack(const ContactContext& c, const Isometry3d& X_FM) {
+    const auto reach = [](const AlignedBox3d& box) {
+      return box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).norm();
+    };
+    const double largest = std::max(reach(c.fixed.bounding_box()),
+                                    reach(c.moving.bounding_box()) + X_FM.translation().norm());
+    return 2 * c.tolerance_m + 1e-12 * largest;
+  }
+
   const ContactContext& c_;
   const Isometry3d X_FM_;
+  const double corner_slack_;
   Storage& s_;
   std::vector<Entry>& points_;
 };

@@ -286,12 +286,14 @@ bool IsEdgeFeature(const HapticObject& object, EdgeId e, const Feature& feature)
          (feature.id == faces[0] || feature.id == faces[1]);
 }
 
-// Brute force over every pair of edges at random touching poses of a torus
-// on a box (edges of every slant, polygons split by diagonals): each pair of
-// edges within the tolerance of each other at points more than the
-// tolerance from their ends is an edge-edge contact located, whatever the
-// locator rules out early to spare most pairs their closest points.
-TEST(ContactFeaturesTest, EveryEdgeCrossingIsLocated) {
+// Brute force over every vertex and every pair of edges at random touching
+// poses of a torus on a box (edges of every slant, polygons split by
+// diagonals, the box's corners on the torus's small faces): each vertex
+// within the tolerance of the other body is a vertex contact, and each pair
+// of edges within the tolerance of each other at points more than the
+// tolerance from their ends an edge-edge contact, whatever the locator
+// rules out early to spare most pairs their closest points.
+TEST(ContactFeaturesTest, EveryVertexAndEdgeCrossingIsLocated) {
   constexpr double kWide = 0.01;
   // Hierarchies grown by the tolerance, which is far wider than MakeBody's.
   const auto wide_body = [&](MeshInput mesh) {
@@ -304,14 +306,35 @@ TEST(ContactFeaturesTest, EveryEdgeCrossingIsLocated) {
   std::mt19937 rng(41);
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> uniform(-1, 1);
-  int poses = 0, crossings = 0;
+  int poses = 0, crossings = 0, fixed_vertices = 0;
   for (int trial = 0; trial < 400; ++trial) {
     const Eigen::Quaterniond q =
         Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
-    // Centres about a torus' reach (0.4) off the box's surface along a
-    // random direction, so that the surfaces touch or cross a little.
-    const Vector3d toward = Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized();
-    const Vector3d centre = toward.cwiseProduct(Vector3d(0.5, 0.4, 0.3)) + 0.32 * toward;
+    const Vector3d jitter(uniform(rng), uniform(rng), uniform(rng));
+    Vector3d toward, centre;
+    if (trial % 2 == 0) {
+      // The centre about a torus' reach (0.4) off the box's surface along a
+      // random direction, so that the surfaces touch or cross a little.
+      toward = jitter.normalized();
+      centre = toward.cwiseProduct(Vector3d(0.5, 0.4, 0.3)) + 0.32 * toward;
+    } else {
+      // A random point of the torus's surface (a vertex every other time)
+      // within a quarter of the tolerance of a corner of the box, for the
+      // box's corners on its faces, edges and vertices.
+      const Vector3d corner = Vector3d(uniform(rng) < 0 ? -0.5 : 0.5, uniform(rng) < 0 ? -0.4 : 0.4,
+                                       uniform(rng) < 0 ? -0.3 : 0.3);
+      const FaceId face = static_cast<FaceId>((uniform(rng) + 1) / 2 * m->object.num_faces()) %
+                          m->object.num_faces();
+      const auto& v = m->object.face(face).vertices;
+      const bool at_vertex = trial % 4 == 1;
+      const double s = at_vertex ? 0 : (uniform(rng) + 1) / 2;
+      const double t = at_vertex ? 0 : (uniform(rng) + 1) / 2 * (1 - s);
+      const Vector3d on_surface = m->object.position(v[0]) +
+                                  s * (m->object.position(v[1]) - m->object.position(v[0])) +
+                                  t * (m->object.position(v[2]) - m->object.position(v[0]));
+      centre = corner - q * on_surface + 0.25 * kWide * jitter.normalized();
+      toward = corner.normalized();
+    }
     const Touch touch{nullptr, nullptr, Translation(centre.x(), centre.y(), centre.z()) * Turn(q)};
     std::vector<TrianglePair> pairs;
     FindIntersectingTriangles(m->model, touch.X_FM, f->model, Isometry3d::Identity(), kWide, pairs);
@@ -321,6 +344,23 @@ TEST(ContactFeaturesTest, EveryEdgeCrossingIsLocated) {
                                  touch.X_FM, -toward,  kWide,     pairs};
     LocatedContacts out;
     LocateContacts(context, touch.X_FM, pairs, out);
+    const auto vertex_located = [&](int side, VertexId v) {
+      return std::any_of(out.points.begin(), out.points.end(), [&](const ContactPointF& point) {
+        return (side == 0 ? point.moving : point.fixed) == Feature{FeatureKind::kVertex, v};
+      });
+    };
+    const Isometry3d I = Isometry3d::Identity();
+    for (VertexId v = 0; v < m->object.num_vertices(); ++v) {
+      if (SurfaceDistance(touch.X_FM * m->object.position(v), f->object, I) <= kWide) {
+        EXPECT_TRUE(vertex_located(0, v)) << "trial " << trial << ": vertex " << v << " of M";
+      }
+    }
+    for (VertexId v = 0; v < f->object.num_vertices(); ++v) {
+      if (SurfaceDistance(f->object.position(v), m->object, touch.X_FM) <= kWide) {
+        ++fixed_vertices;
+        EXPECT_TRUE(vertex_located(1, v)) << "trial " << trial << ": vertex " << v << " of F";
+      }
+    }
     for (EdgeId e1 = 0; e1 < m->object.num_edges(); ++e1) {
       const Edge& a = m->object.edge(e1);
       const Vector3d p1 = touch.X_FM * m->object.position(a.vertices[0]);
@@ -345,7 +385,8 @@ TEST(ContactFeaturesTest, EveryEdgeCrossingIsLocated) {
   }
   // Enough of both for the test to mean something.
   EXPECT_GT(poses, 300);
-  EXPECT_GT(crossings, 800);
+  EXPECT_GT(crossings, 1000);
+  EXPECT_GT(fixed_vertices, 150);
 }
 
 // A second call writes its output over the first's: the same result as into
