@@ -420,8 +420,8 @@ class BucketTest {
   // The pairs of `skip_` with A's face `a`.
   std::span<const TrianglePair> Skipped(int a) const {
     if (skip_.empty()) return {};
-    const SkipRun run = skip_runs_.Get(a, [] { return SkipRun{}; });
-    return skip_.subspan(run.begin, run.end - run.begin);
+    const SkipRun* run = skip_runs_.Find(a);
+    return run ? skip_.subspan(run->begin, run->end - run->begin) : std::span<const TrianglePair>();
   }
 
   // Keeps the entries whose boxes meet A's bucket box [lo_a, hi_a] within

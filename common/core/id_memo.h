@@ -37,6 +37,10 @@ class IdMemo {
   /// the others stale.
   const T* data() const { return values_.data(); }
 
+  /// The value of `id` (in [0, size) of the last Reset) if it was asked
+  /// for since then, else null.
+  const T* Find(int id) const { return generations_[id] == generation_ ? &values_[id] : nullptr; }
+
   /// The value of `id` (in [0, size) of the last Reset): `compute()` the
   /// first time it is asked for since then, the same value after. The
   /// reference holds until the next Reset. Always inlined: the pair

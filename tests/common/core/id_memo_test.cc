@@ -10,7 +10,8 @@ namespace {
 
 // Against a brute-force oracle: over random resets of random sizes and
 // random lookups, each id's value is computed once per reset, and every
-// lookup returns the value computed for it since the last reset.
+// lookup returns the value computed for it since the last reset (Find: or
+// none before it is).
 TEST(IdMemoTest, ComputesEachIdOnceBetweenResets) {
   std::mt19937 random(7);
   IdMemo<int> memo;
@@ -22,6 +23,10 @@ TEST(IdMemoTest, ComputesEachIdOnceBetweenResets) {
     std::vector<int> computed(size, 0);
     for (int lookup = 0; lookup < 200; ++lookup) {
       const int id = std::uniform_int_distribution<int>(0, size - 1)(random);
+      // Find sees only the values computed since the reset.
+      const int* found = memo.Find(id);
+      ASSERT_EQ(found != nullptr, expected[id] >= 0);
+      if (found) EXPECT_EQ(*found, expected[id]);
       const int value = memo.Get(id, [&] {
         ++computed[id];
         return next_value++;
