@@ -58,7 +58,6 @@ unsigned NearEdges(const std::array<double, 3>& off, double tol) {
 // A face's edges, each with its vector and box (edge i joins corners i and
 // i + 1).
 struct FaceEdges {
-  FaceEdges() = default;
   explicit FaceEdges(const Triangle3d& corners) {
     for (int i = 0; i < 3; ++i) {
       const Vector3d &p = corners[i], &q = corners[(i + 1) % 3];
