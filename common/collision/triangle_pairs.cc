@@ -180,9 +180,12 @@ class BucketTest {
 
   /// Tests every face of A's node `na` against every face of B's node `nb`:
   /// first each bucket is cut down to the faces whose boxes meet the overlap
-  /// of the two buckets' boxes, then the rest go through box and SAT tests.
-  /// A's faces are read in leaf order, their boxes from the model's arrays
-  /// (swept: grown by the sweep, which moves every face alike).
+  /// of the two buckets' boxes, then the rest go through box tests, and
+  /// those that pass through the face test: at once when swept, left
+  /// pending for TestPending when static (a region's build keeps them as
+  /// candidates). A's faces are read in leaf order, their boxes from the
+  /// model's arrays (swept: grown by the sweep, which moves every face
+  /// alike).
   template <typename Node>
   void Run(const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
     std::vector<Entry>& list_b = buffers_.list_b;
@@ -251,14 +254,38 @@ class BucketTest {
         }
         if (candidates_) {
           if (!PlanesKeepApart(face_a, *b.face)) candidates_->push_back({i, b.id});
-          continue;
+        } else if (sweep_A_) {
+          if (SweptFacesMeet(face_a, *b.face)) pairs.push_back({a, b.id});
+        } else {
+          buffers_.pending.push_back({i, b.id});
         }
-        const bool hit = sweep_A_ ? SweptFacesMeet(face_a, *b.face)
-                                  : TrianglesIntersect(face_a.triangle, face_a.normal,
-                                                       b.face->triangle, b.face->normal, margin_);
-        if (hit) pairs.push_back({a, b.id});
       }
     }
+  }
+
+  /// The face tests a static query's Run calls left pending, in the order
+  /// they were left: the quick test of them all in batches
+  /// (face_test_batch.h), then the full test of those it leaves; the pairs
+  /// that meet go to `pairs` in that order.
+  void TestPending(std::vector<TrianglePair>& pairs) const {
+    std::vector<TrianglePair>& pending = buffers_.pending;
+    if (pending.empty()) return;
+    std::vector<QuickTriangleTest>& quick = buffers_.face_tests.quick;
+    quick.resize(pending.size());
+    QuickTrianglesTestBatch(ia_.leaf_order_faces.data(), faces_b_.data(), pending, margin_,
+                            /*edge_cross=*/true, quick);
+    for (size_t k = 0; k < pending.size(); ++k) {
+      const auto [i, b] = pending[k];
+      bool meet = quick[k].answer == QuickTriangleTest::Answer::kMeet;
+      if (quick[k].answer == QuickTriangleTest::Answer::kUnknown) {
+        const PlacedFace& face_a = ia_.leaf_order_faces[i];
+        const PlacedFace& face_b = faces_b_.Get(b);
+        meet = TrianglesIntersect(face_a.triangle, face_a.normal, face_b.triangle, face_b.normal,
+                                  margin_);
+      }
+      if (meet) pairs.push_back({ia_.leaf_faces[i], b});
+    }
+    pending.clear();
   }
 
   /// A static query from a region's candidates: each goes through Run's
@@ -277,7 +304,7 @@ class BucketTest {
     const int stream = region.stream;
     const double shifted = to_query[stream].shifted_m, turned = to_query[stream].turned;
     FaceTests& tests = buffers_.face_tests;
-    tests.Clear();
+    tests.Start(region.candidates.size());
     for (PairCache::Candidate& candidate : region.candidates) {
       // Apart by more than the motion since it was last tested: its box,
       // plane or edge-cross test would reject it again.
@@ -305,7 +332,7 @@ class BucketTest {
       tests.Add(candidate);
     }
     tests.RunQuickTests(ia_.leaf_order_faces.data(), faces_b_.data(), margin_);
-    for (size_t k = 0; k < tests.candidates.size(); ++k) {
+    for (size_t k = 0; k < tests.size; ++k) {
       PairCache::Candidate& candidate = *tests.candidates[k];
       const int a = ia_.leaf_faces[candidate.leaf_a];
       // The hint the full test would leave (QuickTrianglesTest), or its own.
@@ -369,29 +396,37 @@ class BucketTest {
 
   // The candidates of RunCandidates that take a face test, in order, with
   // their faces (A's by leaf, B's by id) and the quick test's answers.
+  // The first `size` entries are this query's: the arrays are sized for
+  // the most a region can add, so that adding is a store.
   struct FaceTests {
     std::vector<PairCache::Candidate*> candidates;
     std::vector<TrianglePair> faces;
     std::vector<QuickTriangleTest> quick;
+    size_t size = 0;
 
-    void Clear() {
-      candidates.clear();
-      faces.clear();
+    void Start(size_t most) {
+      candidates.resize(most);
+      faces.resize(most);
+      size = 0;
     }
     void Add(PairCache::Candidate& candidate) {
-      candidates.push_back(&candidate);
-      faces.push_back({candidate.leaf_a, candidate.face_b});
+      candidates[size] = &candidate;
+      faces[size] = {candidate.leaf_a, candidate.face_b};
+      ++size;
     }
     void RunQuickTests(const PlacedFace* faces_a, const PlacedFace* faces_b, double margin) {
-      quick.resize(candidates.size());
-      QuickTrianglesTestBatch(faces_a, faces_b, faces, margin, quick);
+      quick.resize(size);
+      QuickTrianglesTestBatch(faces_a, faces_b, std::span(faces).first(size), margin,
+                              /*edge_cross=*/false, quick);
     }
   };
 
-  // Run's lists, kept from bucket to bucket, and RunCandidates' tests.
+  // Run's lists, kept from bucket to bucket, the face tests it leaves
+  // pending (A's face by leaf, B's by id), and RunCandidates' tests.
   struct RunBuffers {
     std::vector<Entry> list_b;
     BucketBoxes boxes_b;
+    std::vector<TrianglePair> pending;
     FaceTests face_tests;
   };
 
@@ -510,7 +545,10 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     const bool small_b = nb.num_primitives <= kBucketFaces;
     if (small_a && small_b) {
       buckets.Run(na, nb, pairs);
-      if (query.first_only && pairs.size() > pairs_before) break;
+      if (query.first_only) {
+        buckets.TestPending(pairs);
+        if (pairs.size() > pairs_before) break;
+      }
     } else if (small_b || (!small_a && na.bv.size() >= nb.bv.size())) {
       stack.emplace_back(na.leftChild(), j);
       stack.emplace_back(na.rightChild(), j);
@@ -519,6 +557,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
       stack.emplace_back(i, nb.rightChild());
     }
   }
+  buckets.TestPending(pairs);
   return tests;
 }
 

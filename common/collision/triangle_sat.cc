@@ -337,15 +337,26 @@ bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& 
 }  // namespace
 
 QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal_a,
-                                     const Triangle3d& b, const Vector3d& normal_b, double margin) {
+                                     const Triangle3d& b, const Vector3d& normal_b, double margin,
+                                     bool edge_cross) {
   using Answer = QuickTriangleTest::Answer;
   const std::array<double, 3> db = PlaneDistances(b, a[0], normal_a);
-  if (BeyondPlane(db, normal_a, margin)) return {Answer::kApart, PlaneGap(db, normal_a, margin)};
+  if (BeyondPlane(db, normal_a, margin)) {
+    return {.answer = Answer::kApart, .gap_m = PlaneGap(db, normal_a, margin)};
+  }
   const std::array<double, 3> da = PlaneDistances(a, b[0], normal_b);
-  if (BeyondPlane(da, normal_b, margin)) return {Answer::kApart, PlaneGap(da, normal_b, margin)};
+  if (BeyondPlane(da, normal_b, margin)) {
+    return {.answer = Answer::kApart, .gap_m = PlaneGap(da, normal_b, margin)};
+  }
   int edge_pair = -1;
-  if (CrossingTest(a, normal_a, da, b, normal_b, db, margin, edge_pair) == Crossing::kYes) {
-    return {Answer::kMeet, 0};
+  switch (CrossingTest(a, normal_a, da, b, normal_b, db, margin, edge_pair)) {
+    case Crossing::kYes:
+      return {.answer = Answer::kMeet};
+    case Crossing::kApart:
+      if (!edge_cross) return {};
+      return {.answer = Answer::kEdgesApart, .edge_pair = static_cast<int8_t>(edge_pair)};
+    case Crossing::kUnknown:
+      return {};
   }
   return {};
 }

@@ -72,8 +72,11 @@ inline constexpr double kClearlyRelative = 1e-9;
 /// What TrianglesIntersect's first tests (each face's plane, then the fast
 /// crossing test) say of a pair, where they answer alone.
 struct QuickTriangleTest {
-  enum class Answer : uint8_t { kUnknown, kMeet, kApart };
+  enum class Answer : uint8_t { kUnknown, kMeet, kApart, kEdgesApart };
   Answer answer = Answer::kUnknown;
+  /// kEdgesApart: the edge cross that keeps them apart (PairHint's
+  /// numbering); else -1.
+  int8_t edge_pair = -1;
   /// kApart: how far beyond the margin the face's plane keeps them.
   double gap_m = 0;
 };
@@ -84,10 +87,14 @@ struct QuickTriangleTest {
 /// plane does and the fast crossing test finds a clear common point;
 /// TrianglesIntersect is true, and with a hint it leaves edge_pair as it
 /// was and sets gap_m and lever_m to 0 (no axis can separate a clear common
-/// point). kUnknown: the full test decides. The oracle of the batched test
-/// (face_test_batch.h).
+/// point). kEdgesApart, only with `edge_cross`: neither plane does, the
+/// two cross the line where the planes meet apart, and the cross of the
+/// edges that give the facing ends keeps them beyond `margin`;
+/// TrianglesIntersect is false. kUnknown: the full test decides. The
+/// oracle of the batched test (face_test_batch.h).
 QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal_a,
-                                     const Triangle3d& b, const Vector3d& normal_b, double margin);
+                                     const Triangle3d& b, const Vector3d& normal_b, double margin,
+                                     bool edge_cross);
 
 /// The same answer, for callers that test a pair again and again as it
 /// moves: the edge cross of `hint` is tried right after the face planes,

@@ -19,13 +19,19 @@ using Answer = QuickTriangleTest::Answer;
 
 bool SameBits(double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; }
 
-// What a coherent query does with a pair the quick test answers: takes its
-// answer, the hint's edge pair as it was, the gap it gives (0 for a
-// meeting) and lever 0. The full test must say the same, whatever edge
-// pair the hint held.
+// What a coherent query does with a pair the quick test answers (without
+// the edge cross): takes its answer, the hint's edge pair as it was, the
+// gap it gives (0 for a meeting) and lever 0. The full test must say the
+// same, whatever edge pair the hint held; for an edge cross, which a static
+// query takes, its answer.
 void ExpectTheFullTestAgrees(const PlacedFace& a, const PlacedFace& b, double margin,
                              const QuickTriangleTest& quick) {
   if (quick.answer == Answer::kUnknown) return;
+  const bool edges = quick.answer == Answer::kEdgesApart;
+  EXPECT_EQ(quick.edge_pair >= 0 && quick.edge_pair < 9, edges) << int{quick.edge_pair};
+  EXPECT_EQ(TrianglesIntersect(a.triangle, a.normal, b.triangle, b.normal, margin),
+            quick.answer == Answer::kMeet);
+  if (edges) return;
   for (int edge_pair = -1; edge_pair < 9; ++edge_pair) {
     PairHint hint{.edge_pair = edge_pair, .gap_m = 7, .lever_m = 7};
     EXPECT_EQ(TrianglesIntersect(a.triangle, a.normal, b.triangle, b.normal, margin, hint),
@@ -36,34 +42,43 @@ void ExpectTheFullTestAgrees(const PlacedFace& a, const PlacedFace& b, double ma
   }
 }
 
+using Answers = std::array<int, 4>;  // how many pairs got each answer
+
 // Checks the batch against the scalar test, pair by pair and bit for bit,
 // on every SIMD target built in that this machine runs (SSE2 to AVX2 or
-// AVX-512 on x86-64); returns how many pairs each answer got.
-std::array<int, 3> ExpectScalarAnswers(const std::vector<PlacedFace>& a,
-                                       const std::vector<PlacedFace>& b, double margin) {
+// AVX-512 on x86-64), with and without the edge cross; returns how many
+// pairs each answer got with it.
+Answers ExpectScalarAnswers(const std::vector<PlacedFace>& a, const std::vector<PlacedFace>& b,
+                            double margin) {
   std::vector<TrianglePair> pairs;  // pair i: a[i] and b[i]
   for (size_t i = 0; i < b.size(); ++i) pairs.push_back({static_cast<int>(i), static_cast<int>(i)});
-  std::array<int, 3> answers = {0, 0, 0};
-  std::vector<QuickTriangleTest> scalar;
-  for (size_t i = 0; i < b.size(); ++i) {
-    scalar.push_back(
-        QuickTrianglesTest(a[i].triangle, a[i].normal, b[i].triangle, b[i].normal, margin));
-    ++answers[static_cast<int>(scalar.back().answer)];
-    ExpectTheFullTestAgrees(a[i], b[i], margin, scalar.back());
-  }
-  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    hwy::SetSupportedTargetsForTest(target);
-    SCOPED_TRACE(hwy::TargetName(target));
-    std::vector<QuickTriangleTest> out(b.size(), {Answer::kUnknown, 7});
-    QuickTrianglesTestBatch(a.data(), b.data(), pairs, margin, out);
+  Answers answers = {0, 0, 0, 0};
+  for (const bool edge_cross : {false, true}) {
+    SCOPED_TRACE(edge_cross ? "with the edge cross" : "without the edge cross");
+    std::vector<QuickTriangleTest> scalar;
     for (size_t i = 0; i < b.size(); ++i) {
-      EXPECT_TRUE(out[i].answer == scalar[i].answer && SameBits(out[i].gap_m, scalar[i].gap_m))
-          << "pair " << i << " of " << b.size() << ": batch " << static_cast<int>(out[i].answer)
-          << ", " << out[i].gap_m << "; scalar " << static_cast<int>(scalar[i].answer) << ", "
-          << scalar[i].gap_m;
+      scalar.push_back(QuickTrianglesTest(a[i].triangle, a[i].normal, b[i].triangle, b[i].normal,
+                                          margin, edge_cross));
+      if (edge_cross) ++answers[static_cast<int>(scalar.back().answer)];
+      EXPECT_TRUE(edge_cross || scalar.back().answer != Answer::kEdgesApart);
+      ExpectTheFullTestAgrees(a[i], b[i], margin, scalar.back());
     }
+    for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
+      hwy::SetSupportedTargetsForTest(target);
+      SCOPED_TRACE(hwy::TargetName(target));
+      std::vector<QuickTriangleTest> out(b.size(), {Answer::kUnknown, 5, 7});
+      QuickTrianglesTestBatch(a.data(), b.data(), pairs, margin, edge_cross, out);
+      for (size_t i = 0; i < b.size(); ++i) {
+        EXPECT_TRUE(out[i].answer == scalar[i].answer && out[i].edge_pair == scalar[i].edge_pair &&
+                    SameBits(out[i].gap_m, scalar[i].gap_m))
+            << "pair " << i << " of " << b.size() << ": batch " << static_cast<int>(out[i].answer)
+            << ", " << int{out[i].edge_pair} << ", " << out[i].gap_m << "; scalar "
+            << static_cast<int>(scalar[i].answer) << ", " << int{scalar[i].edge_pair} << ", "
+            << scalar[i].gap_m;
+      }
+    }
+    hwy::SetSupportedTargetsForTest(0);
   }
-  hwy::SetSupportedTargetsForTest(0);
   return answers;
 }
 
@@ -72,15 +87,18 @@ PlacedFace RandomFace(std::mt19937& rng, double scale, const Vector3d& offset) {
 }
 
 // Random pairs of nearby faces (each answer common), every batch size
-// from 1 to 19 (every short last batch of every lane count), some sharing
-// their first face as a region's candidates do, at tiny, unit and huge
-// scales, with and without a margin.
+// from 1 to 19 (every short last batch of every lane count) and sizes
+// beyond the batch's stretch of 64 pairs, some sharing their first face
+// as a region's candidates do, at tiny, unit and huge scales, with and
+// without a margin.
 TEST(FaceTestBatchTest, RandomFacesGiveTheScalarAnswer) {
   std::mt19937 rng(31);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::array<int, 3> answers = {0, 0, 0};
+  std::vector<size_t> sizes = {63, 64, 65, 150};
+  for (size_t n = 1; n <= 19; ++n) sizes.push_back(n);
+  Answers answers = {0, 0, 0, 0};
   for (const double scale : {1e-6, 1.0, 1e4}) {
-    for (size_t n = 1; n <= 19; ++n) {
+    for (const size_t n : sizes) {
       std::vector<PlacedFace> a, b;
       for (size_t i = 0; i < n; ++i) {
         a.push_back(i % 3 == 2 ? a.back() : RandomFace(rng, scale, Vector3d::Zero()));
@@ -88,13 +106,15 @@ TEST(FaceTestBatchTest, RandomFacesGiveTheScalarAnswer) {
         b.push_back(RandomFace(rng, scale, apart * scale * Vector3d(u(rng), u(rng), u(rng))));
       }
       for (const double margin : {1e-3 * scale, 0.0}) {
-        const std::array<int, 3> got = ExpectScalarAnswers(a, b, margin);
-        for (int k = 0; k < 3; ++k) answers[k] += got[k];
+        const Answers got = ExpectScalarAnswers(a, b, margin);
+        for (int k = 0; k < 4; ++k) answers[k] += got[k];
       }
     }
   }
-  // Each answer at least a tenth of the 1,140 pairs.
-  for (int k = 0; k < 3; ++k) EXPECT_GT(answers[k], 114) << "answer " << k;
+  // Each answer but kUnknown at least a twentieth of the 3,192 pairs (the
+  // full test is left few random pairs: the grid pairs below give it
+  // more).
+  for (int k = 1; k < 4; ++k) EXPECT_GT(answers[k], 159) << "answer " << k;
 }
 
 // Grid corners make the scalar test's refusals common: coplanar faces,
@@ -102,18 +122,18 @@ TEST(FaceTestBatchTest, RandomFacesGiveTheScalarAnswer) {
 // degenerate faces (a line, a point) have no usable normal.
 TEST(FaceTestBatchTest, GridAndDegenerateFacesGiveTheScalarAnswer) {
   std::mt19937 rng(32);
-  std::array<int, 3> answers = {0, 0, 0};
+  Answers answers = {0, 0, 0, 0};
   for (int round = 0; round < 300; ++round) {
     const testing::GridPairs grid = testing::GridAndDegeneratePairs(rng);
     std::vector<PlacedFace> a, b;
     for (const Triangle3d& t : grid.a) a.push_back(PlaceFace(t));
     for (const Triangle3d& t : grid.b) b.push_back(PlaceFace(t));
     for (const double margin : {0.01, 0.0}) {
-      const std::array<int, 3> got = ExpectScalarAnswers(a, b, margin);
-      for (int k = 0; k < 3; ++k) answers[k] += got[k];
+      const Answers got = ExpectScalarAnswers(a, b, margin);
+      for (int k = 0; k < 4; ++k) answers[k] += got[k];
     }
   }
-  for (int k = 0; k < 3; ++k) EXPECT_GT(answers[k], 0) << "answer " << k;
+  for (int k = 0; k < 4; ++k) EXPECT_GT(answers[k], 0) << "answer " << k;
 }
 
 // Non-finite corners get no answer that the scalar test does not give
@@ -127,7 +147,7 @@ TEST(FaceTestBatchTest, NonFiniteCornersGiveTheScalarAnswer) {
   nan_corner[1].x() = std::nan("");
   Triangle3d infinite = above.triangle;
   infinite[2].z() = std::numeric_limits<double>::infinity();
-  const std::array<int, 3> answers = ExpectScalarAnswers(
+  const Answers answers = ExpectScalarAnswers(
       {a, a, a, a, a}, {crossing, PlaceFace(nan_corner), PlaceFace(infinite), above, crossing},
       0.01);
   EXPECT_EQ(answers[static_cast<int>(Answer::kMeet)], 2);
