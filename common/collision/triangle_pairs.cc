@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "common/collision/bucket_boxes.h"
 #include "common/collision/face_test_batch.h"
 #include "common/collision/fcl_bvh.h"
 #include "common/collision/obb_overlap.h"
@@ -179,8 +180,9 @@ class BucketTest {
   }
 
   /// Tests every face of A's node `na` against every face of B's node `nb`:
-  /// first each bucket is cut down to the faces whose boxes meet the overlap
-  /// of the two buckets' boxes, then the rest go through box tests, and
+  /// first each bucket is cut down to the faces whose boxes meet the other
+  /// bucket's box (B's first), then the rest go through box tests
+  /// (bucket_boxes.h: B's boxes against each of A's at once), and
   /// those that pass through the face test: at once when swept, left
   /// pending for TestPending when static (a region's build keeps them as
   /// candidates). A's faces are read in leaf order, their boxes from the
@@ -189,10 +191,15 @@ class BucketTest {
   template <typename Node>
   void Run(const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
     std::vector<Entry>& list_b = buffers_.list_b;
+    BucketBoxes& boxes_b = buffers_.boxes_b;
     list_b.clear();
+    boxes_b.Start(margin_);
     for (int i = nb.first_primitive; i < nb.first_primitive + nb.num_primitives; ++i) {
       const int f = ib_.leaf_faces[i];
-      if (!ib_.degenerate[f]) list_b.push_back({f, &faces_b_.Get(f)});
+      if (ib_.degenerate[f]) continue;
+      const PlacedFace& face = faces_b_.Get(f);
+      list_b.push_back({f, &face});
+      boxes_b.Add(face.lo.data(), face.hi.data());
     }
     const int first = na.first_primitive, count = na.num_primitives;
     double grow_lo[3] = {0, 0, 0}, grow_hi[3] = {0, 0, 0};
@@ -206,7 +213,7 @@ class BucketTest {
     // Meeting) does, against a box holding the faces', so rounding never
     // makes a cut stricter than that test: the pairs found are exactly
     // those of that test and the face test, as a cached query finds them.
-    double lo_a[3], hi_a[3];  // A's bucket box, swept
+    AxisBox bucket_a;  // A's bucket box, swept
     for (int d = 0; d < 3; ++d) {
       const double* a_lo = ia_.leaf_order_lo[d].data() + first;
       const double* a_hi = ia_.leaf_order_hi[d].data() + first;
@@ -215,12 +222,31 @@ class BucketTest {
         lo = std::min(lo, a_lo[k]);
         hi = std::max(hi, a_hi[k]);
       }
-      lo_a[d] = lo + grow_lo[d];
-      hi_a[d] = hi + grow_hi[d];
+      bucket_a.lo[d] = lo + grow_lo[d];
+      bucket_a.hi[d] = hi + grow_hi[d];
     }
-    double lo_b[3], hi_b[3];  // B's bucket box, of the faces kept
-    Crop(list_b, lo_a, hi_a, margin_, lo_b, hi_b);
-    if (list_b.empty()) return;
+    // B's faces cut down to those whose boxes meet A's bucket box, and the
+    // box of those.
+    uint32_t kept_b = 0;
+    boxes_b.Meeting({&bucket_a, 1}, {&kept_b, 1});
+    if (kept_b == 0) return;
+    boxes_b.Keep(kept_b);
+    double lo_b[3], hi_b[3];
+    for (int d = 0; d < 3; ++d) {
+      lo_b[d] = std::numeric_limits<double>::infinity();
+      hi_b[d] = -lo_b[d];
+    }
+    size_t kept = 0;
+    for (; kept_b != 0; kept_b &= kept_b - 1, ++kept) {
+      const Entry& entry = list_b[std::countr_zero(kept_b)];
+      list_b[kept] = entry;
+      for (int d = 0; d < 3; ++d) {
+        lo_b[d] = std::min(lo_b[d], entry.face->lo[d]);
+        hi_b[d] = std::max(hi_b[d], entry.face->hi[d]);
+      }
+    }
+    list_b.resize(kept);
+    // A's faces whose boxes meet that box, and the box of each.
     uint32_t faces_a = count == 32 ? ~uint32_t{0} : (uint32_t{1} << count) - 1;
     for (int d = 0; d < 3; ++d) {
       const double* a_lo = ia_.leaf_order_lo[d].data() + first;
@@ -234,20 +260,25 @@ class BucketTest {
       }
       faces_a &= meets;
     }
-    BucketBoxes& boxes_b = buffers_.boxes_b;
-    boxes_b.Set(list_b, margin_);
-    for (; faces_a != 0; faces_a &= faces_a - 1) {
+    std::array<AxisBox, kBucketFaces> boxes_a;
+    std::array<int, kBucketFaces> leaves_a;
+    size_t n = 0;
+    for (; faces_a != 0; faces_a &= faces_a - 1, ++n) {
       const int i = first + std::countr_zero(faces_a);
+      leaves_a[n] = i;
+      for (int d = 0; d < 3; ++d) {
+        boxes_a[n].lo[d] = ia_.leaf_order_lo[d][i] + grow_lo[d];
+        boxes_a[n].hi[d] = ia_.leaf_order_hi[d][i] + grow_hi[d];
+      }
+    }
+    std::array<uint32_t, kBucketFaces> meets_b;
+    boxes_b.Meeting(std::span(boxes_a).first(n), std::span(meets_b).first(n));
+    for (size_t q = 0; q < n; ++q) {
+      const int i = leaves_a[q];
       const int a = ia_.leaf_faces[i];
       const PlacedFace& face_a = ia_.leaf_order_faces[i];
-      double box_lo[3], box_hi[3];
-      for (int d = 0; d < 3; ++d) {
-        box_lo[d] = ia_.leaf_order_lo[d][i] + grow_lo[d];
-        box_hi[d] = ia_.leaf_order_hi[d][i] + grow_hi[d];
-      }
       const std::span<const TrianglePair> skipped = Skipped(a);
-      for (uint32_t meets = boxes_b.Meeting(box_lo, box_hi, margin_); meets != 0;
-           meets &= meets - 1) {
+      for (uint32_t meets = meets_b[q]; meets != 0; meets &= meets - 1) {
         const Entry& b = list_b[std::countr_zero(meets)];
         if (!skipped.empty() && std::ranges::binary_search(skipped, TrianglePair{a, b.id})) {
           continue;
@@ -362,37 +393,7 @@ class BucketTest {
     const PlacedFace* face;
   };
 
-  // A cut-down bucket's face boxes, coordinate by coordinate, for a scan
-  // without branches: which of them meet a box within the margin is one
-  // bit mask.
-  struct BucketBoxes {
-    std::array<double, kBucketFaces> lo[3], hi_plus_margin[3];
-    int size = 0;
-
-    void Set(const std::vector<Entry>& list, double margin) {
-      size = static_cast<int>(list.size());
-      for (int k = 0; k < size; ++k) {
-        for (int d = 0; d < 3; ++d) {
-          lo[d][k] = list[k].face->lo[d];
-          hi_plus_margin[d][k] = list[k].face->hi[d] + margin;
-        }
-      }
-    }
-
-    // Bit k: whether entry k's box meets the box [lo, hi] within the margin.
-    uint32_t Meeting(const double (&box_lo)[3], const double (&box_hi)[3], double margin) const {
-      const double hi_plus[3] = {box_hi[0] + margin, box_hi[1] + margin, box_hi[2] + margin};
-      uint32_t meets = 0;
-      for (int k = 0; k < size; ++k) {
-        const bool meet = (box_lo[0] <= hi_plus_margin[0][k]) & (lo[0][k] <= hi_plus[0]) &
-                          (box_lo[1] <= hi_plus_margin[1][k]) & (lo[1][k] <= hi_plus[1]) &
-                          (box_lo[2] <= hi_plus_margin[2][k]) & (lo[2][k] <= hi_plus[2]);
-        meets |= uint32_t{meet} << k;
-      }
-      return meets;
-    }
-  };
-  static_assert(kBucketFaces <= 32, "one bit per face of a bucket");
+  static_assert(kBucketFaces <= BucketBoxes::kCapacity, "one bit per face of a bucket");
 
   // The candidates of RunCandidates that take a face test, in order, with
   // their faces (A's by leaf, B's by id) and the quick test's answers.
@@ -457,34 +458,6 @@ class BucketTest {
     if (skip_.empty()) return {};
     const SkipRun* run = skip_runs_.Find(a);
     return run ? skip_.subspan(run->begin, run->end - run->begin) : std::span<const TrianglePair>();
-  }
-
-  // Keeps the entries whose boxes meet A's bucket box [lo_a, hi_a] within
-  // `margin`, without a branch per entry (which ones go is as good as
-  // random), and gives the box of those kept.
-  static void Crop(std::vector<Entry>& list, const double (&lo_a)[3], const double (&hi_a)[3],
-                   double margin, double (&lo)[3], double (&hi)[3]) {
-    const double hi_a_plus[3] = {hi_a[0] + margin, hi_a[1] + margin, hi_a[2] + margin};
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::numeric_limits<double>::infinity();
-      hi[d] = -lo[d];
-    }
-    size_t kept = 0;
-    for (const Entry& e : list) {
-      const PlacedFace& f = *e.face;
-      list[kept] = e;
-      const bool keep = (lo_a[0] <= f.hi[0] + margin) & (f.lo[0] <= hi_a_plus[0]) &  //
-                        (lo_a[1] <= f.hi[1] + margin) & (f.lo[1] <= hi_a_plus[1]) &  //
-                        (lo_a[2] <= f.hi[2] + margin) & (f.lo[2] <= hi_a_plus[2]);
-      kept += keep;
-    }
-    list.resize(kept);
-    for (const Entry& e : list) {
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], e.face->lo[d]);
-        hi[d] = std::max(hi[d], e.face->hi[d]);
-      }
-    }
   }
 
   // Building a region: whether either face's plane keeps the other face

@@ -1,0 +1,67 @@
+#pragma once
+// The axis-aligned boxes of a leaf bucket's faces (at most 32), coordinate
+// by coordinate, and which of them meet a box within a margin: a bit mask
+// computed several boxes at a time in the lanes of the machine's widest
+// vectors (Google Highway, the target chosen when the program runs). The
+// pair traversal's box tests between two buckets (triangle_pairs.cc).
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <span>
+
+namespace hs {
+
+/// A box: lo[d] <= x[d] <= hi[d] in each coordinate d.
+struct AxisBox {
+  double lo[3], hi[3];
+};
+
+/// Boxes to meet within a margin, each kept as its low corner and its high
+/// corner plus the margin.
+struct BucketBoxes {
+  static constexpr int kCapacity = 32;  // one bit each
+
+  /// Empties the set, for boxes to meet within `margin`.
+  void Start(double margin) {
+    margin_ = margin;
+    size_ = 0;
+  }
+  /// Appends the box of corners lo[0, 3) and hi[0, 3); at most kCapacity.
+  void Add(const double* lo, const double* hi) {
+    for (int d = 0; d < 3; ++d) {
+      lo_[d][size_] = lo[d];
+      hi_plus_margin_[d][size_] = hi[d] + margin_;
+    }
+    ++size_;
+  }
+  int size() const { return size_; }
+  /// Keeps the boxes whose bits `kept` has, in their order.
+  void Keep(uint32_t kept) {
+    int n = 0;
+    for (; kept != 0; kept &= kept - 1, ++n) {
+      const int k = std::countr_zero(kept);
+      for (int d = 0; d < 3; ++d) {
+        lo_[d][n] = lo_[d][k];
+        hi_plus_margin_[d][n] = hi_plus_margin_[d][k];
+      }
+    }
+    size_ = n;
+  }
+
+  /// For each i, bit k of out[i]: whether box k meets queries[i] within
+  /// the margin, compared exactly as
+  ///   q.lo[d] <= (hi[d][k] + margin) and lo[d][k] <= (q.hi[d] + margin)
+  /// for every d (false where any of them is NaN). `out` holds
+  /// queries.size() entries.
+  void Meeting(std::span<const AxisBox> queries, std::span<uint32_t> out) const;
+
+ private:
+  // Whole vectors are read past size_: what is there is never used.
+  alignas(64) std::array<double, kCapacity> lo_[3] = {};
+  alignas(64) std::array<double, kCapacity> hi_plus_margin_[3] = {};
+  int size_ = 0;
+  double margin_ = 0;
+};
+
+}  // namespace hs
