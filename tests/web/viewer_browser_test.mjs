@@ -499,8 +499,15 @@ async function main() {
   const addStatus = await new Promise((resolve) => add.proc.on('exit', resolve));
   check(addStatus === 0, `hapticctl objects add exited with ${addStatus}`);
   await b.waitForFunction(() => window.viewerState.tools?.stylus, null, { timeout: 5000 });
-  await b.evaluate(() => window.viewerTest.take('stylus'));
-  await b.waitForFunction(() => window.viewerState.heldTool === 'stylus', null, { timeout: 5000 });
+  const taken = await b.evaluate(() => window.viewerTest.take('stylus'));
+  // Up to 15 s: on a loaded machine the bridge's device stream takes seconds to start.
+  await b.waitForFunction(() => window.viewerState.heldTool === 'stylus', null, { timeout: 15_000 })
+    .catch(() => {});
+  const sbTake = await state(b);
+  const driveText = await b.evaluate(() => document.getElementById('drive-state')?.textContent);
+  check(sbTake?.heldTool === 'stylus',
+        `page B did not take the stylus: the take answered ${JSON.stringify(taken)}, the page ` +
+        `says ${JSON.stringify(driveText)}`);
   await Promise.all([a.evaluate(() => window.viewerTest.moveBy([0, 0, 0.002])),
                      b.evaluate(() => window.viewerTest.moveBy([0.01, 0, 0]))]);
   const toolP = (s, tool) => vec3(s?.tools?.[tool]?.device_p);
@@ -668,6 +675,15 @@ async function main() {
   let exitedAfterMs = null;
   server.proc.once('exit', () => { exitedAfterMs = Date.now() - termAt; });
   server.proc.kill('SIGTERM');
+  // Gone once it has exited: while it shuts down, the bridge may still
+  // reach it again.
+  const exited = await new Promise((resolve) => {
+    if (server.proc.exitCode !== null || server.proc.signalCode !== null) resolve(true);
+    server.proc.once('exit', () => resolve(true));
+    setTimeout(() => resolve(false), 10_000);
+  });
+  check(exited, `haptic-server did not exit within 10 s of SIGTERM (last lines: ` +
+        `${server.log.slice(-3).join(' | ')})`);
   await a.waitForFunction(() => !window.viewerState.connected, null, { timeout: 10_000 })
     .catch(() => {});
   const gone = await state(a);
