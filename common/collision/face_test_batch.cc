@@ -67,7 +67,8 @@ size_t RowOfLane(size_t lane) {
 // gathers a coordinate at a time took about as many instructions as the
 // transpose but more time, and the copy more of both: its vector loads
 // wait for the stores before them.)
-Faces LoadFaces(D d, const double* base, const int64_t* offsets, double* soa, size_t stride) {
+HWY_INLINE Faces LoadFaces(D d, const double* base, const int64_t* offsets, double* soa,
+                           size_t stride) {
   V column[12];
 #if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
   (void)soa;
@@ -338,7 +339,8 @@ V AsDouble(D d, Answer answer) { return hn::Set(d, static_cast<double>(answer));
 void PlanesAndCrossing(const PlacedFace* faces_a, const PlacedFace* faces_b,
                        const TrianglePair* pairs, size_t n, double margin, QuickTriangleTest* out) {
   const D d;
-  HWY_ALIGN double answers[hn::MaxLanes(d)], gaps[hn::MaxLanes(d)];
+  constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+  HWY_ALIGN double answers[kMaxLanes], gaps[kMaxLanes];
   ForEachBatch(
       faces_a, faces_b, pairs, n, [](size_t k) { return k; },
       [&](const Faces& a, const Faces& b, size_t first, size_t count) {
@@ -361,7 +363,8 @@ void PlanesThenCrossing(const PlacedFace* faces_a, const PlacedFace* faces_b,
                         const TrianglePair* pairs, size_t n, double margin,
                         QuickTriangleTest* out) {
   const D d;
-  HWY_ALIGN double answers[hn::MaxLanes(d)], gaps[hn::MaxLanes(d)], edge_pairs[hn::MaxLanes(d)];
+  constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+  HWY_ALIGN double answers[kMaxLanes], gaps[kMaxLanes], edge_pairs[kMaxLanes];
   constexpr size_t kStretch = 64;
   uint32_t rest[kStretch];
   for (size_t start = 0; start < n; start += kStretch) {

@@ -33,7 +33,7 @@ struct FaceAxis {
   V nx, ny, nz, norm_sq, longest_edge_sq;
 };
 
-FaceAxis FaceAxisOf(const Corners& c) {
+HWY_INLINE FaceAxis FaceAxisOf(const Corners& c) {
   V ex[3], ey[3], ez[3], len[3];
   for (int k = 0; k < 3; ++k) {
     const int next = (k + 1) % 3;
@@ -53,14 +53,14 @@ FaceAxis FaceAxisOf(const Corners& c) {
 
 // UsableAxis for a face's normal: long enough against its edges to trust.
 template <class DD>
-hn::Mask<DD> Usable(DD d, const FaceAxis& f) {
+HWY_INLINE hn::Mask<DD> Usable(DD d, const FaceAxis& f) {
   const V floor = hn::Mul(hn::Set(d, kAxisRelativeFloor * kAxisRelativeFloor),
                           hn::Mul(f.longest_edge_sq, f.longest_edge_sq));
   return hn::And(hn::Gt(f.norm_sq, floor), hn::Ne(f.norm_sq, hn::Zero(d)));
 }
 
 // Projections of a batch's corners on per-lane axes: the least and most.
-void Project(const FaceAxis& axis, const Corners& c, V& lo, V& hi) {
+HWY_INLINE void Project(const FaceAxis& axis, const Corners& c, V& lo, V& hi) {
   const V p0 = Dot(axis.nx, axis.ny, axis.nz, c.x[0], c.y[0], c.z[0]);
   const V p1 = Dot(axis.nx, axis.ny, axis.nz, c.x[1], c.y[1], c.z[1]);
   const V p2 = Dot(axis.nx, axis.ny, axis.nz, c.x[2], c.y[2], c.z[2]);
@@ -75,8 +75,8 @@ struct Intervals {
 // CutToSweep's visit for the two margins {margin, 0}, in the lanes of
 // `active`: the axis has squared length `norm_sq` and direction dot `s`;
 // a spans [a_lo, a_hi] along it, b [b_lo, b_hi].
-void Cut(D d, M active, V norm_sq, V s, V a_lo, V a_hi, V b_lo, V b_hi, double margin,
-         Intervals& r) {
+HWY_INLINE void Cut(D d, M active, V norm_sq, V s, V a_lo, V a_hi, V b_lo, V b_hi, double margin,
+                    Intervals& r) {
   const V zero = hn::Zero(d);
   const M s_zero = hn::Eq(s, zero);
   const V inverse = hn::IfThenElse(s_zero, zero, hn::Div(hn::Set(d, 1.0), s));
@@ -104,8 +104,8 @@ void Cut(D d, M active, V norm_sq, V s, V a_lo, V a_hi, V b_lo, V b_hi, double m
 
 // Loads faces[first, first + lanes) into lanes (a short last batch
 // repeats its last face).
-void Transpose(const Triangle3d* faces, size_t first, size_t count, size_t lanes, double* soa,
-               size_t stride, Corners& c, const D d) {
+HWY_INLINE void Transpose(const Triangle3d* faces, size_t first, size_t count, size_t lanes,
+                          double* soa, size_t stride, Corners& c, const D d) {
   for (size_t j = 0; j < lanes; ++j) {
     const Triangle3d& t = faces[first + std::min(j, count - 1)];
     for (int k = 0; k < 3; ++k) {

@@ -302,9 +302,9 @@ class BucketTest {
     std::vector<TrianglePair>& pending = buffers_.pending;
     if (pending.empty()) return;
     std::vector<QuickTriangleTest>& quick = buffers_.face_tests.quick;
-    quick.resize(pending.size());
+    if (quick.size() < pending.size()) quick.resize(pending.size());
     QuickTrianglesTestBatch(ia_.leaf_order_faces.data(), faces_b_.data(), pending, margin_,
-                            /*edge_cross=*/true, quick);
+                            /*edge_cross=*/true, std::span(quick).first(pending.size()));
     for (size_t k = 0; k < pending.size(); ++k) {
       const auto [i, b] = pending[k];
       bool meet = quick[k].answer == QuickTriangleTest::Answer::kMeet;
@@ -397,7 +397,7 @@ class BucketTest {
 
   // The candidates of RunCandidates that take a face test, in order, with
   // their faces (A's by leaf, B's by id) and the quick test's answers.
-  // The first `size` entries are this query's: the arrays are sized for
+  // The first `size` entries are this query's: the arrays hold at least
   // the most a region can add, so that adding is a store.
   struct FaceTests {
     std::vector<PairCache::Candidate*> candidates;
@@ -406,8 +406,10 @@ class BucketTest {
     size_t size = 0;
 
     void Start(size_t most) {
-      candidates.resize(most);
-      faces.resize(most);
+      if (candidates.size() < most) {  // only grown: shrinking would refill
+        candidates.resize(most);
+        faces.resize(most);
+      }
       size = 0;
     }
     void Add(PairCache::Candidate& candidate) {
@@ -416,9 +418,9 @@ class BucketTest {
       ++size;
     }
     void RunQuickTests(const PlacedFace* faces_a, const PlacedFace* faces_b, double margin) {
-      quick.resize(size);
+      if (quick.size() < size) quick.resize(size);
       QuickTrianglesTestBatch(faces_a, faces_b, std::span(faces).first(size), margin,
-                              /*edge_cross=*/false, quick);
+                              /*edge_cross=*/false, std::span(quick).first(size));
     }
   };
 

@@ -33,8 +33,11 @@ struct ContactContext {
 
   /// Face `f` of M, in F's frame, at the current pose.
   Triangle3d MovingTriangle(FaceId f) const;
-  /// Face `f` of F, in F's frame.
-  Triangle3d FixedTriangle(FaceId f) const;
+  /// Face `f` of F, in F's frame (inline: taken per pair on the hot path).
+  Triangle3d FixedTriangle(FaceId f) const {
+    const auto& v = fixed.face(f).vertices;
+    return {fixed.position(v[0]), fixed.position(v[1]), fixed.position(v[2])};
+  }
   /// The sum of the unit normals of the fixed faces in `pairs` (outward for
   /// a consistently oriented mesh), F's frame.
   Vector3d TouchedFixedNormals() const;

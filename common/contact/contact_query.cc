@@ -70,11 +70,6 @@ Triangle3d ContactContext::MovingTriangle(FaceId f) const {
   return {X_FM * moving.position(v[0]), X_FM * moving.position(v[1]), X_FM * moving.position(v[2])};
 }
 
-Triangle3d ContactContext::FixedTriangle(FaceId f) const {
-  const auto& v = fixed.face(f).vertices;
-  return {fixed.position(v[0]), fixed.position(v[1]), fixed.position(v[2])};
-}
-
 Vector3d ContactContext::TouchedFixedNormals() const {
   Vector3d sum = Vector3d::Zero();
   for (const TrianglePair& pair : pairs) {

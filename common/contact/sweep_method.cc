@@ -79,9 +79,11 @@ class KnownPairs {
       known_.push_back({.pair = pair, .computed = false});
     }
     if (known_.size() == old_size) return;
+    // Only grown: a shrink would refill it at the next, larger, Add.
     std::vector<SweptIntervals>& bounds = s_.bounds;
-    bounds.resize(fixed.size());
-    SweptPlaneBoundsBatch(moving, fixed, c_.direction_F, c_.tolerance_m, kAhead, bounds);
+    if (bounds.size() < fixed.size()) bounds.resize(fixed.size());
+    SweptPlaneBoundsBatch(moving, fixed, c_.direction_F, c_.tolerance_m, kAhead,
+                          std::span(bounds).first(fixed.size()));
     for (size_t i = old_size; i < known_.size(); ++i) known_[i].bounds = bounds[i - old_size];
     if (old_size > 0) {
       // Merged through a second buffer: std::inplace_merge would allocate one.
