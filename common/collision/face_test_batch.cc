@@ -283,6 +283,45 @@ HWY_INLINE M EdgesApart(D d, const Faces& a, const Faces& b, const Crossings& c,
   return hn::And(apart, hn::And(hn::Gt(axis_sq, floor_sq), separated));
 }
 
+// QuickTrianglesTest's last resort, for faces with no crossing to
+// compare (CrossTheLine's `valid` false): the first of the nine edge crosses, in ForEachAxis's order,
+// that keeps the faces beyond `margin` (EdgeCrossApart): where one does,
+// its number in `edge_pair`. Stops once every lane has one.
+HWY_INLINE M FirstEdgeCrossApart(D d, const Faces& a, const Faces& b, double margin,
+                                 V& edge_pair) {
+  const V zero = hn::Zero(d);
+  const V margin_sq = hn::Set(d, margin * margin);
+  const V floor_sq = hn::Set(d, kAxisRelativeFloor * kAxisRelativeFloor);
+  Point edge_a[3], edge_b[3];
+  V length_a[3], length_b[3];  // squared
+  for (int i = 0; i < 3; ++i) {
+    edge_a[i] = Minus(a.corner[(i + 1) % 3], a.corner[i]);
+    edge_b[i] = Minus(b.corner[(i + 1) % 3], b.corner[i]);
+    length_a[i] = Dot(edge_a[i], edge_a[i]);
+    length_b[i] = Dot(edge_b[i], edge_b[i]);
+  }
+  M found = hn::FirstN(d, 0);
+  edge_pair = hn::Set(d, -1.0);
+  for (int k = 0; k < 9 && !hn::AllTrue(d, found); ++k) {
+    const int i = k / 3, j = k % 3;
+    const Point axis = Cross(edge_a[i], edge_b[j]);
+    const V norm_sq = Dot(axis, axis);
+    const M usable = hn::And(hn::Gt(norm_sq, hn::Mul(floor_sq, hn::Mul(length_a[i], length_b[j]))),
+                             hn::Ne(norm_sq, zero));
+    // ProjectTwo: an edge's start and the corner off it, on either face.
+    const V a_start = Dot(axis, a.corner[i]), a_off = Dot(axis, a.corner[(i + 2) % 3]);
+    const V b_start = Dot(axis, b.corner[j]), b_off = Dot(axis, b.corner[(j + 2) % 3]);
+    const V gap = MaxOf(hn::Sub(MinOf(a_start, a_off), MaxOf(b_start, b_off)),
+                        hn::Sub(MinOf(b_start, b_off), MaxOf(a_start, a_off)));
+    const M separated =
+        hn::And(hn::Gt(gap, zero), hn::Gt(hn::Mul(gap, gap), hn::Mul(margin_sq, norm_sq)));
+    const M first = hn::AndNot(found, hn::And(usable, separated));
+    edge_pair = Pick(first, hn::Set(d, static_cast<double>(k)), edge_pair);
+    found = hn::Or(found, first);
+  }
+  return found;
+}
+
 // The face planes of one batch: the corners' distances from the other's
 // plane, and where and how far a plane keeps the other face beyond the
 // margin.
@@ -358,17 +397,19 @@ void PlanesAndCrossing(const PlacedFace* faces_a, const PlacedFace* faces_b,
 }
 
 // A stretch at a time, the face planes of every pair, then the crossing
-// tests, edge cross too, of those no plane keeps apart.
+// tests, edge cross too, of those no plane keeps apart, then the nine
+// edge crosses of those with no crossing to compare.
 void PlanesThenCrossing(const PlacedFace* faces_a, const PlacedFace* faces_b,
                         const TrianglePair* pairs, size_t n, double margin,
                         QuickTriangleTest* out) {
   const D d;
   constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
-  HWY_ALIGN double answers[kMaxLanes], gaps[kMaxLanes], edge_pairs[kMaxLanes];
+  HWY_ALIGN double answers[kMaxLanes], gaps[kMaxLanes], edge_pairs[kMaxLanes],
+      no_crossing[kMaxLanes];
   constexpr size_t kStretch = 64;
-  uint32_t rest[kStretch];
+  uint32_t rest[kStretch], unanswered[kStretch];
   for (size_t start = 0; start < n; start += kStretch) {
-    size_t rest_size = 0;
+    size_t rest_size = 0, unanswered_size = 0;
     ForEachBatch(
         faces_a, faces_b, pairs, std::min(kStretch, n - start), [&](size_t k) { return start + k; },
         [&](const Faces& a, const Faces& b, size_t first, size_t count) {
@@ -398,6 +439,25 @@ void PlanesThenCrossing(const PlacedFace* faces_a, const PlacedFace* faces_b,
           for (size_t j = 0; j < count; ++j) {
             out[rest[first + j]] = {.answer = static_cast<Answer>(static_cast<int>(answers[j])),
                                     .edge_pair = static_cast<int8_t>(edge_pairs[j])};
+          }
+          if (hn::AllTrue(d, c.valid)) return;  // (the short last batch's lanes repeat)
+          hn::Store(hn::IfThenZeroElse(c.valid, hn::Set(d, 1.0)), d, no_crossing);
+          for (size_t j = 0; j < count; ++j) {
+            if (no_crossing[j] != 0) unanswered[unanswered_size++] = rest[first + j];
+          }
+        });
+    ForEachBatch(
+        faces_a, faces_b, pairs, unanswered_size, [&](size_t k) { return unanswered[k]; },
+        [&](const Faces& a, const Faces& b, size_t first, size_t count) {
+          V edges;
+          const M apart = FirstEdgeCrossApart(d, a, b, margin, edges);
+          hn::Store(hn::IfThenElseZero(apart, hn::Set(d, 1.0)), d, answers);
+          hn::Store(edges, d, edge_pairs);
+          for (size_t j = 0; j < count; ++j) {
+            if (answers[j] != 0) {
+              out[unanswered[first + j]] = {.answer = Answer::kEdgesApart,
+                                            .edge_pair = static_cast<int8_t>(edge_pairs[j])};
+            }
           }
         });
   }

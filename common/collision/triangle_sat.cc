@@ -173,7 +173,9 @@ std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array
   return LineCrossing{{end_last, end_next}, edge_last, edge_next, last, lone};
 }
 
-enum class Crossing { kYes, kApart, kUnknown };
+// kNone: no crossings to compare (a face does not straddle the other's
+// plane clearly, or the planes are parallel); kUnknown: they do not decide.
+enum class Crossing { kYes, kApart, kUnknown, kNone };
 
 // Whether the edge cross of edge i of `a` and edge j of `b`, built and
 // projected by ForEachAxis's own VisitEdgeCross, separates them by more
@@ -206,6 +208,17 @@ bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, 
       });
 }
 
+// Whether the edge cross of edge i of `a` and edge j of `b`, built and
+// projected by ForEachAxis's own VisitEdgeCross, separates them by more
+// than `margin`: EdgeCrossSeparates without the hint.
+bool EdgeCrossApart(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin) {
+  const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
+  return !VisitEdgeCross(a, ea, ea.squaredNorm(), i, b, eb, eb.squaredNorm(), j,
+                         [&](const Vector3d&, double norm_sq, const Extent& pa, const Extent& pb) {
+                           return !SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin);
+                         });
+}
+
 // A fast answer for triangles that straddle each other's planes (Moller's
 // interval test): the two segments where they cut the planes' common line
 // lie inside both triangles, so a clear overlap is a common point (kYes).
@@ -227,13 +240,13 @@ Crossing CrossingTest(const Triangle3d& a, const Vector3d& na, const std::array<
   const double clear_sq = kClearlyRelative * kClearlyRelative * size_sq;
   const Vector3d line = na.cross(nb);
   const double line_sq = line.squaredNorm();
-  if (!(line_sq > 0)) return Crossing::kUnknown;
+  if (!(line_sq > 0)) return Crossing::kNone;
   const std::optional<LineCrossing> on_a =
       CrossingOnLine(a, da, clear_sq * nb.squaredNorm(), line, b[0]);
-  if (!on_a) return Crossing::kUnknown;
+  if (!on_a) return Crossing::kNone;
   const std::optional<LineCrossing> on_b =
       CrossingOnLine(b, db, clear_sq * na.squaredNorm(), line, b[0]);
-  if (!on_b) return Crossing::kUnknown;
+  if (!on_b) return Crossing::kNone;
   const double overlap =
       std::min(on_a->on_line.hi, on_b->on_line.hi) - std::max(on_a->on_line.lo, on_b->on_line.lo);
   if (overlap > 0 && overlap * overlap > clear_sq * line_sq) return Crossing::kYes;
@@ -319,7 +332,9 @@ bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& 
   if (crossing == Crossing::kApart && kLearn) {  // its gap along ForEachAxis's axis
     EdgeCrossSeparates(a, b, edge_pair / 3, edge_pair % 3, margin, *hint);
   }
-  if (crossing != Crossing::kUnknown) return crossing == Crossing::kYes;
+  if (crossing == Crossing::kYes || crossing == Crossing::kApart) {
+    return crossing == Crossing::kYes;
+  }
   const bool meet =
       ForEachAxis(a, normal_a, b, normal_b,
                   [&](const Vector3d&, double norm_sq, const Extent& ea, const Extent& eb) {
@@ -357,6 +372,18 @@ QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal
       return {.answer = Answer::kEdgesApart, .edge_pair = static_cast<int8_t>(edge_pair)};
     case Crossing::kUnknown:
       return {};
+    case Crossing::kNone:
+      break;
+  }
+  if (!edge_cross) return {};
+  // Faces with no crossing to compare (a face within the margin of the
+  // other's plane, on one side of it: lying on the other face, or beside
+  // it) are mostly kept apart by one of the nine edge crosses, the SAT's
+  // own axes.
+  for (int k = 0; k < 9; ++k) {
+    if (EdgeCrossApart(a, b, k / 3, k % 3, margin)) {
+      return {.answer = Answer::kEdgesApart, .edge_pair = static_cast<int8_t>(k)};
+    }
   }
   return {};
 }

@@ -87,11 +87,13 @@ struct QuickTriangleTest {
 /// plane does and the fast crossing test finds a clear common point;
 /// TrianglesIntersect is true, and with a hint it leaves edge_pair as it
 /// was and sets gap_m and lever_m to 0 (no axis can separate a clear common
-/// point). kEdgesApart, only with `edge_cross`: neither plane does, the
-/// two cross the line where the planes meet apart, and the cross of the
-/// edges that give the facing ends keeps them beyond `margin`;
-/// TrianglesIntersect is false. kUnknown: the full test decides. The
-/// oracle of the batched test (face_test_batch.h).
+/// point). kEdgesApart, only with `edge_cross`: neither plane does, and an
+/// edge cross keeps them beyond `margin`: where the two cross the line
+/// where the planes meet apart, the cross of the edges that give the
+/// facing ends; where a face does not straddle the other's plane clearly
+/// (or the planes are parallel), the first of the nine that does
+/// (ForEachAxis's order); TrianglesIntersect is false. kUnknown: the full test decides. The oracle of the batched test
+/// (face_test_batch.h).
 QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal_a,
                                      const Triangle3d& b, const Vector3d& normal_b, double margin,
                                      bool edge_cross);
