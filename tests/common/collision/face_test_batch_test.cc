@@ -154,6 +154,34 @@ TEST(FaceTestBatchTest, NonFiniteCornersGiveTheScalarAnswer) {
   EXPECT_GE(answers[static_cast<int>(Answer::kApart)], 1);
 }
 
+// A face standing on another's plane within the margin, beside its
+// hypotenuse, does not straddle that plane, so there is no crossing to
+// compare: an edge cross keeps them apart (its upright edge against the
+// hypotenuse, the hypotenuse's outward normal), found by the batch as by
+// the scalar test and agreed by the full test; without the edge cross the
+// full test decides.
+TEST(FaceTestBatchTest, AFaceStandingBesideAnotherIsKeptApartByAnEdgeCross) {
+  const PlacedFace floor = PlaceFace({Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)});
+  std::vector<PlacedFace> a, b;
+  for (int k = 0; k < 9; ++k) {
+    const double x = 0.6 + 0.05 * k, lift = 0.002 + 0.0005 * k;
+    a.push_back(PlaceFace(
+        {Vector3d(x, 0.8, lift), Vector3d(x + 0.1, 0.8, lift), Vector3d(x, 0.8, lift + 0.3)}));
+    b.push_back(floor);
+  }
+  const double margin = 0.01;
+  const Answers answers = ExpectScalarAnswers(a, b, margin);
+  EXPECT_EQ(answers[static_cast<int>(Answer::kEdgesApart)], 9);
+  for (const PlacedFace& face : a) {
+    EXPECT_EQ(QuickTrianglesTest(face.triangle, face.normal, floor.triangle, floor.normal, margin,
+                                 /*edge_cross=*/false)
+                  .answer,
+              Answer::kUnknown);
+    EXPECT_FALSE(
+        TrianglesIntersect(face.triangle, face.normal, floor.triangle, floor.normal, margin));
+  }
+}
+
 // The batch runs on more than one target here (at least SSE2 and the
 // scalar emulation), so that the checks above compare several lane widths.
 TEST(FaceTestBatchTest, SeveralTargetsAreChecked) {
