@@ -45,6 +45,19 @@ class CompareTest(unittest.TestCase):
         self.assertIn("Step/linked_rings/all_effects/threads:1", failed[0])
         self.assertIn("Table1/case4/sweep3d", failed[0])
 
+    def test_of_several_runs_each_benchmarks_lowest_ratio_is_judged(self):
+        # A run beyond the tolerance and one within it (the machine was busy
+        # during the first): each benchmark is as fast as its better run, so
+        # the check passes, and says how many runs it took the lowest of.
+        result = run("compare", data("record.json"), data("beyond.json"), data("within.json"))
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertIn("each the lowest of 2 runs", result.stdout)
+        self.assertNotIn("SLOWER", result.stdout)
+        # Slower in both runs: it fails, naming each, as for one run.
+        result = run("compare", data("record.json"), data("beyond.json"), data("beyond.json"))
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertIn("Table1/case4/sweep3d", result.stdout.splitlines()[-1])
+
     def test_tolerance_is_an_argument(self):
         # The beyond run's largest growth is 25 %: a 30 % tolerance passes it.
         result = run("compare", data("record.json"), data("beyond.json"), "--tolerance", "0.3")
