@@ -117,6 +117,43 @@ void PlaceLeafOrderFaces(CollisionModel::Impl& impl) {
   }
 }
 
+// The box of each node's faces' boxes (node_face_box), from the leaves
+// up: FCL numbers a node's children after it, so a reverse scan meets
+// them first, and a node's box is its children's, min and max being exact.
+void PlaceNodeFaceBoxes(CollisionModel::Impl& impl) {
+  std::visit(
+      [&impl](const auto& model) {
+        const int n = model->getNumBVs();
+        impl.node_face_box.resize(n);
+        for (int k = n - 1; k >= 0; --k) {
+          const auto& node = model->getBV(k);
+          AxisBox& box = impl.node_face_box[k];
+          for (int d = 0; d < 3; ++d) {
+            box.lo[d] = std::numeric_limits<double>::infinity();
+            box.hi[d] = -std::numeric_limits<double>::infinity();
+          }
+          if (node.isLeaf()) {
+            for (int i = node.first_primitive; i < node.first_primitive + node.num_primitives;
+                 ++i) {
+              for (int d = 0; d < 3; ++d) {
+                box.lo[d] = std::min(box.lo[d], impl.leaf_order_lo[d][i]);
+                box.hi[d] = std::max(box.hi[d], impl.leaf_order_hi[d][i]);
+              }
+            }
+            continue;
+          }
+          for (const int child : {node.leftChild(), node.rightChild()}) {
+            HS_CHECK(child > k && child < n);
+            for (int d = 0; d < 3; ++d) {
+              box.lo[d] = std::min(box.lo[d], impl.node_face_box[child].lo[d]);
+              box.hi[d] = std::max(box.hi[d], impl.node_face_box[child].hi[d]);
+            }
+          }
+        }
+      },
+      impl.bvh);
+}
+
 }  // namespace
 
 std::shared_ptr<fcl::CollisionGeometryd> CollisionModel::Impl::geometry() const {
@@ -146,6 +183,7 @@ CollisionModel::CollisionModel(const HapticObject& object, BvType type, double m
   impl_->degenerate = DegenerateFaces(object);
   impl_->leaf_faces = LeafFaces(impl_->bvh);
   PlaceLeafOrderFaces(*impl_);
+  PlaceNodeFaceBoxes(*impl_);
 }
 
 CollisionModel::~CollisionModel() = default;
@@ -173,6 +211,7 @@ bool CollisionModel::Sync(const HapticObject& object) {
   impl_->degenerate = DegenerateFaces(object);
   PlaceCentre(object, *impl_);
   PlaceLeafOrderFaces(*impl_);
+  PlaceNodeFaceBoxes(*impl_);
   impl_->geometry_version = object.geometry_version();
   return true;
 }

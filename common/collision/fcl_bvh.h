@@ -18,6 +18,7 @@
 #include <variant>
 #include <vector>
 
+#include "common/collision/bucket_boxes.h"
 #include "common/collision/collision_model.h"
 #include "common/collision/placed_faces.h"
 #include "common/collision/triangle_sat.h"
@@ -59,6 +60,10 @@ struct CollisionModel::Impl {
   /// Their boxes coordinate by coordinate, for a bucket's branch-free scan:
   /// lo[d][i], hi[d][i]; a degenerate face's box is empty, so never met.
   std::array<std::vector<double>, 3> leaf_order_lo, leaf_order_hi;
+  /// Per node of the hierarchy (FCL's numbering): the box of its faces'
+  /// boxes above, exactly their least and greatest coordinates (empty
+  /// when all are degenerate). A pair query's leaf buckets start from it.
+  std::vector<AxisBox> node_face_box;
 
   /// The hierarchy as FCL's generic geometry, for the broad phase.
   std::shared_ptr<fcl::CollisionGeometryd> geometry() const;

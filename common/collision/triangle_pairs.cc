@@ -179,9 +179,10 @@ class BucketTest {
     }
   }
 
-  /// Tests every face of A's node `na` against every face of B's node `nb`:
-  /// first each bucket is cut down to the faces whose boxes meet the other
-  /// bucket's box (B's first), then the rest go through box tests
+  /// Tests every face of A's node `na` (number `node_a` in A's hierarchy)
+  /// against every face of B's node `nb`: first each bucket is cut down to
+  /// the faces whose boxes meet the other bucket's box (B's first; A's
+  /// from node_face_box), then the rest go through box tests
   /// (bucket_boxes.h: B's boxes against each of A's at once), and
   /// those that pass through the face test: at once when swept, left
   /// pending for TestPending when static (a region's build keeps them as
@@ -189,7 +190,7 @@ class BucketTest {
   /// model's arrays (swept: grown by the sweep, which moves every face
   /// alike).
   template <typename Node>
-  void Run(const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
+  void Run(int node_a, const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
     std::vector<Entry>& list_b = buffers_.list_b;
     BucketBoxes& boxes_b = buffers_.boxes_b;
     list_b.clear();
@@ -213,17 +214,10 @@ class BucketTest {
     // Meeting) does, against a box holding the faces', so rounding never
     // makes a cut stricter than that test: the pairs found are exactly
     // those of that test and the face test, as a cached query finds them.
-    AxisBox bucket_a;  // A's bucket box, swept
+    AxisBox bucket_a = ia_.node_face_box[node_a];  // A's bucket box, swept
     for (int d = 0; d < 3; ++d) {
-      const double* a_lo = ia_.leaf_order_lo[d].data() + first;
-      const double* a_hi = ia_.leaf_order_hi[d].data() + first;
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (int k = 0; k < count; ++k) {
-        lo = std::min(lo, a_lo[k]);
-        hi = std::max(hi, a_hi[k]);
-      }
-      bucket_a.lo[d] = lo + grow_lo[d];
-      bucket_a.hi[d] = hi + grow_hi[d];
+      bucket_a.lo[d] += grow_lo[d];
+      bucket_a.hi[d] += grow_hi[d];
     }
     // B's faces cut down to those whose boxes meet A's bucket box, and the
     // box of those.
@@ -519,7 +513,7 @@ int64_t Traverse(const fcl::BVHModel<BV>& ma, const CollisionModel::Impl& ia,
     const bool small_a = na.num_primitives <= kBucketFaces;
     const bool small_b = nb.num_primitives <= kBucketFaces;
     if (small_a && small_b) {
-      buckets.Run(na, nb, pairs);
+      buckets.Run(i, na, nb, pairs);
       if (query.first_only) {
         buckets.TestPending(pairs);
         if (pairs.size() > pairs_before) break;

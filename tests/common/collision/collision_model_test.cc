@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <set>
@@ -169,6 +170,49 @@ TEST(CollisionModelSyncTest, DegenerateFacesAreMarkedAndNeverMet) {
       }
     }
   }
+}
+
+// Each node's face box is exactly the least and greatest coordinates of
+// its faces' leaf-order boxes (brute force over the node's faces), for
+// every kind of volume, on a mesh with a degenerate face (whose empty box
+// adds nothing), and again after a vertex moves.
+void ExpectNodeFaceBoxesHoldExactlyTheirFaces(const CollisionModel& model) {
+  const CollisionModel::Impl& impl = model.impl();
+  std::visit(
+      [&](const auto& bvh) {
+        ASSERT_EQ(impl.node_face_box.size(), static_cast<size_t>(bvh->getNumBVs()));
+        for (int n = 0; n < bvh->getNumBVs(); ++n) {
+          const auto& node = bvh->getBV(n);
+          for (int d = 0; d < 3; ++d) {
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (int i = node.first_primitive; i < node.first_primitive + node.num_primitives;
+                 ++i) {
+              lo = std::min(lo, impl.leaf_order_lo[d][i]);
+              hi = std::max(hi, impl.leaf_order_hi[d][i]);
+            }
+            EXPECT_EQ(impl.node_face_box[n].lo[d], lo) << "node " << n << ", axis " << d;
+            EXPECT_EQ(impl.node_face_box[n].hi[d], hi) << "node " << n << ", axis " << d;
+          }
+        }
+      },
+      impl.bvh);
+}
+
+TEST_P(CollisionModelTest, NodeFaceBoxesHoldExactlyTheirFaces) {
+  MeshInput mesh = MakeTorus(1.0, 0.3, 16, 8);
+  const VertexId first = static_cast<VertexId>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), {{2, 0, 0}, {3, 0, 0}, {4, 0, 0}});
+  mesh.faces.push_back(FaceInput{{first, first + 1, first + 2}, 0, kNoPolygon});
+  HapticObject object = *HapticObject::Create("torus and sliver", std::move(mesh));
+  CollisionModel model(object, GetParam(), kMargin);
+  ExpectNodeFaceBoxesHoldExactlyTheirFaces(model);
+  ASSERT_TRUE(
+      object.MoveVertices(std::vector<VertexId>{0}, std::vector<Vector3d>{Vector3d(2, 1, 0.5)})
+          .ok());
+  ASSERT_TRUE(model.Sync(object));
+  ExpectNodeFaceBoxesHoldExactlyTheirFaces(model);
+  // The root reaches the moved vertex, not the sliver's far end (x = 4).
+  EXPECT_EQ(model.impl().node_face_box[0].hi[0], 2);
 }
 
 // Every model gets an id of its own, kept when it is moved.
