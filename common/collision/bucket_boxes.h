@@ -36,17 +36,19 @@ struct BucketBoxes {
     ++size_;
   }
   int size() const { return size_; }
-  /// Keeps the boxes whose bits `kept` has, in their order.
-  void Keep(uint32_t kept) {
+  /// Becomes the boxes of `from` (this set itself, or another) whose bits
+  /// `kept` has, in their order, with its margin.
+  void Keep(const BucketBoxes& from, uint32_t kept) {
     int n = 0;
     for (; kept != 0; kept &= kept - 1, ++n) {
       const int k = std::countr_zero(kept);
       for (int d = 0; d < 3; ++d) {
-        lo_[d][n] = lo_[d][k];
-        hi_plus_margin_[d][n] = hi_plus_margin_[d][k];
+        lo_[d][n] = from.lo_[d][k];
+        hi_plus_margin_[d][n] = from.hi_plus_margin_[d][k];
       }
     }
     size_ = n;
+    margin_ = from.margin_;
   }
 
   /// For each i, bit k of out[i]: whether box k meets queries[i] within

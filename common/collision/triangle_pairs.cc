@@ -191,17 +191,9 @@ class BucketTest {
   /// alike).
   template <typename Node>
   void Run(int node_a, const Node& na, const Node& nb, std::vector<TrianglePair>& pairs) const {
+    const BucketOfB& all_b = PlacedBucketOfB(nb);
     std::vector<Entry>& list_b = buffers_.list_b;
     BucketBoxes& boxes_b = buffers_.boxes_b;
-    list_b.clear();
-    boxes_b.Start(margin_);
-    for (int i = nb.first_primitive; i < nb.first_primitive + nb.num_primitives; ++i) {
-      const int f = ib_.leaf_faces[i];
-      if (ib_.degenerate[f]) continue;
-      const PlacedFace& face = faces_b_.Get(f);
-      list_b.push_back({f, &face});
-      boxes_b.Add(face.lo.data(), face.hi.data());
-    }
     const int first = na.first_primitive, count = na.num_primitives;
     double grow_lo[3] = {0, 0, 0}, grow_hi[3] = {0, 0, 0};
     if (sweep_A_) {
@@ -222,24 +214,23 @@ class BucketTest {
     // B's faces cut down to those whose boxes meet A's bucket box, and the
     // box of those.
     uint32_t kept_b = 0;
-    boxes_b.Meeting({&bucket_a, 1}, {&kept_b, 1});
+    all_b.boxes.Meeting({&bucket_a, 1}, {&kept_b, 1});
     if (kept_b == 0) return;
-    boxes_b.Keep(kept_b);
+    boxes_b.Keep(all_b.boxes, kept_b);
     double lo_b[3], hi_b[3];
     for (int d = 0; d < 3; ++d) {
       lo_b[d] = std::numeric_limits<double>::infinity();
       hi_b[d] = -lo_b[d];
     }
-    size_t kept = 0;
-    for (; kept_b != 0; kept_b &= kept_b - 1, ++kept) {
-      const Entry& entry = list_b[std::countr_zero(kept_b)];
-      list_b[kept] = entry;
+    list_b.clear();
+    for (; kept_b != 0; kept_b &= kept_b - 1) {
+      const Entry& entry = all_b.entries[std::countr_zero(kept_b)];
+      list_b.push_back(entry);
       for (int d = 0; d < 3; ++d) {
         lo_b[d] = std::min(lo_b[d], entry.face->lo[d]);
         hi_b[d] = std::max(hi_b[d], entry.face->hi[d]);
       }
     }
-    list_b.resize(kept);
     // A's faces whose boxes meet that box, and the box of each.
     uint32_t faces_a = count == 32 ? ~uint32_t{0} : (uint32_t{1} << count) - 1;
     for (int d = 0; d < 3; ++d) {
@@ -418,14 +409,42 @@ class BucketTest {
     }
   };
 
+  // A bucket of B's faces placed in A's frame, the degenerate left out,
+  // with their boxes.
+  struct BucketOfB {
+    std::vector<Entry> entries;
+    BucketBoxes boxes;
+  };
+
   // Run's lists, kept from bucket to bucket, the face tests it leaves
   // pending (A's face by leaf, B's by id), and RunCandidates' tests.
   struct RunBuffers {
+    BucketOfB all_b;  // of B's node last met in this query (all_b_node_)
     std::vector<Entry> list_b;
     BucketBoxes boxes_b;
     std::vector<TrianglePair> pending;
     FaceTests face_tests;
   };
+
+  // B's node `nb` placed (RunBuffers::all_b): again only when the last
+  // Run met another node of B. A traversal descending A's hierarchy meets
+  // one node of B in many Runs in a row.
+  template <typename Node>
+  const BucketOfB& PlacedBucketOfB(const Node& nb) const {
+    BucketOfB& all_b = buffers_.all_b;
+    if (all_b_node_ == &nb) return all_b;
+    all_b_node_ = &nb;
+    all_b.entries.clear();
+    all_b.boxes.Start(margin_);
+    for (int i = nb.first_primitive; i < nb.first_primitive + nb.num_primitives; ++i) {
+      const int f = ib_.leaf_faces[i];
+      if (ib_.degenerate[f]) continue;
+      const PlacedFace& face = faces_b_.Get(f);
+      all_b.entries.push_back({f, &face});
+      all_b.boxes.Add(face.lo.data(), face.hi.data());
+    }
+    return all_b;
+  }
 
   // How far faces `a` of A and `b` of B move per radian of turn.
   double Reach(int a, int b) const { return std::max(ia_.face_reach[a], ib_.face_reach[b]); }
@@ -474,6 +493,8 @@ class BucketTest {
   PlacedFaces& faces_b_;
   IdMemo<SkipRun>& skip_runs_;
   RunBuffers& buffers_;
+  // B's node whose faces buffers_.all_b holds in this query, or null.
+  mutable const void* all_b_node_ = nullptr;
 };
 
 // FCL's traversal nodes dispatch every test through virtual calls and, for

@@ -101,7 +101,7 @@ TEST(BucketBoxesTest, KeepLeavesTheBoxesGivenInOrder) {
     bucket.Add(boxes.back().lo, boxes.back().hi);
   }
   const uint32_t kept = 0x8421f00du;
-  bucket.Keep(kept);
+  bucket.Keep(bucket, kept);
   std::vector<AxisBox> kept_boxes;
   for (int k = 0; k < BucketBoxes::kCapacity; ++k) {
     if ((kept >> k) & 1) kept_boxes.push_back(boxes[k]);
