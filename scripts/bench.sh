@@ -65,4 +65,3 @@ python3 tests/bench/bench_ratios.py compare docs/benchmarks "$first" && exit
 echo "A second run, to tell slower code from a busy machine:"
 second="$(run_both "$out/2" "$out/2")"
 python3 tests/bench/bench_ratios.py compare docs/benchmarks "$first" "$second"
-

@@ -5,9 +5,11 @@
 // vectors (Google Highway, the target chosen when the program runs). The
 // pair traversal's box tests between two buckets (triangle_pairs.cc).
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <limits>
 #include <span>
 
 namespace hs {
@@ -15,6 +17,21 @@ namespace hs {
 /// A box: lo[d] <= x[d] <= hi[d] in each coordinate d.
 struct AxisBox {
   double lo[3], hi[3];
+
+  /// The box that holds nothing: Include grows it to exactly the box of
+  /// the boxes it is given.
+  static AxisBox Empty() {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    return {{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
+  }
+  /// Grows to hold the box of corners box_lo[0, 3) and box_hi[0, 3)
+  /// (std::min and std::max: exact).
+  void Include(const double* box_lo, const double* box_hi) {
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], box_lo[d]);
+      hi[d] = std::max(hi[d], box_hi[d]);
+    }
+  }
 };
 
 /// Boxes to meet within a margin, each kept as its low corner and its high

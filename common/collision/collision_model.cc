@@ -128,26 +128,21 @@ void PlaceNodeFaceBoxes(CollisionModel::Impl& impl) {
         for (int k = n - 1; k >= 0; --k) {
           const auto& node = model->getBV(k);
           AxisBox& box = impl.node_face_box[k];
-          for (int d = 0; d < 3; ++d) {
-            box.lo[d] = std::numeric_limits<double>::infinity();
-            box.hi[d] = -std::numeric_limits<double>::infinity();
-          }
+          box = AxisBox::Empty();
           if (node.isLeaf()) {
             for (int i = node.first_primitive; i < node.first_primitive + node.num_primitives;
                  ++i) {
-              for (int d = 0; d < 3; ++d) {
-                box.lo[d] = std::min(box.lo[d], impl.leaf_order_lo[d][i]);
-                box.hi[d] = std::max(box.hi[d], impl.leaf_order_hi[d][i]);
-              }
+              const double lo[3] = {impl.leaf_order_lo[0][i], impl.leaf_order_lo[1][i],
+                                    impl.leaf_order_lo[2][i]};
+              const double hi[3] = {impl.leaf_order_hi[0][i], impl.leaf_order_hi[1][i],
+                                    impl.leaf_order_hi[2][i]};
+              box.Include(lo, hi);
             }
             continue;
           }
           for (const int child : {node.leftChild(), node.rightChild()}) {
             HS_CHECK(child > k && child < n);
-            for (int d = 0; d < 3; ++d) {
-              box.lo[d] = std::min(box.lo[d], impl.node_face_box[child].lo[d]);
-              box.hi[d] = std::max(box.hi[d], impl.node_face_box[child].hi[d]);
-            }
+            box.Include(impl.node_face_box[child].lo, impl.node_face_box[child].hi);
           }
         }
       },

@@ -284,11 +284,11 @@ HWY_INLINE M EdgesApart(D d, const Faces& a, const Faces& b, const Crossings& c,
 }
 
 // QuickTrianglesTest's last resort, for faces with no crossing to
-// compare (CrossTheLine's `valid` false): the first of the nine edge crosses, in ForEachAxis's order,
-// that keeps the faces beyond `margin` (EdgeCrossApart): where one does,
-// its number in `edge_pair`. Stops once every lane has one.
-HWY_INLINE M FirstEdgeCrossApart(D d, const Faces& a, const Faces& b, double margin,
-                                 V& edge_pair) {
+// compare (CrossTheLine's `valid` false): the first of the nine edge
+// crosses, in ForEachAxis's order, that keeps the faces beyond `margin`
+// (EdgeCrossSeparates): where one does, its number in `edge_pair`. Stops once
+// every lane has one.
+HWY_INLINE M FirstEdgeCrossApart(D d, const Faces& a, const Faces& b, double margin, V& edge_pair) {
   const V zero = hn::Zero(d);
   const V margin_sq = hn::Set(d, margin * margin);
   const V floor_sq = hn::Set(d, kAxisRelativeFloor * kAxisRelativeFloor);

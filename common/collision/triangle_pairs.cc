@@ -201,9 +201,6 @@ class BucketTest {
     std::vector<Entry>& list_b = buffers_.list_b;
     BucketBoxes& boxes_b = buffers_.boxes_b;
     const int first = na.first_primitive, count = na.num_primitives;
-    // Local copies: the compiler keeps them in registers through the scans.
-    const double grow_lo[3] = {grow_lo_[0], grow_lo_[1], grow_lo_[2]};
-    const double grow_hi[3] = {grow_hi_[0], grow_hi_[1], grow_hi_[2]};
     // Every cut below compares as the face boxes' own test (BucketBoxes::
     // Meeting) does, against a box holding the faces', so rounding never
     // makes a cut stricter than that test: the pairs found are exactly
@@ -215,30 +212,23 @@ class BucketTest {
     all_b.boxes.Meeting({&bucket_a, 1}, {&kept_b, 1});
     if (kept_b == 0) return;
     boxes_b.Keep(all_b.boxes, kept_b);
-    double lo_b[3], hi_b[3];
-    for (int d = 0; d < 3; ++d) {
-      lo_b[d] = std::numeric_limits<double>::infinity();
-      hi_b[d] = -lo_b[d];
-    }
+    AxisBox kept_box_b = AxisBox::Empty();
     list_b.clear();
     for (; kept_b != 0; kept_b &= kept_b - 1) {
       const Entry& entry = all_b.entries[std::countr_zero(kept_b)];
       list_b.push_back(entry);
-      for (int d = 0; d < 3; ++d) {
-        lo_b[d] = std::min(lo_b[d], entry.face->lo[d]);
-        hi_b[d] = std::max(hi_b[d], entry.face->hi[d]);
-      }
+      kept_box_b.Include(entry.face->lo.data(), entry.face->hi.data());
     }
     // A's faces whose boxes meet that box, and the box of each.
     uint32_t faces_a = count == 32 ? ~uint32_t{0} : (uint32_t{1} << count) - 1;
     for (int d = 0; d < 3; ++d) {
       const double* a_lo = ia_.leaf_order_lo[d].data() + first;
       const double* a_hi = ia_.leaf_order_hi[d].data() + first;
-      const double hi_b_plus = hi_b[d] + margin_;
+      const double hi_b_plus = kept_box_b.hi[d] + margin_;
       uint32_t meets = 0;
       for (int k = 0; k < count; ++k) {
-        const bool meet =
-            (a_lo[k] + grow_lo[d] <= hi_b_plus) & (lo_b[d] <= a_hi[k] + grow_hi[d] + margin_);
+        const bool meet = (a_lo[k] + grow_lo_[d] <= hi_b_plus) &
+                          (kept_box_b.lo[d] <= a_hi[k] + grow_hi_[d] + margin_);
         meets |= uint32_t{meet} << k;
       }
       faces_a &= meets;
@@ -250,8 +240,8 @@ class BucketTest {
       const int i = first + std::countr_zero(faces_a);
       leaves_a[n] = i;
       for (int d = 0; d < 3; ++d) {
-        boxes_a[n].lo[d] = ia_.leaf_order_lo[d][i] + grow_lo[d];
-        boxes_a[n].hi[d] = ia_.leaf_order_hi[d][i] + grow_hi[d];
+        boxes_a[n].lo[d] = ia_.leaf_order_lo[d][i] + grow_lo_[d];
+        boxes_a[n].hi[d] = ia_.leaf_order_hi[d][i] + grow_hi_[d];
       }
     }
     std::array<uint32_t, kBucketFaces> meets_b;
@@ -293,13 +283,9 @@ class BucketTest {
     if (all_b_node_ != &nb) return false;
     BucketOfB& all_b = buffers_.all_b;
     if (!all_b.has_box) {
-      for (int d = 0; d < 3; ++d) {
-        all_b.box.lo[d] = std::numeric_limits<double>::infinity();
-        all_b.box.hi[d] = -std::numeric_limits<double>::infinity();
-        for (const Entry& entry : all_b.entries) {
-          all_b.box.lo[d] = std::min(all_b.box.lo[d], entry.face->lo[d]);
-          all_b.box.hi[d] = std::max(all_b.box.hi[d], entry.face->hi[d]);
-        }
+      all_b.box = AxisBox::Empty();
+      for (const Entry& entry : all_b.entries) {
+        all_b.box.Include(entry.face->lo.data(), entry.face->hi.data());
       }
       all_b.has_box = true;
     }

@@ -208,17 +208,6 @@ bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, 
       });
 }
 
-// Whether the edge cross of edge i of `a` and edge j of `b`, built and
-// projected by ForEachAxis's own VisitEdgeCross, separates them by more
-// than `margin`: EdgeCrossSeparates without the hint.
-bool EdgeCrossApart(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin) {
-  const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
-  return !VisitEdgeCross(a, ea, ea.squaredNorm(), i, b, eb, eb.squaredNorm(), j,
-                         [&](const Vector3d&, double norm_sq, const Extent& pa, const Extent& pb) {
-                           return !SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin);
-                         });
-}
-
 // A fast answer for triangles that straddle each other's planes (Moller's
 // interval test): the two segments where they cut the planes' common line
 // lie inside both triangles, so a clear overlap is a common point (kYes).
@@ -380,8 +369,9 @@ QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal
   // other's plane, on one side of it: lying on the other face, or beside
   // it) are mostly kept apart by one of the nine edge crosses, the SAT's
   // own axes.
+  PairHint unused;
   for (int k = 0; k < 9; ++k) {
-    if (EdgeCrossApart(a, b, k / 3, k % 3, margin)) {
+    if (EdgeCrossSeparates(a, b, k / 3, k % 3, margin, unused)) {
       return {.answer = Answer::kEdgesApart, .edge_pair = static_cast<int8_t>(k)};
     }
   }

@@ -92,8 +92,8 @@ struct QuickTriangleTest {
 /// where the planes meet apart, the cross of the edges that give the
 /// facing ends; where a face does not straddle the other's plane clearly
 /// (or the planes are parallel), the first of the nine that does
-/// (ForEachAxis's order); TrianglesIntersect is false. kUnknown: the full test decides. The oracle of the batched test
-/// (face_test_batch.h).
+/// (ForEachAxis's order); TrianglesIntersect is false. kUnknown: the full
+/// test decides. The oracle of the batched test (face_test_batch.h).
 QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal_a,
                                      const Triangle3d& b, const Vector3d& normal_b, double margin,
                                      bool edge_cross);
