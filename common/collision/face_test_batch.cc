@@ -5,7 +5,8 @@
 // (the build compiles this file with -ffp-contract=off), std::min and
 // std::max as their comparisons, the scalar's branches and corner choices
 // as lane masks (scalar_order-inl.h, shared with plane_bounds_batch.cc).
-// The faces are copied from the callers' arrays into lanes.
+// The faces are loaded from the callers' arrays into lanes
+// (lane_rows-inl.h).
 
 #include "common/collision/face_test_batch.h"
 
@@ -18,6 +19,7 @@
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 // After highway.h: compiled for each target.
+#include "common/collision/lane_rows-inl.h"
 #include "common/collision/scalar_order-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -28,95 +30,21 @@ namespace HWY_NAMESPACE {
 constexpr int64_t kFaceDoubles = sizeof(PlacedFace) / sizeof(double);
 static_assert(sizeof(PlacedFace) == 18 * sizeof(double), "a PlacedFace is 18 packed doubles");
 
-struct Point {
-  V x, y, z;
-};
 // The faces of one batch, a lane each: corners and TriangleNormal.
 struct Faces {
   Point corner[3];
   Point normal;
 };
 
-Point Minus(const Point& p, const Point& q) {
-  return {hn::Sub(p.x, q.x), hn::Sub(p.y, q.y), hn::Sub(p.z, q.z)};
-}
-V Dot(const Point& p, const Point& q) { return Dot(p.x, p.y, p.z, q.x, q.y, q.z); }
-Point Cross(const Point& p, const Point& q) {
-  return {hn::Sub(hn::Mul(p.y, q.z), hn::Mul(p.z, q.y)),
-          hn::Sub(hn::Mul(p.z, q.x), hn::Mul(p.x, q.z)),
-          hn::Sub(hn::Mul(p.x, q.y), hn::Mul(p.y, q.x))};
-}
 V Pick(M m, V yes, V no) { return hn::IfThenElse(m, yes, no); }
 
-// Which of LoadFaces' `offsets` lands in lane `lane`: its own, but on
-// AVX3, whose block shuffles leave rows 2-3 and 4-5 swapped.
-size_t RowOfLane(size_t lane) {
-#if HWY_TARGET == HWY_AVX3
-  constexpr size_t kRow[8] = {0, 1, 4, 5, 2, 3, 6, 7};
-  return kRow[lane];
-#else
-  return lane;
-#endif
-}
-
 // Loads the faces at `offsets` (in doubles from `base`), face
-// `offsets[RowOfLane(j)]` in lane j. On AVX2 and AVX3, the faces' corners
-// and normals (12 doubles each) are loaded in rows of four and transposed
-// in registers; elsewhere they are copied through `soa` (12 rows of
-// `stride`) a double at a time. (On this project's machine, an AMD EPYC,
-// gathers a coordinate at a time took about as many instructions as the
-// transpose but more time, and the copy more of both: its vector loads
-// wait for the stores before them.)
+// `offsets[RowOfLane(j)]` in lane j: their corners and normals, the first
+// 12 doubles (lane_rows-inl.h).
 HWY_INLINE Faces LoadFaces(D d, const double* base, const int64_t* offsets, double* soa,
                            size_t stride) {
   V column[12];
-#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
-  (void)soa;
-  (void)stride;
-  for (int m = 0; m < 3; ++m) {
-    // Row j: doubles 4m to 4m + 3 of face j (AVX2), of faces j and j + 4
-    // in the two halves (AVX3).
-    V row[4];
-#if HWY_TARGET == HWY_AVX2
-    for (int j = 0; j < 4; ++j) row[j] = hn::LoadU(d, base + offsets[j] + 4 * m);
-#else
-    const hn::Half<D> half;
-    for (int j = 0; j < 4; ++j) {
-      row[j] = hn::Combine(d, hn::LoadU(half, base + offsets[j + 4] + 4 * m),
-                           hn::LoadU(half, base + offsets[j] + 4 * m));
-    }
-#endif
-    // t0 = (r0[0] r1[0] r0[2] r1[2]), t1 = (r0[1] r1[1] r0[3] r1[3]); t2, t3
-    // of r2 and r3 (in each half, on AVX3); then each column k gathers
-    // element k of the rows.
-    const V t0 = hn::InterleaveLower(d, row[0], row[1]);
-    const V t1 = hn::InterleaveUpper(d, row[0], row[1]);
-    const V t2 = hn::InterleaveLower(d, row[2], row[3]);
-    const V t3 = hn::InterleaveUpper(d, row[2], row[3]);
-#if HWY_TARGET == HWY_AVX2
-    column[4 * m] = hn::ConcatLowerLower(d, t2, t0);
-    column[4 * m + 1] = hn::ConcatLowerLower(d, t3, t1);
-    column[4 * m + 2] = hn::ConcatUpperUpper(d, t2, t0);
-    column[4 * m + 3] = hn::ConcatUpperUpper(d, t3, t1);
-#else
-    // 128-bit blocks 0 and 2 of t0, then of t2 (rows 0 1 4 5 2 3 6 7); 1
-    // and 3 for the odd elements. Highway 1.0 has no such shuffle of two
-    // vectors' blocks.
-    constexpr int kEven = _MM_SHUFFLE(2, 0, 2, 0), kOdd = _MM_SHUFFLE(3, 1, 3, 1);
-    column[4 * m] = V{_mm512_shuffle_f64x2(t0.raw, t2.raw, kEven)};
-    column[4 * m + 1] = V{_mm512_shuffle_f64x2(t1.raw, t3.raw, kEven)};
-    column[4 * m + 2] = V{_mm512_shuffle_f64x2(t0.raw, t2.raw, kOdd)};
-    column[4 * m + 3] = V{_mm512_shuffle_f64x2(t1.raw, t3.raw, kOdd)};
-#endif
-  }
-#else
-  const size_t lanes = hn::Lanes(d);
-  for (size_t j = 0; j < lanes; ++j) {
-    const double* face = base + offsets[j];
-    for (int k = 0; k < 12; ++k) soa[k * stride + j] = face[k];
-  }
-  for (int k = 0; k < 12; ++k) column[k] = hn::Load(d, soa + k * stride);
-#endif
+  LoadColumns<3>(d, base, offsets, soa, stride, column);
   Faces f;
   for (int k = 0; k < 4; ++k) {
     Point& p = k < 3 ? f.corner[k] : f.normal;
@@ -322,6 +250,68 @@ HWY_INLINE M FirstEdgeCrossApart(D d, const Faces& a, const Faces& b, double mar
   return found;
 }
 
+// EdgeCrossSeparates of the edge cross `edge_pair` (3 i + j, lane by
+// lane): where it keeps the faces beyond `margin`, and its gap and lever
+// there (0 elsewhere).
+HWY_INLINE M HintedEdgeCross(D d, const Faces& a, const Faces& b, V edge_pair, double margin,
+                             V& gap_m, V& lever_m) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), two = hn::Set(d, 2.0);
+  // i = edge_pair / 3 and j = edge_pair % 3 as masks; the edge of each
+  // face, its start and the corner off it.
+  const M i0 = hn::Lt(edge_pair, hn::Set(d, 3.0));
+  const M i1 = hn::AndNot(i0, hn::Lt(edge_pair, hn::Set(d, 6.0)));
+  const V j = hn::Sub(edge_pair, hn::Mul(hn::Set(d, 3.0), Pick(i0, zero, Pick(i1, one, two))));
+  const M j0 = hn::Eq(j, zero), j1 = hn::Eq(j, one);
+  const auto corner = [&](const Faces& t, M is0, M is1, int k) {
+    const Point& p0 = t.corner[k % 3];
+    const Point& p1 = t.corner[(k + 1) % 3];
+    const Point& p2 = t.corner[(k + 2) % 3];
+    return Point{Pick(is0, p0.x, Pick(is1, p1.x, p2.x)), Pick(is0, p0.y, Pick(is1, p1.y, p2.y)),
+                 Pick(is0, p0.z, Pick(is1, p1.z, p2.z))};
+  };
+  const Point a_start = corner(a, i0, i1, 0), a_end = corner(a, i0, i1, 1),
+              a_off = corner(a, i0, i1, 2);
+  const Point b_start = corner(b, j0, j1, 0), b_end = corner(b, j0, j1, 1),
+              b_off = corner(b, j0, j1, 2);
+  const Point ea = Minus(a_end, a_start), eb = Minus(b_end, b_start);
+  const V la = Dot(ea, ea), lb = Dot(eb, eb);
+  const Point axis = Cross(ea, eb);
+  const V norm_sq = Dot(axis, axis);
+  const V floor2 = hn::Set(d, kAxisRelativeFloor * kAxisRelativeFloor);
+  const M usable =
+      hn::And(hn::Gt(norm_sq, hn::Mul(floor2, hn::Mul(la, lb))), hn::Ne(norm_sq, zero));
+  // ProjectTwo of each, and SeparatedAlong.
+  const V a_at = Dot(axis, a_start), a_at_off = Dot(axis, a_off);
+  const V b_at = Dot(axis, b_start), b_at_off = Dot(axis, b_off);
+  const V a_lo = MinOf(a_at, a_at_off), a_hi = MaxOf(a_at, a_at_off);
+  const V b_lo = MinOf(b_at, b_at_off), b_hi = MaxOf(b_at, b_at_off);
+  const V gap = MaxOf(hn::Sub(a_lo, b_hi), hn::Sub(b_lo, a_hi));
+  const M separated = hn::And(
+      usable, hn::And(hn::Gt(gap, zero),
+                      hn::Gt(hn::Mul(gap, gap), hn::Mul(hn::Set(d, margin * margin), norm_sq))));
+  // The gap and lever, where the axis stays usable while the gap lasts.
+  const V floor_sq = hn::Mul(hn::Mul(floor2, la), lb);
+  const M kept =
+      hn::And(separated,
+              hn::Gt(norm_sq, hn::Mul(hn::Mul(hn::Set(d, 4.0), floor_sq), hn::Set(d, 1 + 1e-6))));
+  const auto extreme = [&](auto of, V Point::*x) {
+    return of(of(of(of(of(a.corner[0].*x, a.corner[1].*x), a.corner[2].*x), b.corner[0].*x),
+                 b.corner[1].*x),
+              b.corner[2].*x);
+  };
+  const auto min_of = [](V p, V q) { return MinOf(p, q); };
+  const auto max_of = [](V p, V q) { return MaxOf(p, q); };
+  const Point span{hn::Sub(extreme(max_of, &Point::x), extreme(min_of, &Point::x)),
+                   hn::Sub(extreme(max_of, &Point::y), extreme(min_of, &Point::y)),
+                   hn::Sub(extreme(max_of, &Point::z), extreme(min_of, &Point::z))};
+  const V length = hn::Sqrt(norm_sq);
+  gap_m = hn::IfThenElseZero(kept, MaxOf(zero, hn::Sub(hn::Div(gap, length), hn::Set(d, margin))));
+  lever_m = hn::IfThenElseZero(
+      kept,
+      hn::Mul(hn::Div(hn::Mul(two, hn::Sqrt(hn::Mul(la, lb))), length), hn::Sqrt(Dot(span, span))));
+  return separated;
+}
+
 // The face planes of one batch: the corners' distances from the other's
 // plane, and where and how far a plane keeps the other face beyond the
 // margin.
@@ -463,6 +453,31 @@ void PlanesThenCrossing(const PlacedFace* faces_a, const PlacedFace* faces_b,
   }
 }
 
+// HintedEdgeCrossBatch's lanes.
+void HintedLanes(const PlacedFace* faces_a, const PlacedFace* faces_b, const TrianglePair* pairs,
+                 size_t n, double margin, PairHint* hints, uint8_t* separated) {
+  const D d;
+  constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+  HWY_ALIGN double edge_pairs[kMaxLanes], apart[kMaxLanes], gaps[kMaxLanes], levers[kMaxLanes];
+  ForEachBatch(
+      faces_a, faces_b, pairs, n, [](size_t k) { return k; },
+      [&](const Faces& a, const Faces& b, size_t first, size_t count) {
+        for (size_t j = 0; j < hn::Lanes(d); ++j) {
+          edge_pairs[j] = hints[first + std::min(j, count - 1)].edge_pair;
+        }
+        V gap, lever;
+        const M sep = HintedEdgeCross(d, a, b, hn::Load(d, edge_pairs), margin, gap, lever);
+        hn::Store(hn::IfThenElseZero(sep, hn::Set(d, 1.0)), d, apart);
+        hn::Store(gap, d, gaps);
+        hn::Store(lever, d, levers);
+        for (size_t j = 0; j < count; ++j) {
+          separated[first + j] = apart[j] != 0;
+          hints[first + j].gap_m = gaps[j];
+          hints[first + j].lever_m = levers[j];
+        }
+      });
+}
+
 // Without `edge_cross`, one pass; with it, two, the planes first. (A
 // static query's pairs mostly lie beyond a plane, and the crossing tests
 // cost several times the planes'; most of a coherent query's cross or
@@ -484,12 +499,20 @@ HWY_AFTER_NAMESPACE();
 namespace hs {
 
 HWY_EXPORT(QuickLanes);
+HWY_EXPORT(HintedLanes);
 
 void QuickTrianglesTestBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
                              std::span<const TrianglePair> pairs, double margin, bool edge_cross,
                              std::span<QuickTriangleTest> out) {
   HWY_DYNAMIC_DISPATCH(QuickLanes)
   (faces_a, faces_b, pairs.data(), pairs.size(), margin, edge_cross, out.data());
+}
+
+void HintedEdgeCrossBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
+                          std::span<const TrianglePair> pairs, double margin,
+                          std::span<PairHint> hints, std::span<uint8_t> separated) {
+  HWY_DYNAMIC_DISPATCH(HintedLanes)
+  (faces_a, faces_b, pairs.data(), pairs.size(), margin, hints.data(), separated.data());
 }
 
 }  // namespace hs

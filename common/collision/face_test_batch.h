@@ -6,6 +6,7 @@
 // plane keeps them apart, they cross clearly, or an edge cross keeps them
 // apart.
 
+#include <cstdint>
 #include <span>
 
 #include "common/collision/triangle_pairs.h"
@@ -23,5 +24,15 @@ struct PlacedFace;  // common/collision/placed_faces.h, which holds FCL types
 void QuickTrianglesTestBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
                              std::span<const TrianglePair> pairs, double margin, bool edge_cross,
                              std::span<QuickTriangleTest> out);
+
+/// For each i, EdgeCrossSeparates (triangle_sat.h) of the edge cross
+/// hints[i].edge_pair (0-8) of faces_a[pairs[i].a] and faces_b[pairs[i].b]
+/// at `margin`, bit for bit: separated[i] says whether it keeps them apart,
+/// and hints[i] gets its gap and lever (0 where it does not), keeping its
+/// edge pair. A coherent query's pairs that the quick test leaves are
+/// mostly kept apart by the edge cross that kept them apart last time.
+void HintedEdgeCrossBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
+                          std::span<const TrianglePair> pairs, double margin,
+                          std::span<PairHint> hints, std::span<uint8_t> separated);
 
 }  // namespace hs

@@ -177,37 +177,6 @@ std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array
 // plane clearly, or the planes are parallel); kUnknown: they do not decide.
 enum class Crossing { kYes, kApart, kUnknown, kNone };
 
-// Whether the edge cross of edge i of `a` and edge j of `b`, built and
-// projected by ForEachAxis's own VisitEdgeCross, separates them by more
-// than `margin` (when it does, ForEachAxis finds it too). `hint` gets the
-// gap and lever of that axis (PairHint), 0 when it does not separate them.
-bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin,
-                        PairHint& hint) {
-  const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
-  const double la = ea.squaredNorm(), lb = eb.squaredNorm();
-  hint.gap_m = hint.lever_m = 0;
-  return !VisitEdgeCross(
-      a, ea, la, i, b, eb, lb, j,
-      [&](const Vector3d&, double norm_sq, const Extent& pa, const Extent& pb) {
-        if (!SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin)) return true;
-        // Turned by an angle u, e_a x e_b moves by at most |e_a| |e_b| u,
-        // the unit axis by twice that over |e_a x e_b|, and the gap along
-        // it by that times how far apart two corners lie. The axis stays
-        // over half its length, so usable, while the gap lasts: below
-        // four times the floor, none is kept.
-        const double floor_sq = kAxisRelativeFloor * kAxisRelativeFloor * la * lb;
-        if (!(norm_sq > 4 * floor_sq * (1 + 1e-6))) return false;
-        const Vector3d lo =
-            a[0].cwiseMin(a[1]).cwiseMin(a[2]).cwiseMin(b[0]).cwiseMin(b[1]).cwiseMin(b[2]);
-        const Vector3d hi =
-            a[0].cwiseMax(a[1]).cwiseMax(a[2]).cwiseMax(b[0]).cwiseMax(b[1]).cwiseMax(b[2]);
-        const double length = std::sqrt(norm_sq);
-        hint.gap_m = std::max(0.0, std::max(pa.lo - pb.hi, pb.lo - pa.hi) / length - margin);
-        hint.lever_m = 2 * std::sqrt(la * lb) / length * (hi - lo).norm();
-        return false;
-      });
-}
-
 // A fast answer for triangles that straddle each other's planes (Moller's
 // interval test): the two segments where they cut the planes' common line
 // lie inside both triangles, so a clear overlap is a common point (kYes).
@@ -339,6 +308,35 @@ bool Intersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& 
 }
 
 }  // namespace
+
+// Built and projected by ForEachAxis's own VisitEdgeCross: when it
+// separates the pair, ForEachAxis finds it too.
+bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin,
+                        PairHint& hint) {
+  const Vector3d ea = a[(i + 1) % 3] - a[i], eb = b[(j + 1) % 3] - b[j];
+  const double la = ea.squaredNorm(), lb = eb.squaredNorm();
+  hint.gap_m = hint.lever_m = 0;
+  return !VisitEdgeCross(
+      a, ea, la, i, b, eb, lb, j,
+      [&](const Vector3d&, double norm_sq, const Extent& pa, const Extent& pb) {
+        if (!SeparatedAlong(pa.lo, pa.hi, pb.lo, pb.hi, norm_sq, margin)) return true;
+        // Turned by an angle u, e_a x e_b moves by at most |e_a| |e_b| u,
+        // the unit axis by twice that over |e_a x e_b|, and the gap along
+        // it by that times how far apart two corners lie. The axis stays
+        // over half its length, so usable, while the gap lasts: below
+        // four times the floor, none is kept.
+        const double floor_sq = kAxisRelativeFloor * kAxisRelativeFloor * la * lb;
+        if (!(norm_sq > 4 * floor_sq * (1 + 1e-6))) return false;
+        const Vector3d lo =
+            a[0].cwiseMin(a[1]).cwiseMin(a[2]).cwiseMin(b[0]).cwiseMin(b[1]).cwiseMin(b[2]);
+        const Vector3d hi =
+            a[0].cwiseMax(a[1]).cwiseMax(a[2]).cwiseMax(b[0]).cwiseMax(b[1]).cwiseMax(b[2]);
+        const double length = std::sqrt(norm_sq);
+        hint.gap_m = std::max(0.0, std::max(pa.lo - pb.hi, pb.lo - pa.hi) / length - margin);
+        hint.lever_m = 2 * std::sqrt(la * lb) / length * (hi - lo).norm();
+        return false;
+      });
+}
 
 QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal_a,
                                      const Triangle3d& b, const Vector3d& normal_b, double margin,

@@ -106,6 +106,15 @@ QuickTriangleTest QuickTrianglesTest(const Triangle3d& a, const Vector3d& normal
 bool TrianglesIntersect(const Triangle3d& a, const Vector3d& normal_a, const Triangle3d& b,
                         const Vector3d& normal_b, double margin, PairHint& hint);
 
+/// Whether the cross of edge i of `a` and edge j of `b` (each from corner
+/// i to i + 1), built and projected as the full test builds it, keeps them
+/// beyond `margin`; `hint` gets that axis's gap and lever (PairHint), 0
+/// when it does not separate them. With a hint of this edge pair,
+/// TrianglesIntersect tries it right after the planes. The oracle of the
+/// batched test (face_test_batch.h).
+bool EdgeCrossSeparates(const Triangle3d& a, const Triangle3d& b, int i, int j, double margin,
+                        PairHint& hint);
+
 /// The set of t for which `a` translated by -t * `direction` intersects `b`
 /// (within `margin`; a negative margin asks for an overlap deeper than
 /// -margin along every axis). Always one closed interval (a line through the convex

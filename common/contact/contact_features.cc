@@ -9,6 +9,7 @@
 #include "absl/container/flat_hash_set.h"
 
 #include "common/contact/closest_points.h"
+#include "common/contact/near_features_batch.h"
 #include "common/contact/placed_vertices.h"
 #include "common/contact/side_contact.h"
 #include "common/core/id_memo.h"
@@ -21,7 +22,7 @@ namespace {
 struct PosedFace {
   const HapticObject* object;
   FaceId id;
-  Triangle3d corners;
+  const Triangle3d& corners;
 
   VertexId vertex(int i) const { return object->face(id).vertices[i]; }
   // Edge i joins corners i and i + 1.
@@ -55,35 +56,6 @@ unsigned NearEdges(const std::array<double, 3>& off, double tol) {
   return ~beyond & 7u;
 }
 
-// A face's edges, each with its vector and box (edge i joins corners i and
-// i + 1).
-struct FaceEdges {
-  explicit FaceEdges(const Triangle3d& corners) {
-    for (int i = 0; i < 3; ++i) {
-      const Vector3d &p = corners[i], &q = corners[(i + 1) % 3];
-      along[i] = q - p;
-      for (int d = 0; d < 3; ++d) {
-        lo[i][d] = std::min(p[d], q[d]);
-        hi[i][d] = std::max(p[d], q[d]);
-      }
-    }
-  }
-  std::array<Vector3d, 3> along, lo, hi;
-};
-
-// A face of F's edges, with the unit vector across each in the face's
-// plane (zero for a degenerate face or edge).
-struct FixedFaceEdges {
-  FixedFaceEdges(const Triangle3d& corners, const Vector3d& unit_normal) : edges(corners) {
-    for (int i = 0; i < 3; ++i) {
-      const Vector3d a = unit_normal.cross(edges.along[i]);
-      across[i] = a.squaredNorm() > 0 ? a.normalized() : Vector3d::Zero();
-    }
-  }
-  FaceEdges edges;
-  std::array<Vector3d, 3> across;
-};
-
 // Whether boxes [lo1, hi1] and [lo2, hi2] are more than `tol` apart along
 // some axis.
 bool BoxesApart(const Vector3d& lo1, const Vector3d& hi1, const Vector3d& lo2, const Vector3d& hi2,
@@ -92,22 +64,6 @@ bool BoxesApart(const Vector3d& lo1, const Vector3d& hi1, const Vector3d& lo2, c
     if (hi1[d] + tol < lo2[d] || hi2[d] + tol < lo1[d]) return true;
   }
   return false;
-}
-
-// Whether the corners of a face lie more than 2 `tol` (the slack of the
-// lines' test in AddPair) on one side of the plane through an edge starting
-// at `start`, perpendicular to its face, whose unit normal is `across`:
-// then no point of the face is within `tol` of the edge.
-bool BesideEdge(const Triangle3d& corners, const Vector3d& start, const Vector3d& across,
-                double tol) {
-  const double d0 = across.dot(corners[0] - start), d1 = across.dot(corners[1] - start),
-               d2 = across.dot(corners[2] - start);
-  return std::min({d0, d1, d2}) > 2 * tol || std::max({d0, d1, d2}) < -2 * tol;
-}
-
-Vector3d UnitNormal(const Triangle3d& t) {
-  const Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
-  return n.squaredNorm() > 0 ? n.normalized() : Vector3d::Zero();
 }
 
 // The lowest-dimensional feature of `face` within `tolerance` of point `p`
@@ -134,106 +90,39 @@ class Locator {
     s_.first_face[0].Reset(c.moving.num_vertices());
     s_.first_face[1].Reset(c.fixed.num_vertices());
     s_.moving_vertices.Reset(c.moving, X_FM);
-    s_.normals[0].Reset(c.moving.num_faces());
-    s_.normals[1].Reset(c.fixed.num_faces());
-    s_.fixed_edges_at.Reset(c.fixed.num_faces());
+    s_.normals.Reset(c.moving.num_faces());
+    s_.fixed_face_at.Reset(c.fixed.num_faces());
   }
   Locator(const Locator&) = delete;
   Locator& operator=(const Locator&) = delete;
 
-  void AddPair(const TrianglePair& pair) {
-    const PosedFace m{&c_.moving, pair.a, s_.moving_vertices.Face(pair.a)};
-    const PosedFace f{&c_.fixed, pair.b, c_.FixedTriangle(pair.b)};
-    const double tol = c_.tolerance_m;
-    // Cheap rejections first: most corners and edge pairs of a touching
-    // pair are nowhere near the other triangle. Signed distances of M's
-    // corners from F's plane (0 for a flat face: never off).
-    const Vector3d& n_f = s_.normals[1].Get(f.id, [&] { return UnitNormal(f.corners); });
-    std::array<double, 3> m_off;
-    for (int i = 0; i < 3; ++i) m_off[i] = n_f.dot(m.corners[i] - f.corners[0]);
-    // A corner meets the other face alike from every face around it: each
-    // (corner, face) is located once.
-    for (int i = 0; i < 3; ++i) {
-      const Vector3d& p = m.corners[i];
-      if (std::abs(m_off[i]) > tol || !s_.Locate(0, m.vertex(i), f.id)) {
-        continue;
+  // Locates the contacts of every pair: the first tests of all of them in
+  // lanes, then the exact tests of the features those leave, pair by pair
+  // in order.
+  void AddPairs(std::span<const TrianglePair> pairs) {
+    std::vector<MovingFaceCorners>& moving = s_.moving_faces;
+    std::vector<FaceRecordPair>& records = s_.record_pairs;
+    moving.clear();
+    records.clear();
+    FaceId moving_face = -1;  // the last pair's (a run of pairs shares it)
+    for (const TrianglePair& pair : pairs) {
+      if (pair.a != moving_face) {
+        moving.push_back({s_.moving_vertices.Face(pair.a)});
+        moving_face = pair.a;
       }
-      const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
-      if ((q - p).norm() <= tol) {
-        Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol), n_f, n_f);
-      }
+      const int fixed = s_.fixed_face_at.Get(pair.b, [&] {
+        s_.fixed_faces.emplace_back(c_.FixedTriangle(pair.b));
+        return static_cast<int>(s_.fixed_faces.size()) - 1;
+      });
+      records.push_back({static_cast<int32_t>(moving.size()) - 1, fixed});
     }
-    // F's side needs M's face's normal only for what is near M's face (a
-    // face of F is mostly far larger): its corners within the face's box
-    // grown by twice the tolerance and the rounding, and the edges left
-    // below. An edge whose ends lie beyond the tolerance on one side of the
-    // other face's plane is farther than it from every edge of that face
-    // (bit i: edge i), and so is an edge of F whose box is apart from M's
-    // face's (M's edges' boxes lie inside it) or that M's face stays
-    // beside.
-    Vector3d m_lo, m_hi;
-    for (int d = 0; d < 3; ++d) {
-      m_lo[d] = std::min({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
-      m_hi[d] = std::max({m.corners[0][d], m.corners[1][d], m.corners[2][d]});
-    }
-    unsigned f_corners = 0;
-    for (int j = 0; j < 3; ++j) {
-      const Vector3d& p = f.corners[j];
-      const bool inside = (p.array() >= m_lo.array() - corner_slack_).all() &&
-                          (p.array() <= m_hi.array() + corner_slack_).all();
-      f_corners |= unsigned{inside} << j;
-    }
-    const unsigned m_near = NearEdges(m_off, tol);
-    const FixedFaceEdges* fixed_edges = nullptr;
-    unsigned f_near = 0;
-    if (m_near != 0) {
-      fixed_edges = &s_.FixedEdges(f.id, f.corners, n_f);
-      for (int j = 0; j < 3; ++j) {
-        if (!BoxesApart(m_lo, m_hi, fixed_edges->edges.lo[j], fixed_edges->edges.hi[j], tol) &&
-            !BesideEdge(m.corners, f.corners[j], fixed_edges->across[j], tol)) {
-          f_near |= 1u << j;
-        }
-      }
-    }
-    if (f_corners == 0 && f_near == 0) return;
-    const Vector3d& n_m = s_.normals[0].Get(m.id, [&] { return UnitNormal(m.corners); });
-    std::array<double, 3> f_off;
-    for (int j = 0; j < 3; ++j) f_off[j] = n_m.dot(f.corners[j] - m.corners[0]);
-    for (unsigned j_bits = f_corners; j_bits != 0; j_bits &= j_bits - 1) {
-      const int j = std::countr_zero(j_bits);
-      const Vector3d& p = f.corners[j];
-      if (std::abs(f_off[j]) > tol || !s_.Locate(1, f.vertex(j), m.id)) {
-        continue;
-      }
-      const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
-      if ((q - p).norm() <= tol) {
-        Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)}, -n_m, -n_m);
-      }
-    }
-    f_near &= NearEdges(f_off, tol);
-    if (f_near == 0) return;
-    const FaceEdges& f_edges = fixed_edges->edges;
-    const FaceEdges m_edges(m.corners);
-    for (unsigned i_bits = m_near; i_bits != 0; i_bits &= i_bits - 1) {
-      const int i = std::countr_zero(i_bits);
-      const Vector3d &p1 = m.corners[i], &q1 = m.corners[(i + 1) % 3];
-      for (unsigned j_bits = f_near; j_bits != 0; j_bits &= j_bits - 1) {
-        const int j = std::countr_zero(j_bits);
-        if (BoxesApart(m_edges.lo[i], m_edges.hi[i], f_edges.lo[j], f_edges.hi[j], tol)) continue;
-        const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
-        // The lines through the edges more than 2 tolerances apart (the
-        // segments are at least as far): no edge-edge contact.
-        const Vector3d across = m_edges.along[i].cross(f_edges.along[j]);
-        const double gap = across.dot(p2 - p1);
-        if (gap * gap > 4 * tol * tol * across.squaredNorm()) continue;
-        const SegmentClosest s = ClosestPointsOfSegments(p1, q1, p2, q2);
-        if ((s.on_first - s.on_second).norm() > tol) continue;
-        // Ends within the tolerance are vertex contacts, found above.
-        if (std::min(s.s, 1 - s.s) * m_edges.along[i].norm() <= tol) continue;
-        if (std::min(s.t, 1 - s.t) * f_edges.along[j].norm() <= tol) continue;
-        Add((s.on_first + s.on_second) / 2, m.edge_feature(i), f.edge_feature(j),
-            across.squaredNorm() > 0 ? across.normalized() : across, n_f);
-      }
+    std::vector<NearFeatures>& near = s_.near;
+    if (near.size() < pairs.size()) near.resize(pairs.size());
+    NearFeaturesBatch(moving.data(), s_.fixed_faces.data(), records, c_.tolerance_m, corner_slack_,
+                      std::span(near).first(pairs.size()));
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      AddPair(pairs[k], moving[records[k].moving].corners, s_.fixed_faces[records[k].fixed],
+              near[k]);
     }
   }
 
@@ -282,6 +171,72 @@ class Locator {
   }
 
  private:
+  // The exact tests of the features of pair (m, f) that the first tests
+  // (`near`) leave: a corner within the tolerance of the other face's plane
+  // may be within the tolerance of the face; an edge of M near F's plane
+  // and an edge of F near M's, of each other. A corner meets the other face
+  // alike from every face around it: each (corner, face) is located once.
+  void AddPair(const TrianglePair& pair, const Triangle3d& m_corners, const FixedFaceEdges& f_face,
+               NearFeatures near) {
+    const PosedFace m{&c_.moving, pair.a, m_corners};
+    const PosedFace f{&c_.fixed, pair.b, f_face.corners};
+    const double tol = c_.tolerance_m;
+    const Vector3d& n_f = f_face.unit_normal;
+    for (unsigned i_bits = near.moving_corners; i_bits != 0; i_bits &= i_bits - 1) {
+      const int i = std::countr_zero(i_bits);
+      const Vector3d& p = m.corners[i];
+      if (!s_.Locate(0, m.vertex(i), f.id)) continue;
+      const Vector3d q = ClosestPointOnTriangle(p, f.corners[0], f.corners[1], f.corners[2]);
+      if ((q - p).norm() <= tol) {
+        Add(p, {FeatureKind::kVertex, m.vertex(i)}, FeatureHolding(f, q, tol), n_f, n_f);
+      }
+    }
+    // F's side needs M's face's normal only for what is near M's face (a
+    // face of F is mostly far larger).
+    if (near.fixed_corners == 0 && near.fixed_edges == 0) return;
+    const Vector3d& n_m = s_.normals.Get(m.id, [&] { return UnitNormal(m.corners); });
+    std::array<double, 3> f_off;
+    for (int j = 0; j < 3; ++j) f_off[j] = n_m.dot(f.corners[j] - m.corners[0]);
+    for (unsigned j_bits = near.fixed_corners; j_bits != 0; j_bits &= j_bits - 1) {
+      const int j = std::countr_zero(j_bits);
+      const Vector3d& p = f.corners[j];
+      if (std::abs(f_off[j]) > tol || !s_.Locate(1, f.vertex(j), m.id)) {
+        continue;
+      }
+      const Vector3d q = ClosestPointOnTriangle(p, m.corners[0], m.corners[1], m.corners[2]);
+      if ((q - p).norm() <= tol) {
+        Add(p, FeatureHolding(m, q, tol), {FeatureKind::kVertex, f.vertex(j)}, -n_m, -n_m);
+      }
+    }
+    // An edge whose ends lie beyond the tolerance on one side of the other
+    // face's plane is farther than it from every edge of that face.
+    const unsigned f_near = near.fixed_edges & NearEdges(f_off, tol);
+    if (f_near == 0) return;
+    const FaceEdges& f_edges = f_face.edges;
+    const FaceEdges m_edges(m.corners);
+    for (unsigned i_bits = near.moving_edges; i_bits != 0; i_bits &= i_bits - 1) {
+      const int i = std::countr_zero(i_bits);
+      const Vector3d &p1 = m.corners[i], &q1 = m.corners[(i + 1) % 3];
+      for (unsigned j_bits = f_near; j_bits != 0; j_bits &= j_bits - 1) {
+        const int j = std::countr_zero(j_bits);
+        if (BoxesApart(m_edges.lo[i], m_edges.hi[i], f_edges.lo[j], f_edges.hi[j], tol)) continue;
+        const Vector3d &p2 = f.corners[j], &q2 = f.corners[(j + 1) % 3];
+        // The lines through the edges more than 2 tolerances apart (the
+        // segments are at least as far): no edge-edge contact.
+        const Vector3d across = m_edges.along[i].cross(f_edges.along[j]);
+        const double gap = across.dot(p2 - p1);
+        if (gap * gap > 4 * tol * tol * across.squaredNorm()) continue;
+        const SegmentClosest s = ClosestPointsOfSegments(p1, q1, p2, q2);
+        if ((s.on_first - s.on_second).norm() > tol) continue;
+        // Ends within the tolerance are vertex contacts, found above.
+        if (std::min(s.s, 1 - s.s) * m_edges.along[i].norm() <= tol) continue;
+        if (std::min(s.t, 1 - s.t) * f_edges.along[j].norm() <= tol) continue;
+        Add((s.on_first + s.on_second) / 2, m.edge_feature(i), f.edge_feature(j),
+            across.squaredNorm() > 0 ? across.normalized() : across, n_f);
+      }
+    }
+  }
+
   // `normal` turned to oppose the motion (a soup has no reliable outside),
   // unless the motion runs along the surface: then a rounding-sized tilt
   // would flip it, so the mesh's own orientation (`outward`: the fixed
@@ -343,22 +298,19 @@ class Locator {
     std::vector<VertexId> vertices[2];
     std::vector<EdgeId> edges[2];
     std::vector<FaceId> faces[2];
-    // M's vertices in F's frame, and the unit normals of the faces of
-    // either side (0: moving, 1: fixed), each computed once per call.
+    // M's vertices in F's frame, and the unit normals of its faces, each
+    // computed once per call.
     PlacedVertices moving_vertices;
-    IdMemo<Vector3d> normals[2];
-    // The edges of F's faces met so far (an index into fixed_edges), each
-    // face's taken once per call: a face of F is in many pairs.
-    IdMemo<int> fixed_edges_at;
-    std::vector<FixedFaceEdges> fixed_edges;
-
-    const FixedFaceEdges& FixedEdges(FaceId face, const Triangle3d& corners,
-                                     const Vector3d& unit_normal) {
-      return fixed_edges[fixed_edges_at.Get(face, [&] {
-        fixed_edges.emplace_back(corners, unit_normal);
-        return static_cast<int>(fixed_edges.size()) - 1;
-      })];
-    }
+    IdMemo<Vector3d> normals;
+    // F's faces met so far (an index into fixed_faces), each taken once per
+    // call: a face of F is in many pairs.
+    IdMemo<int> fixed_face_at;
+    std::vector<FixedFaceEdges> fixed_faces;
+    // The pairs' faces of M (one per run of pairs that shares it), each
+    // pair's faces and what the first tests tell of it.
+    std::vector<MovingFaceCorners> moving_faces;
+    std::vector<FaceRecordPair> record_pairs;
+    std::vector<NearFeatures> near;
 
     // Whether `corner` of `side` is yet to be located against `face`; from
     // now on it is.
@@ -379,7 +331,7 @@ class Locator {
       for (const uint64_t key : located_keys) located.erase(key);
       located_keys.clear();
       points.clear();
-      fixed_edges.clear();
+      fixed_faces.clear();
       for (int side = 0; side < 2; ++side) {
         vertices[side].clear();
         edges[side].clear();
@@ -414,7 +366,7 @@ class Locator {
 void LocateContacts(const ContactContext& context, const Isometry3d& X_FM,
                     std::span<const TrianglePair> pairs, LocatedContacts& out) {
   Locator locator(context, X_FM);
-  for (const TrianglePair& pair : pairs) locator.AddPair(pair);
+  locator.AddPairs(pairs);
   locator.Finish(out);
 }
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "common/collision/placed_faces.h"
@@ -180,6 +181,126 @@ TEST(FaceTestBatchTest, AFaceStandingBesideAnotherIsKeptApartByAnEdgeCross) {
     EXPECT_FALSE(
         TrianglesIntersect(face.triangle, face.normal, floor.triangle, floor.normal, margin));
   }
+}
+
+// Checks HintedEdgeCrossBatch against EdgeCrossSeparates, bit for bit,
+// for every pair (a[i], b[i]) and each of the nine edge pairs as its hint,
+// on every SIMD target built in that this machine runs; returns how many
+// (pair, hint) it kept apart and how many of those with a lever.
+std::pair<int, int> ExpectScalarEdgeCrosses(const std::vector<PlacedFace>& a,
+                                            const std::vector<PlacedFace>& b, double margin) {
+  std::vector<TrianglePair> pairs;
+  std::vector<PairHint> scalar;
+  std::vector<bool> scalar_apart;
+  for (size_t i = 0; i < b.size(); ++i) {
+    for (int k = 0; k < 9; ++k) {
+      pairs.push_back({static_cast<int>(i), static_cast<int>(i)});
+      PairHint hint{.edge_pair = k, .gap_m = 7, .lever_m = 7};
+      scalar_apart.push_back(
+          EdgeCrossSeparates(a[i].triangle, b[i].triangle, k / 3, k % 3, margin, hint));
+      scalar.push_back(hint);
+    }
+  }
+  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    SCOPED_TRACE(hwy::TargetName(target));
+    std::vector<PairHint> hints;
+    for (size_t n = 0; n < pairs.size(); ++n) {
+      hints.push_back({.edge_pair = static_cast<int>(n % 9), .gap_m = 7, .lever_m = 7});
+    }
+    std::vector<uint8_t> separated(pairs.size(), 5);
+    HintedEdgeCrossBatch(a.data(), b.data(), pairs, margin, hints, separated);
+    for (size_t n = 0; n < pairs.size(); ++n) {
+      EXPECT_TRUE(separated[n] == scalar_apart[n] && hints[n].edge_pair == scalar[n].edge_pair &&
+                  SameBits(hints[n].gap_m, scalar[n].gap_m) &&
+                  SameBits(hints[n].lever_m, scalar[n].lever_m))
+          << "pair " << n / 9 << " edge pair " << n % 9 << ": batch " << int{separated[n]} << ", "
+          << hints[n].gap_m << ", " << hints[n].lever_m << "; scalar " << scalar_apart[n] << ", "
+          << scalar[n].gap_m << ", " << scalar[n].lever_m;
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  int apart = 0, with_lever = 0;
+  for (size_t n = 0; n < pairs.size(); ++n) {
+    apart += scalar_apart[n];
+    with_lever += scalar[n].lever_m > 0;
+  }
+  return {apart, with_lever};
+}
+
+// Random nearby faces at tiny, unit and huge scales, every batch size
+// from 1 to 19 faces (9 to 171 pairs), and grid faces with degenerate
+// ones (parallel edges, a line, a point: unusable axes), with and without
+// a margin: the hinted edge cross and its gap and lever are the scalar's.
+TEST(FaceTestBatchTest, HintedEdgeCrossesGiveTheScalarAnswer) {
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int apart = 0, with_lever = 0, total = 0;
+  for (const double scale : {1e-6, 1.0, 1e4}) {
+    for (size_t n = 1; n <= 19; ++n) {
+      std::vector<PlacedFace> a, b;
+      for (size_t i = 0; i < n; ++i) {
+        a.push_back(RandomFace(rng, scale, Vector3d::Zero()));
+        b.push_back(RandomFace(rng, scale, 1.2 * scale * Vector3d(u(rng), u(rng), u(rng))));
+      }
+      for (const double margin : {1e-3 * scale, 0.0}) {
+        const auto [k, l] = ExpectScalarEdgeCrosses(a, b, margin);
+        apart += k;
+        with_lever += l;
+        total += 9 * static_cast<int>(n);
+      }
+    }
+  }
+  for (int round = 0; round < 100; ++round) {
+    const testing::GridPairs grid = testing::GridAndDegeneratePairs(rng);
+    std::vector<PlacedFace> a, b;
+    for (const Triangle3d& t : grid.a) a.push_back(PlaceFace(t));
+    for (const Triangle3d& t : grid.b) b.push_back(PlaceFace(t));
+    for (const double margin : {0.01, 0.0}) {
+      const auto [k, l] = ExpectScalarEdgeCrosses(a, b, margin);
+      apart += k;
+      with_lever += l;
+      total += 9 * static_cast<int>(b.size());
+    }
+  }
+  // Both answers common, and most kept apart with a lever to carry.
+  EXPECT_GT(apart, total / 10);
+  EXPECT_LT(apart, total - total / 10);
+  EXPECT_GT(with_lever, apart / 2);
+}
+
+// A pair kept apart by the edge cross of its hint: the full test with that
+// hint answers the same, with the batch's gap and lever (what a coherent
+// query keeps for the pair).
+TEST(FaceTestBatchTest, AHintedEdgeCrossAnswersAsTheFullTest) {
+  // An upright face beside a floor's hypotenuse, within the margin of its
+  // plane: some edge cross keeps them apart (the full test without a hint
+  // says so).
+  const PlacedFace floor = PlaceFace({Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)});
+  const PlacedFace upright =
+      PlaceFace({Vector3d(0.7, 0.8, 0.003), Vector3d(0.8, 0.8, 0.003), Vector3d(0.7, 0.8, 0.303)});
+  const double margin = 0.01;
+  ASSERT_FALSE(
+      TrianglesIntersect(upright.triangle, upright.normal, floor.triangle, floor.normal, margin));
+  int kept_apart = 0;
+  for (int k = 0; k < 9; ++k) {
+    std::vector<PairHint> hints = {{.edge_pair = k}};
+    std::vector<uint8_t> separated(1);
+    const std::vector<TrianglePair> pairs = {{0, 0}};
+    HintedEdgeCrossBatch(&upright, &floor, pairs, margin, hints, separated);
+    if (!separated[0]) continue;
+    ++kept_apart;
+    PairHint full{.edge_pair = k};
+    EXPECT_FALSE(TrianglesIntersect(upright.triangle, upright.normal, floor.triangle, floor.normal,
+                                    margin, full));
+    EXPECT_EQ(full.edge_pair, k);
+    EXPECT_TRUE(SameBits(full.gap_m, hints[0].gap_m)) << full.gap_m << " " << hints[0].gap_m;
+    EXPECT_TRUE(SameBits(full.lever_m, hints[0].lever_m))
+        << full.lever_m << " " << hints[0].lever_m;
+    EXPECT_GT(hints[0].gap_m, 0);
+    EXPECT_GT(hints[0].lever_m, 0);
+  }
+  EXPECT_GT(kept_apart, 0);
 }
 
 // The batch runs on more than one target here (at least SSE2 and the
