@@ -35,15 +35,21 @@ void AggregateSide(const HapticObject& object, std::span<const VertexId> vertice
   if (is_contact.size() < static_cast<size_t>(object.num_vertices())) {
     is_contact.resize(object.num_vertices(), 0);
   }
+  // Each edge and face is taken from its lowest contact vertex only: the
+  // sorts below then see each once, besides the touched ones.
   for (VertexId v : side.vertices) is_contact[v] = 1;
   for (VertexId v : side.vertices) {
     for (EdgeId e : object.VertexEdges(v)) {
-      const Edge& edge = object.edge(e);
-      if (is_contact[edge.vertices[0]] && is_contact[edge.vertices[1]]) side.edges.push_back(e);
+      const auto& ends = object.edge(e).vertices;
+      const VertexId other = ends[0] == v ? ends[1] : ends[0];
+      if (other > v && is_contact[other]) side.edges.push_back(e);
     }
     for (FaceId f : object.VertexFaces(v)) {
       const auto& c = object.face(f).vertices;
-      if (is_contact[c[0]] && is_contact[c[1]] && is_contact[c[2]]) side.faces.push_back(f);
+      if (std::min({c[0], c[1], c[2]}) == v && is_contact[c[0]] && is_contact[c[1]] &&
+          is_contact[c[2]]) {
+        side.faces.push_back(f);
+      }
     }
   }
   for (VertexId v : side.vertices) is_contact[v] = 0;
