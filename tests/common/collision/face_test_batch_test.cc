@@ -87,6 +87,15 @@ PlacedFace RandomFace(std::mt19937& rng, double scale, const Vector3d& offset) {
   return PlaceFace(testing::RandomTriangle(rng, scale, offset));
 }
 
+// GridAndDegeneratePairs, each side's faces placed.
+std::pair<std::vector<PlacedFace>, std::vector<PlacedFace>> PlacedGridPairs(std::mt19937& rng) {
+  const testing::GridPairs grid = testing::GridAndDegeneratePairs(rng);
+  std::vector<PlacedFace> a, b;
+  for (const Triangle3d& t : grid.a) a.push_back(PlaceFace(t));
+  for (const Triangle3d& t : grid.b) b.push_back(PlaceFace(t));
+  return {a, b};
+}
+
 // Random pairs of nearby faces (each answer common), every batch size
 // from 1 to 19 (every short last batch of every lane count) and sizes
 // beyond the batch's stretch of 64 pairs, some sharing their first face
@@ -125,10 +134,7 @@ TEST(FaceTestBatchTest, GridAndDegenerateFacesGiveTheScalarAnswer) {
   std::mt19937 rng(32);
   Answers answers = {0, 0, 0, 0};
   for (int round = 0; round < 300; ++round) {
-    const testing::GridPairs grid = testing::GridAndDegeneratePairs(rng);
-    std::vector<PlacedFace> a, b;
-    for (const Triangle3d& t : grid.a) a.push_back(PlaceFace(t));
-    for (const Triangle3d& t : grid.b) b.push_back(PlaceFace(t));
+    const auto [a, b] = PlacedGridPairs(rng);
     for (const double margin : {0.01, 0.0}) {
       const Answers got = ExpectScalarAnswers(a, b, margin);
       for (int k = 0; k < 4; ++k) answers[k] += got[k];
@@ -252,10 +258,7 @@ TEST(FaceTestBatchTest, HintedEdgeCrossesGiveTheScalarAnswer) {
     }
   }
   for (int round = 0; round < 100; ++round) {
-    const testing::GridPairs grid = testing::GridAndDegeneratePairs(rng);
-    std::vector<PlacedFace> a, b;
-    for (const Triangle3d& t : grid.a) a.push_back(PlaceFace(t));
-    for (const Triangle3d& t : grid.b) b.push_back(PlaceFace(t));
+    const auto [a, b] = PlacedGridPairs(rng);
     for (const double margin : {0.01, 0.0}) {
       const auto [k, l] = ExpectScalarEdgeCrosses(a, b, margin);
       apart += k;
