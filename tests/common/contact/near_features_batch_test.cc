@@ -110,10 +110,12 @@ TEST(NearFeaturesBatchTest, RandomFacesGiveTheOracleAnswers) {
       for (size_t i = 0; i < n; ++i) {
         const Triangle3d f = testing::RandomTriangle(rng, scale, Vector3d::Zero());
         fixed.push_back(f);
-        // Near a point of the fixed face, a tenth of its size, with a
-        // corner pressed onto its plane in every other pair.
+        // A tenth of the fixed face's size, about a point of its plane or,
+        // every third pair, about one of its corners in turn; with a corner
+        // pressed onto its plane in every other pair.
+        const double s = 0.5 * (u(rng) + 1), t = 0.5 * (u(rng) + 1);
         const Vector3d at =
-            f[0] + 0.5 * (u(rng) + 1) * (f[1] - f[0]) + 0.5 * (u(rng) + 1) * (f[2] - f[0]);
+            i % 3 == 2 ? f[i / 3 % 3] : f[0] + s * (f[1] - f[0]) + t * (f[2] - f[0]);
         Triangle3d m = testing::RandomTriangle(rng, 0.1 * scale, at);
         if (i % 2 == 0) {
           const Vector3d normal = UnitNormal(f);
