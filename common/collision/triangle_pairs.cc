@@ -373,13 +373,15 @@ class BucketTest {
       // hinted edge cross), or its own.
       PairHint hint{.edge_pair = candidate.edge_pair, .gap_m = tests.quick[k].gap_m};
       bool meet = tests.quick[k].answer == QuickTriangleTest::Answer::kMeet;
-      if (const PairHint* apart = tests.HintedApart(k)) {
-        hint = *apart;
-      } else if (tests.quick[k].answer == QuickTriangleTest::Answer::kUnknown) {
-        const PlacedFace& face_a = ia_.leaf_order_faces[candidate.leaf_a];
-        const PlacedFace& face_b = faces_b_.Get(candidate.face_b);
-        meet = TrianglesIntersect(face_a.triangle, face_a.normal, face_b.triangle, face_b.normal,
-                                  margin_, hint);
+      if (tests.quick[k].answer == QuickTriangleTest::Answer::kUnknown) {
+        if (const PairHint* apart = tests.HintedApart(k)) {
+          hint = *apart;
+        } else {
+          const PlacedFace& face_a = ia_.leaf_order_faces[candidate.leaf_a];
+          const PlacedFace& face_b = faces_b_.Get(candidate.face_b);
+          meet = TrianglesIntersect(face_a.triangle, face_a.normal, face_b.triangle, face_b.normal,
+                                    margin_, hint);
+        }
       }
       candidate.edge_pair = hint.edge_pair;
       if (meet) {
@@ -424,40 +426,40 @@ class BucketTest {
       ++size;
     }
     // The quick test of every pair, then the edge cross that last kept
-    // apart each pair it leaves (those with one): where that still does,
-    // hinted[k] holds the hint the full test would leave.
+    // apart each pair it leaves (those with one).
     void RunQuickTests(const PlacedFace* faces_a, const PlacedFace* faces_b, double margin) {
       if (quick.size() < size) quick.resize(size);
+      if (hint_of.size() < size) hint_of.resize(size);
       QuickTrianglesTestBatch(faces_a, faces_b, std::span(faces).first(size), margin,
                               /*edge_cross=*/false, std::span(quick).first(size));
       hinted_faces.clear();
       hints.clear();
       for (size_t k = 0; k < size; ++k) {
-        if (quick[k].answer == QuickTriangleTest::Answer::kUnknown &&
-            candidates[k]->edge_pair >= 0) {
+        if (quick[k].answer != QuickTriangleTest::Answer::kUnknown) continue;
+        const int edge_pair = candidates[k]->edge_pair;
+        hint_of[k] = edge_pair >= 0 ? static_cast<int>(hints.size()) : -1;
+        if (edge_pair >= 0) {
           hinted_faces.push_back(faces[k]);
-          hints.push_back({.edge_pair = candidates[k]->edge_pair});
+          hints.push_back({.edge_pair = edge_pair});
         }
       }
       if (separated.size() < hints.size()) separated.resize(hints.size());
       HintedEdgeCrossBatch(faces_a, faces_b, hinted_faces, margin, hints,
                            std::span(separated).first(hints.size()));
     }
-    // Pairs by their index in the quick tests, in order: the hint that
-    // keeps pair k apart, else null.
-    const PairHint* HintedApart(size_t k) {
-      if (k == 0) next_hinted = 0;
-      if (quick[k].answer != QuickTriangleTest::Answer::kUnknown || candidates[k]->edge_pair < 0) {
-        return nullptr;
-      }
-      const size_t h = next_hinted++;
-      return separated[h] ? &hints[h] : nullptr;
+    // For a pair k the quick test leaves: the hint the full test would
+    // leave when its hinted edge cross still keeps it apart, else null.
+    const PairHint* HintedApart(size_t k) const {
+      const int h = hint_of[k];
+      return h >= 0 && separated[h] ? &hints[h] : nullptr;
     }
 
+    // The edge cross tried for a pair k the quick test leaves:
+    // hints[hint_of[k]], or none (-1); not set for the other pairs.
+    std::vector<int> hint_of;
     std::vector<TrianglePair> hinted_faces;
     std::vector<PairHint> hints;
     std::vector<uint8_t> separated;
-    size_t next_hinted = 0;
   };
 
   // A bucket of B's faces placed in A's frame, the degenerate left out,
