@@ -7,6 +7,7 @@
 #include <span>
 
 #include "common/collision/fcl_bvh.h"
+#include "common/core/check.h"
 
 namespace hs {
 
@@ -16,6 +17,16 @@ void PairCache::Clear() {
     region.candidates.clear();
     region.last_use = 0;
   }
+}
+
+void PairCache::Restart(double skin_m) {
+  HS_CHECK(skin_m > 0);
+  Clear();
+  skin_m_ = skin_m;
+}
+
+double PairCache::DefaultSkin(const CollisionModel& a, const CollisionModel& b) {
+  return kSkinRelative * (a.impl().radius + b.impl().radius);
 }
 
 int PairCache::regions() const {
@@ -191,7 +202,7 @@ PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const Collisio
 
 PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                                    double margin_m, const Isometry3d& X_AB) {
-  const double skin_m = kSkinRelative * (a.radius + b.radius);
+  const double skin_m = skin_m_ > 0 ? skin_m_ : kSkinRelative * (a.radius + b.radius);
   const Isometry3d X_AB_built = BuildPose(regions_, a, b, margin_m, X_AB, skin_m);
   Region& region =
       *std::min_element(regions_.begin(), regions_.end(),

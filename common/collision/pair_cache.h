@@ -31,6 +31,17 @@ class PairCache {
   /// Forgets every region, keeping their storage.
   void Clear();
 
+  /// Forgets every region, and builds the next ones with a skin of
+  /// `skin_m` metres (> 0) instead of kSkinRelative of the two models'
+  /// radii: for a cache kept through one contact query alone, whose pair
+  /// queries all lie within `skin_m` of its first (ComputeContact without
+  /// a cache, when the depth along its direction is bounded that small).
+  void Restart(double skin_m);
+
+  /// kSkinRelative of the two models' radii, metres: the skin of a region
+  /// unless Restart set one.
+  static double DefaultSkin(const CollisionModel& a, const CollisionModel& b);
+
   /// Regions held, regions built since made, and queries answered from a
   /// region: for tests and benchmarks.
   int regions() const;
@@ -141,6 +152,7 @@ class PairCache {
  private:
   static constexpr int kRegions = 4;  // the contact's pose, its depth, spares
   std::array<Region, kRegions> regions_;
+  double skin_m_ = 0;  // Restart's, or 0 for the default
   uint64_t clock_ = 0;
   int64_t builds_ = 0, hits_ = 0;
 };

@@ -1,11 +1,14 @@
 #include "common/contact/contact_query.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <vector>
 
 #include "absl/cleanup/cleanup.h"
 #include "absl/strings/str_cat.h"
+#include "common/collision/pair_cache.h"
 #include "common/collision/triangle_pairs.h"
 #include "common/collision/triangle_sat.h"
 #include "common/contact/contact_context.h"
@@ -90,7 +93,40 @@ struct FirstTouchBuffers {
 struct ContactBuffers {
   std::vector<TrianglePair> pairs, swept;
   ContactSetF found;
+  PairCache own_cache;  // a query's without a cache of its own (OwnCache)
 };
+
+// How far M (at X_FM) can back out along the unit `direction_F`, moved by
+// -t direction_F, and still meet F within `tolerance_m`: past it, M's box
+// lies beyond F's along the direction. Every sweep interval of the exact
+// method ends by then.
+double DepthBound(const HapticObject& moving, const Isometry3d& X_FM, const HapticObject& fixed,
+                  const Vector3d& direction_F, double tolerance_m) {
+  double moving_hi = -std::numeric_limits<double>::infinity();
+  double fixed_lo = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 8; ++k) {
+    const auto corner = static_cast<AlignedBox3d::CornerType>(k);
+    moving_hi = std::max(moving_hi, direction_F.dot(X_FM * moving.bounding_box().corner(corner)));
+    fixed_lo = std::min(fixed_lo, direction_F.dot(fixed.bounding_box().corner(corner)));
+  }
+  return moving_hi - fixed_lo + tolerance_m;
+}
+
+// The cache the exact method's pair queries go through when the caller
+// keeps none: when M can back out no further than a region's skin
+// (DepthBound), one kept for this query alone, so that the query where M
+// backs out to is answered from the candidates of the one at the pose
+// rather than by a second traversal. The answers are the same.
+PairCache* OwnCache(const ContactContext& c, const Vector3d& direction_F, PairCache& own) {
+  const double depth = DepthBound(c.moving, c.X_FM, c.fixed, direction_F, c.tolerance_m);
+  if (!(depth > 0 && depth < PairCache::DefaultSkin(c.moving_model, c.fixed_model))) {
+    return nullptr;
+  }
+  // Backed out by t <= depth, M's centre moves t along a unit direction,
+  // up to rounding.
+  own.Restart(depth * (1 + 1e-6));
+  return &own;
+}
 
 // Validates a pair query and returns its touching tolerance in metres.
 absl::StatusOr<double> PairTolerance(const PosedObject& moving, const PosedObject& fixed,
@@ -213,12 +249,15 @@ absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
   absl::Cleanup give_back = [&] { context.pairs.swap(pairs); };
   context.pairs.clear();
   swept.clear();
-  context.pair_cache = cache;
-  FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
-                            tolerance, context.pairs, {}, cache);
   const Vector3d direction_F = X_FW.linear() * query.direction_W;
   // Shorter than this, the square of the length underflows: no direction.
   const bool no_direction = !(direction_F.squaredNorm() > 1e-300);
+  context.pair_cache = cache;
+  if (!cache && query.method == ContactMethod::kSweep3d && !query.continuous && !no_direction) {
+    context.pair_cache = OwnCache(context, direction_F.normalized(), buffers.own_cache);
+  }
+  FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
+                            tolerance, context.pairs, {}, context.pair_cache);
   ClearContactSet(set);
   set.method = query.method;
   set.tolerance_m = tolerance;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <utility>
@@ -144,6 +145,56 @@ TEST_F(PairCacheBuildTest, PoseAndDepthQueriesInTurnMatchTheQueryFromScratch) {
     ASSERT_EQ(CachedAt(at_depth, known), FromScratchAt(at_depth, known)) << "step " << k;
   }
   EXPECT_LT(cache_.builds(), 0.7 * SkinsOfMotion());
+}
+
+// A cache restarted with a skin builds its next regions with that skin, as
+// ComputeContact's own cache does for the two pair queries of one contact
+// query: queries backed out by less than the skin from the first come from
+// its region, the one at the pose with the known pairs skipped too, and
+// one backed out further builds a second; every answer is the query's from
+// scratch. A cache never restarted has DefaultSkin.
+TEST_P(PairCacheTest, RestartSetsTheSkinOfTheNextRegions) {
+  const HapticObject a = Torus(1.0, 0.3), b = Torus(0.8, 0.25);
+  const double margin = 1e-9;
+  const CollisionModel ma(a, GetParam(), 1e-6), mb(b, GetParam(), 1e-6);
+  const double skin = 0.25 * PairCache::DefaultSkin(ma, mb);
+  const Vector3d back = Vector3d(0.3, -0.2, 0.9).normalized();
+  const auto backed_out = [&](double t) {
+    Isometry3d X = Overlapping();
+    X.pretranslate(t * back);
+    return X;
+  };
+  PairCache cache;
+  cache.Restart(skin);
+  const std::vector<TrianglePair> at_pose =
+      Cached(cache, ma, Isometry3d::Identity(), mb, backed_out(0), margin);
+  ASSERT_FALSE(at_pose.empty());
+  EXPECT_EQ(at_pose, FromScratch(ma, Isometry3d::Identity(), mb, backed_out(0), margin));
+  std::vector<TrianglePair> known = at_pose;
+  std::ranges::sort(known);
+  for (const double t : {0.5 * skin, 0.99 * skin}) {
+    EXPECT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, backed_out(t), margin, known),
+              FromScratch(ma, Isometry3d::Identity(), mb, backed_out(t), margin, known))
+        << "backed out by " << t;
+  }
+  EXPECT_EQ(cache.builds(), 1);
+  EXPECT_EQ(cache.hits(), 2);
+  EXPECT_EQ(Cached(cache, ma, Isometry3d::Identity(), mb, backed_out(1.5 * skin), margin),
+            FromScratch(ma, Isometry3d::Identity(), mb, backed_out(1.5 * skin), margin));
+  EXPECT_EQ(cache.builds(), 2);
+  cache.Restart(skin);  // forgets both regions
+  EXPECT_EQ(cache.regions(), 0);
+
+  PairCache by_default;
+  const double default_skin = PairCache::DefaultSkin(ma, mb);
+  EXPECT_EQ(default_skin, PairCache::kSkinRelative * (ma.impl().radius + mb.impl().radius));
+  for (const double t : {0.0, 0.99 * default_skin, 1.5 * default_skin}) {
+    EXPECT_EQ(Cached(by_default, ma, Isometry3d::Identity(), mb, backed_out(t), margin),
+              FromScratch(ma, Isometry3d::Identity(), mb, backed_out(t), margin))
+        << "backed out by " << t;
+  }
+  EXPECT_EQ(by_default.builds(), 2);
+  EXPECT_EQ(by_default.hits(), 1);
 }
 
 // Random jumps: every query far from the last builds a region, and still
