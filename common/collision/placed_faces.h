@@ -67,15 +67,22 @@ class PlacedFaces {
   /// query.
   const PlacedFace* data() const { return faces_.data(); }
 
-  /// Face `f` in the query frame.
-  const PlacedFace& Get(int f) {
+  /// Face `f` in the query frame. Inlined up to the test of whether it
+  /// is placed: the pair query's candidate loop asks for a face of B per
+  /// candidate, most of them placed already.
+  [[gnu::always_inline]] const PlacedFace& Get(int f) {
+    if (const PlacedFace* placed = faces_.Find(f)) return *placed;
+    return Place(f);
+  }
+
+ private:
+  [[gnu::noinline]] const PlacedFace& Place(int f) {
     return faces_.Get(f, [&] {
       const fcl::Triangle& t = triangles_[f];
       return PlaceFace({Vertex(t[0]), Vertex(t[1]), Vertex(t[2])});
     });
   }
 
- private:
   // Vertex `v` in the query frame: each once, for the faces around it.
   const Vector3d& Vertex(int v) {
     return vertices_placed_.Get(v, [&] { return Vector3d(R_ * vertices_[v] + T_); });
