@@ -25,8 +25,17 @@ void PairCache::Restart(double skin_m) {
   skin_m_ = skin_m;
 }
 
+namespace {
+
+// The default skin of a region of models `a` and `b`, metres.
+double SkinOf(const CollisionModel::Impl& a, const CollisionModel::Impl& b) {
+  return PairCache::kSkinRelative * (a.radius + b.radius);
+}
+
+}  // namespace
+
 double PairCache::DefaultSkin(const CollisionModel& a, const CollisionModel& b) {
-  return kSkinRelative * (a.impl().radius + b.impl().radius);
+  return SkinOf(a.impl(), b.impl());
 }
 
 int PairCache::regions() const {
@@ -90,7 +99,7 @@ double PairCache::Rounding(const CollisionModel::Impl& a, const CollisionModel::
 bool PairCache::Worthwhile(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                            const Isometry3d& X_AB) {
   const double radii = a.radius + b.radius;
-  return kSkinRelative * radii + Rounding(a, b, X_AB) < radii;
+  return SkinOf(a, b) + Rounding(a, b, X_AB) < radii;
 }
 
 namespace {
@@ -202,7 +211,7 @@ PairCache::Region* PairCache::Find(const CollisionModel::Impl& a, const Collisio
 
 PairCache::Region& PairCache::Make(const CollisionModel::Impl& a, const CollisionModel::Impl& b,
                                    double margin_m, const Isometry3d& X_AB) {
-  const double skin_m = skin_m_ > 0 ? skin_m_ : kSkinRelative * (a.radius + b.radius);
+  const double skin_m = skin_m_ > 0 ? skin_m_ : SkinOf(a, b);
   const Isometry3d X_AB_built = BuildPose(regions_, a, b, margin_m, X_AB, skin_m);
   Region& region =
       *std::min_element(regions_.begin(), regions_.end(),
