@@ -104,14 +104,14 @@ HWY_INLINE void Cut(D d, M active, V norm_sq, V s, V a_lo, V a_hi, V b_lo, V b_h
 
 // Loads faces[first, first + lanes) into lanes (a short last batch
 // repeats its last face).
-HWY_INLINE void Transpose(const Triangle3d* faces, size_t first, size_t count, size_t lanes,
+HWY_INLINE void Transpose(const TriangleCorners* faces, size_t first, size_t count, size_t lanes,
                           double* soa, size_t stride, Corners& c, const D d) {
   for (size_t j = 0; j < lanes; ++j) {
-    const Triangle3d& t = faces[first + std::min(j, count - 1)];
+    const TriangleCorners& t = faces[first + std::min(j, count - 1)];
     for (int k = 0; k < 3; ++k) {
-      soa[(3 * k) * stride + j] = t[k].x();
-      soa[(3 * k + 1) * stride + j] = t[k].y();
-      soa[(3 * k + 2) * stride + j] = t[k].z();
+      soa[(3 * k) * stride + j] = t[k]->x();
+      soa[(3 * k + 1) * stride + j] = t[k]->y();
+      soa[(3 * k + 2) * stride + j] = t[k]->z();
     }
   }
   for (int k = 0; k < 3; ++k) {
@@ -121,7 +121,7 @@ HWY_INLINE void Transpose(const Triangle3d* faces, size_t first, size_t count, s
   }
 }
 
-void SweptPlaneBoundsLanes(const Triangle3d* a, const Triangle3d* b, size_t n,
+void SweptPlaneBoundsLanes(const TriangleCorners* a, const TriangleCorners* b, size_t n,
                            const Vector3d& direction, double margin, Interval within,
                            SweptIntervals* out) {
   const D d;
@@ -180,7 +180,7 @@ namespace hs {
 
 HWY_EXPORT(SweptPlaneBoundsLanes);
 
-void SweptPlaneBoundsBatch(std::span<const Triangle3d> a, std::span<const Triangle3d> b,
+void SweptPlaneBoundsBatch(std::span<const TriangleCorners> a, std::span<const TriangleCorners> b,
                            const Vector3d& direction, double margin, Interval within,
                            std::span<SweptIntervals> out) {
   HWY_DYNAMIC_DISPATCH(SweptPlaneBoundsLanes)

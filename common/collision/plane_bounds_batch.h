@@ -11,8 +11,10 @@
 namespace hs {
 
 /// out[i] = SweptPlaneBounds(a[i], b[i], direction, margin, within) for
-/// each i; `a` and `out` hold b.size() entries.
-void SweptPlaneBoundsBatch(std::span<const Triangle3d> a, std::span<const Triangle3d> b,
+/// each i, the triangles read through their corners (so that gathering a
+/// query's few hundred pairs copies no triangle); `a` and `out` hold
+/// b.size() entries.
+void SweptPlaneBoundsBatch(std::span<const TriangleCorners> a, std::span<const TriangleCorners> b,
                            const Vector3d& direction, double margin, Interval within,
                            std::span<SweptIntervals> out);
 

@@ -308,6 +308,9 @@ class BucketTest {
     if (quick.size() < pending.size()) quick.resize(pending.size());
     QuickTrianglesTestBatch(ia_.leaf_order_faces.data(), faces_b_.data(), pending, margin_,
                             /*edge_cross=*/true, std::span(quick).first(pending.size()));
+    // Written in place, as RunCandidates writes them.
+    size_t found = pairs.size();
+    pairs.resize(found + pending.size());
     for (size_t k = 0; k < pending.size(); ++k) {
       const auto [i, b] = pending[k];
       bool meet = quick[k].answer == QuickTriangleTest::Answer::kMeet;
@@ -317,13 +320,14 @@ class BucketTest {
         meet = TrianglesIntersect(face_a.triangle, face_a.normal, face_b.triangle, face_b.normal,
                                   margin_);
       }
-      if (meet) pairs.push_back({ia_.leaf_faces[i], b});
+      if (meet) pairs[found++] = {ia_.leaf_faces[i], b};
     }
+    pairs.resize(found);
     pending.clear();
   }
 
   /// A static query from a region's candidates: each goes through Run's
-  /// tests (its box test, `skip`, the face test) in the candidates' order,
+  /// tests (`skip`, its box test, the face test) in the candidates' order,
   /// Run's own, save those known apart. The region's runs' travel to the
   /// query (Region::to_query) says how far each pair has moved since it
   /// was last tested, and `rounding` (the region's slack beside its skin)
@@ -346,6 +350,15 @@ class BucketTest {
       if (since.shifted_m + candidate.per_turn_m * since.turned < candidate.apart_until) continue;
       const int i = candidate.leaf_a;
       const int a = ia_.leaf_faces[i];
+      // `skip` before the box test: the pairs a query skips are mostly
+      // those the last one found (the exact method's query where M backs
+      // out skips those met at the pose), whose boxes meet. A pair skipped
+      // keeps what it was known by.
+      const std::span<const TrianglePair> skipped = Skipped(a);
+      if (!skipped.empty() &&
+          std::ranges::binary_search(skipped, TrianglePair{a, candidate.face_b})) {
+        continue;
+      }
       const PlacedFace& b = faces_b_.Get(candidate.face_b);
       double box_gap = -std::numeric_limits<double>::infinity();
       for (int d = 0; d < 3; ++d) {
@@ -358,14 +371,13 @@ class BucketTest {
         candidate.apart_until = shifted + candidate.per_turn_m * turned + box_gap - rounding;
         continue;
       }
-      const std::span<const TrianglePair> skipped = Skipped(a);
-      if (!skipped.empty() &&
-          std::ranges::binary_search(skipped, TrianglePair{a, candidate.face_b})) {
-        continue;
-      }
       tests.Add(candidate);
     }
     tests.RunQuickTests(ia_.leaf_order_faces.data(), faces_b_.data(), margin_);
+    // The pairs that meet, written in place: a push_back per pair was a
+    // call (GCC keeps std::vector's out of line here).
+    size_t found = pairs.size();
+    pairs.resize(found + tests.size);
     for (size_t k = 0; k < tests.size; ++k) {
       PairCache::Candidate& candidate = *tests.candidates[k];
       const int a = ia_.leaf_faces[candidate.leaf_a];
@@ -389,7 +401,7 @@ class BucketTest {
       }
       candidate.edge_pair = hint.edge_pair;
       if (meet) {
-        pairs.push_back({a, candidate.face_b});
+        pairs[found++] = {a, candidate.face_b};
         candidate.apart_until = -1;  // tested again next time
       } else {
         candidate.stream = stream;
@@ -397,6 +409,7 @@ class BucketTest {
         candidate.apart_until = shifted + candidate.per_turn_m * turned + hint.gap_m - rounding;
       }
     }
+    pairs.resize(found);
   }
 
  private:

@@ -18,6 +18,9 @@
 namespace hs {
 
 using Triangle3d = std::array<Vector3d, 3>;
+/// A face by its three corners, read where they are kept (a model's
+/// vertices, or vertices placed once per query), not copied.
+using TriangleCorners = std::array<const Vector3d*, 3>;
 
 /// A closed interval of a real parameter; empty when lo > hi.
 struct Interval {

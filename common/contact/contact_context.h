@@ -38,6 +38,11 @@ struct ContactContext {
     const auto& v = fixed.face(f).vertices;
     return {fixed.position(v[0]), fixed.position(v[1]), fixed.position(v[2])};
   }
+  /// Where face `f` of F's corners are kept (F's own vertices).
+  TriangleCorners FixedCorners(FaceId f) const {
+    const auto& v = fixed.face(f).vertices;
+    return {&fixed.position(v[0]), &fixed.position(v[1]), &fixed.position(v[2])};
+  }
   /// The sum of the unit normals of the fixed faces in `pairs` (outward for
   /// a consistently oriented mesh), F's frame.
   Vector3d TouchedFixedNormals() const;

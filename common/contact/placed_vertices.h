@@ -26,6 +26,12 @@ class PlacedVertices {
     return {Vertex(v[0]), Vertex(v[1]), Vertex(v[2])};
   }
 
+  /// Where face `f`'s placed corners are kept, until the next Reset.
+  TriangleCorners Corners(FaceId f) {
+    const auto& v = object_->face(f).vertices;
+    return {&Vertex(v[0]), &Vertex(v[1]), &Vertex(v[2])};
+  }
+
  private:
   const Vector3d& Vertex(VertexId v) {
     return placed_.Get(v, [&] { return Vector3d(X_ * object_->position(v)); });

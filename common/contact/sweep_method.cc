@@ -58,42 +58,50 @@ class KnownPairs {
     std::vector<TrianglePair>& pairs = s_.sorted;
     pairs.assign(found.begin(), found.end());
     std::sort(pairs.begin(), pairs.end());
-    const size_t old_size = known_.size();
-    // The pairs' faces (M's sorted: one placed per run of its pairs), for
-    // their bounds several at a time. Only t >= 0 can extend the run from
-    // t = 0.
-    std::vector<Triangle3d>& moving = s_.moving;
-    std::vector<Triangle3d>& fixed = s_.fixed;
-    moving.clear();
-    fixed.clear();
-    Triangle3d placed;  // of the last pair's face of M
+    // The new pairs and their faces (M's sorted: one placed per run of its
+    // pairs), for their bounds several at a time, written by index: the
+    // buffers are only grown, since a shrink would refill them at the
+    // next, larger, Add. Only t >= 0 can extend the run from t = 0.
+    if (s_.added.size() < pairs.size()) {
+      s_.added.resize(pairs.size());
+      s_.moving.resize(pairs.size());
+      s_.fixed.resize(pairs.size());
+      s_.bounds.resize(pairs.size());
+    }
+    size_t n = 0;
+    TriangleCorners placed{};  // of the last pair's face of M
     FaceId moving_face = -1;
     for (const TrianglePair& pair : pairs) {
-      if (std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
+      if (!pairs_.empty() && std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
       if (pair.a != moving_face) {
-        placed = s_.moving_vertices.Face(pair.a);
+        placed = s_.moving_vertices.Corners(pair.a);
         moving_face = pair.a;
       }
-      moving.push_back(placed);
-      fixed.push_back(c_.FixedTriangle(pair.b));
-      known_.push_back({.pair = pair, .computed = false});
+      s_.added[n] = pair;
+      s_.moving[n] = placed;
+      s_.fixed[n] = c_.FixedCorners(pair.b);
+      ++n;
     }
-    if (known_.size() == old_size) return;
-    // Only grown: a shrink would refill it at the next, larger, Add.
-    std::vector<SweptIntervals>& bounds = s_.bounds;
-    if (bounds.size() < fixed.size()) bounds.resize(fixed.size());
-    SweptPlaneBoundsBatch(moving, fixed, c_.direction_F, c_.tolerance_m, kAhead,
-                          std::span(bounds).first(fixed.size()));
-    for (size_t i = old_size; i < known_.size(); ++i) known_[i].bounds = bounds[i - old_size];
-    if (old_size > 0) {
-      // Merged through a second buffer: std::inplace_merge would allocate one.
-      s_.merged.clear();
-      std::merge(known_.begin(), known_.begin() + old_size, known_.begin() + old_size, known_.end(),
-                 std::back_inserter(s_.merged));
-      known_.swap(s_.merged);
+    if (n == 0) return;
+    const std::span<const SweptIntervals> bounds = std::span(s_.bounds).first(n);
+    SweptPlaneBoundsBatch(std::span(s_.moving).first(n), std::span(s_.fixed).first(n),
+                          c_.direction_F, c_.tolerance_m, kAhead, std::span(s_.bounds).first(n));
+    const size_t old_size = known_.size();
+    for (size_t i = 0; i < n; ++i) {
+      known_.push_back({.pair = s_.added[i], .bounds = bounds[i], .computed = false});
     }
-    pairs_.clear();
-    for (const KnownPair& k : known_) pairs_.push_back(k.pair);
+    if (old_size == 0) {
+      pairs_.assign(s_.added.begin(), s_.added.begin() + static_cast<std::ptrdiff_t>(n));
+      return;
+    }
+    // Merged through a second buffer: std::inplace_merge would allocate one.
+    s_.merged.resize(known_.size());
+    std::merge(known_.begin(), known_.begin() + static_cast<std::ptrdiff_t>(old_size),
+               known_.begin() + static_cast<std::ptrdiff_t>(old_size), known_.end(),
+               s_.merged.begin());
+    known_.swap(s_.merged);
+    pairs_.resize(known_.size());
+    for (size_t i = 0; i < known_.size(); ++i) pairs_[i] = known_[i].pair;
   }
 
   // Extends the run of exact intervals that covers t = 0 from `t_star`:
@@ -180,9 +188,10 @@ class KnownPairs {
     // reads these, not every known pair (most are never computed).
     std::vector<Interval> exact;
     std::vector<TrianglePair> sorted;
-    // The faces of the pairs Add takes, and their bounds.
-    std::vector<Triangle3d> moving;
-    std::vector<Triangle3d> fixed;
+    // The new pairs Add takes, their faces, and their bounds.
+    std::vector<TrianglePair> added;
+    std::vector<TriangleCorners> moving;
+    std::vector<TriangleCorners> fixed;
     std::vector<SweptIntervals> bounds;
     std::vector<Interval> scratch;
     std::vector<KnownPair*> reaching;

@@ -26,8 +26,14 @@ void ExpectScalarBoundsOnTheChosenTarget(const std::vector<Triangle3d>& a,
                                          const std::vector<Triangle3d>& b,
                                          const Vector3d& direction, double margin,
                                          Interval within) {
+  // The batch reads the corners where the triangles keep them.
+  std::vector<TriangleCorners> corners_a, corners_b;
+  for (size_t i = 0; i < b.size(); ++i) {
+    corners_a.push_back({&a[i][0], &a[i][1], &a[i][2]});
+    corners_b.push_back({&b[i][0], &b[i][1], &b[i][2]});
+  }
   std::vector<SweptIntervals> out(b.size());
-  SweptPlaneBoundsBatch(a, b, direction, margin, within, out);
+  SweptPlaneBoundsBatch(corners_a, corners_b, direction, margin, within, out);
   for (size_t i = 0; i < b.size(); ++i) {
     const SweptIntervals scalar = SweptPlaneBounds(a[i], b[i], direction, margin, within);
     EXPECT_TRUE(SameBits(out[i].exact.lo, scalar.exact.lo) &&
