@@ -35,8 +35,8 @@ struct ContactContext {
   Triangle3d MovingTriangle(FaceId f) const;
   /// Face `f` of F, in F's frame (inline: taken per pair on the hot path).
   Triangle3d FixedTriangle(FaceId f) const {
-    const auto& v = fixed.face(f).vertices;
-    return {fixed.position(v[0]), fixed.position(v[1]), fixed.position(v[2])};
+    const TriangleCorners c = FixedCorners(f);
+    return {*c[0], *c[1], *c[2]};
   }
   /// Where face `f` of F's corners are kept (F's own vertices).
   TriangleCorners FixedCorners(FaceId f) const {

@@ -22,8 +22,8 @@ class PlacedVertices {
 
   /// Face `f`'s corners, placed.
   Triangle3d Face(FaceId f) {
-    const auto& v = object_->face(f).vertices;
-    return {Vertex(v[0]), Vertex(v[1]), Vertex(v[2])};
+    const TriangleCorners c = Corners(f);
+    return {*c[0], *c[1], *c[2]};
   }
 
   /// Where face `f`'s placed corners are kept, until the next Reset.

@@ -72,7 +72,7 @@ class KnownPairs {
     TriangleCorners placed{};  // of the last pair's face of M
     FaceId moving_face = -1;
     for (const TrianglePair& pair : pairs) {
-      if (!pairs_.empty() && std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
+      if (std::binary_search(pairs_.begin(), pairs_.end(), pair)) continue;
       if (pair.a != moving_face) {
         placed = s_.moving_vertices.Corners(pair.a);
         moving_face = pair.a;
@@ -83,9 +83,9 @@ class KnownPairs {
       ++n;
     }
     if (n == 0) return;
-    const std::span<const SweptIntervals> bounds = std::span(s_.bounds).first(n);
+    const std::span<SweptIntervals> bounds = std::span(s_.bounds).first(n);
     SweptPlaneBoundsBatch(std::span(s_.moving).first(n), std::span(s_.fixed).first(n),
-                          c_.direction_F, c_.tolerance_m, kAhead, std::span(s_.bounds).first(n));
+                          c_.direction_F, c_.tolerance_m, kAhead, bounds);
     const size_t old_size = known_.size();
     for (size_t i = 0; i < n; ++i) {
       known_.push_back({.pair = s_.added[i], .bounds = bounds[i], .computed = false});
