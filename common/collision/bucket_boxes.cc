@@ -1,6 +1,6 @@
-// BucketBoxes::Meeting (bucket_boxes.h) with Google Highway: written by
-// hand because no library tests a box against a few dozen boxes into a bit
-// mask. Each comparison is the scalar one on the same sums (one addition
+// BucketBoxes::Meeting and GrownBoxesMeeting (bucket_boxes.h) with Google
+// Highway: written by hand because no library tests a box against a few
+// dozen boxes into a bit mask. Each comparison is the scalar one on the same sums (one addition
 // each, rounded alike in lanes), so the masks are the scalar code's.
 
 #include "common/collision/bucket_boxes.h"
@@ -45,6 +45,34 @@ void MeetingLanes(const double* const* lo, const double* const* hi_plus, size_t 
   }
 }
 
+// GrownBoxesMeeting.
+uint32_t GrownMeetingLanes(const BoxColumns& boxes, size_t count, const double* grow_lo,
+                           const double* grow_hi, const AxisBox& box, double margin) {
+  const hn::CappedTag<double, BoxColumns::kReadPast> d;
+  const size_t lanes = hn::Lanes(d);
+  const auto margin_v = hn::Set(d, margin);
+  hn::Vec<decltype(d)> box_lo[3], box_hi_plus[3], g_lo[3], g_hi[3];
+  for (int c = 0; c < 3; ++c) {
+    box_lo[c] = hn::Set(d, box.lo[c]);
+    box_hi_plus[c] = hn::Set(d, box.hi[c] + margin);
+    g_lo[c] = hn::Set(d, grow_lo[c]);
+    g_hi[c] = hn::Set(d, grow_hi[c]);
+  }
+  uint32_t meets = 0;
+  for (size_t k = 0; k < count; k += lanes) {
+    auto meet = hn::FirstN(d, count - k);
+    for (int c = 0; c < 3; ++c) {
+      const auto lo = hn::Add(hn::LoadU(d, boxes.lo[c] + k), g_lo[c]);
+      const auto hi_plus = hn::Add(hn::Add(hn::LoadU(d, boxes.hi[c] + k), g_hi[c]), margin_v);
+      meet = hn::And(meet, hn::And(hn::Le(lo, box_hi_plus[c]), hn::Le(box_lo[c], hi_plus)));
+    }
+    uint8_t bits[8] = {};
+    hn::StoreMaskBits(d, meet, bits);
+    meets |= uint32_t{bits[0]} << k;
+  }
+  return meets;
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace hs
 HWY_AFTER_NAMESPACE();
@@ -53,6 +81,13 @@ HWY_AFTER_NAMESPACE();
 namespace hs {
 
 HWY_EXPORT(MeetingLanes);
+HWY_EXPORT(GrownMeetingLanes);
+
+uint32_t GrownBoxesMeeting(const BoxColumns& boxes, int count, const double (&grow_lo)[3],
+                           const double (&grow_hi)[3], const AxisBox& box, double margin) {
+  return HWY_DYNAMIC_DISPATCH(GrownMeetingLanes)(boxes, static_cast<size_t>(count), grow_lo,
+                                                 grow_hi, box, margin);
+}
 
 void BucketBoxes::Meeting(std::span<const AxisBox> queries, std::span<uint32_t> out) const {
   const double* lo[3] = {lo_[0].data(), lo_[1].data(), lo_[2].data()};

@@ -34,6 +34,25 @@ struct AxisBox {
   }
 };
 
+/// Boxes kept coordinate by coordinate (a model's faces in leaf order):
+/// box k is lo[d][k] <= x[d] <= hi[d][k]. Each array can be read
+/// kReadPast entries past the last box a query names, so that whole
+/// vectors are read.
+struct BoxColumns {
+  static constexpr int kReadPast = 8;  // the most lanes read at once
+  const double* lo[3];
+  const double* hi[3];
+};
+
+/// Bit k: whether box k of the first `count` (at most 32) of `boxes`, grown
+/// by grow_lo below and grow_hi above, meets `box` within `margin`,
+/// compared exactly as
+///   lo[d][k] + grow_lo[d] <= box.hi[d] + margin and
+///   box.lo[d] <= (hi[d][k] + grow_hi[d]) + margin
+/// for every d (false where any of them is NaN).
+uint32_t GrownBoxesMeeting(const BoxColumns& boxes, int count, const double (&grow_lo)[3],
+                           const double (&grow_hi)[3], const AxisBox& box, double margin);
+
 /// Boxes to meet within a margin, each kept as its low corner and its high
 /// corner plus the margin.
 struct BucketBoxes {

@@ -97,14 +97,16 @@ void PlaceCentre(const HapticObject& object, CollisionModel::Impl& impl) {
   }
 }
 
-// Places the faces in leaf order (leaf_order_faces) with their boxes.
+// Places the faces in leaf order (leaf_order_faces) with their boxes, the
+// box arrays followed by BoxColumns::kReadPast empty boxes (whole vectors
+// are read past a bucket's last face).
 void PlaceLeafOrderFaces(CollisionModel::Impl& impl) {
   const size_t n = impl.leaf_faces.size();
   impl.leaf_order_faces.clear();
   impl.leaf_order_faces.reserve(n);
   for (int d = 0; d < 3; ++d) {
-    impl.leaf_order_lo[d].assign(n, std::numeric_limits<double>::infinity());
-    impl.leaf_order_hi[d].assign(n, -std::numeric_limits<double>::infinity());
+    impl.leaf_order_lo[d].assign(n + BoxColumns::kReadPast, std::numeric_limits<double>::infinity());
+    impl.leaf_order_hi[d].assign(n + BoxColumns::kReadPast, -std::numeric_limits<double>::infinity());
   }
   for (size_t i = 0; i < n; ++i) {
     const int f = impl.leaf_faces[i];

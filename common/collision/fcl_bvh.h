@@ -57,8 +57,9 @@ struct CollisionModel::Impl {
   std::vector<int> leaf_faces;
   /// Face leaf_faces[i] in the object frame, placed for the leaf buckets.
   std::vector<PlacedFace> leaf_order_faces;
-  /// Their boxes coordinate by coordinate, for a bucket's branch-free scan:
+  /// Their boxes coordinate by coordinate, for a bucket's scan in lanes:
   /// lo[d][i], hi[d][i]; a degenerate face's box is empty, so never met.
+  /// BoxColumns::kReadPast empty boxes follow the last face's.
   std::array<std::vector<double>, 3> leaf_order_lo, leaf_order_hi;
   /// Per node of the hierarchy (FCL's numbering): the box of its faces'
   /// boxes above, exactly their least and greatest coordinates (empty

@@ -220,19 +220,13 @@ class BucketTest {
       kept_box_b.Include(entry.face->lo.data(), entry.face->hi.data());
     }
     // A's faces whose boxes meet that box, and the box of each.
-    uint32_t faces_a = count == 32 ? ~uint32_t{0} : (uint32_t{1} << count) - 1;
-    for (int d = 0; d < 3; ++d) {
-      const double* a_lo = ia_.leaf_order_lo[d].data() + first;
-      const double* a_hi = ia_.leaf_order_hi[d].data() + first;
-      const double hi_b_plus = kept_box_b.hi[d] + margin_;
-      uint32_t meets = 0;
-      for (int k = 0; k < count; ++k) {
-        const bool meet = (a_lo[k] + grow_lo_[d] <= hi_b_plus) &
-                          (kept_box_b.lo[d] <= a_hi[k] + grow_hi_[d] + margin_);
-        meets |= uint32_t{meet} << k;
-      }
-      faces_a &= meets;
-    }
+    const BoxColumns faces_of_a{
+        {ia_.leaf_order_lo[0].data() + first, ia_.leaf_order_lo[1].data() + first,
+         ia_.leaf_order_lo[2].data() + first},
+        {ia_.leaf_order_hi[0].data() + first, ia_.leaf_order_hi[1].data() + first,
+         ia_.leaf_order_hi[2].data() + first}};
+    uint32_t faces_a =
+        GrownBoxesMeeting(faces_of_a, count, grow_lo_, grow_hi_, kept_box_b, margin_);
     std::array<AxisBox, kBucketFaces> boxes_a;
     std::array<int, kBucketFaces> leaves_a;
     size_t n = 0;

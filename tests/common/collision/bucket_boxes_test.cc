@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -86,6 +87,60 @@ TEST(BucketBoxesTest, MeetingGivesTheScalarComparisons) {
   }
   EXPECT_GT(met, 1000);
   EXPECT_GT(missed, 1000);
+}
+
+// GrownBoxesMeeting against the comparisons it names, for every count a
+// bucket can have, from an unaligned start, with boxes that would meet
+// past the count (only read), on every target this machine runs.
+TEST(BucketBoxesTest, GrownBoxesMeetingGivesTheScalarComparisons) {
+  std::mt19937 rng(43);
+  int met = 0, missed = 0;
+  for (const double scale : {1e-6, 1.0, 1e5}) {
+    for (int count = 0; count <= BucketBoxes::kCapacity; ++count) {
+      const int first = count % 3;  // unaligned starts
+      const int stored = first + count + BoxColumns::kReadPast;
+      std::vector<AxisBox> boxes;
+      std::array<std::vector<double>, 3> lo, hi;
+      for (int k = 0; k < stored; ++k) {
+        // Past the count: a box that meets everything.
+        constexpr double kInf = std::numeric_limits<double>::infinity();
+        boxes.push_back(k < first + count ? RandomBox(rng, scale)
+                                          : AxisBox{{-kInf, -kInf, -kInf}, {kInf, kInf, kInf}});
+        for (int d = 0; d < 3; ++d) {
+          lo[d].push_back(boxes.back().lo[d]);
+          hi[d].push_back(boxes.back().hi[d]);
+        }
+      }
+      const BoxColumns columns{{lo[0].data() + first, lo[1].data() + first, lo[2].data() + first},
+                               {hi[0].data() + first, hi[1].data() + first, hi[2].data() + first}};
+      std::uniform_int_distribution<int> grid(0, 2);
+      for (const double margin : {0.0, scale}) {
+        const double grow_lo[3] = {-grid(rng) * scale, 0.0, -scale};
+        const double grow_hi[3] = {0.0, grid(rng) * scale, scale};
+        const AxisBox query = RandomBox(rng, scale);
+        uint32_t expected = 0;
+        for (int k = 0; k < count; ++k) {
+          const AxisBox& box = boxes[first + k];
+          bool meet = true;
+          for (int d = 0; d < 3; ++d) {
+            meet = meet && box.lo[d] + grow_lo[d] <= query.hi[d] + margin &&
+                   query.lo[d] <= (box.hi[d] + grow_hi[d]) + margin;
+          }
+          expected |= uint32_t{meet} << k;
+          (meet ? met : missed) += 1;
+        }
+        for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
+          hwy::SetSupportedTargetsForTest(target);
+          SCOPED_TRACE(hwy::TargetName(target));
+          EXPECT_EQ(GrownBoxesMeeting(columns, count, grow_lo, grow_hi, query, margin), expected)
+              << "count " << count << ", margin " << margin;
+        }
+        hwy::SetSupportedTargetsForTest(0);
+      }
+    }
+  }
+  EXPECT_GT(met, 50);
+  EXPECT_GT(missed, 50);
 }
 
 // Keep leaves the boxes of the bits given, in order: Meeting then answers

@@ -170,6 +170,14 @@ TEST(CollisionModelSyncTest, DegenerateFacesAreMarkedAndNeverMet) {
       }
     }
   }
+  // Then the empty boxes a scan in lanes may read past the last face.
+  for (int d = 0; d < 3; ++d) {
+    ASSERT_EQ(impl.leaf_order_lo[d].size(), impl.leaf_faces.size() + BoxColumns::kReadPast);
+    ASSERT_EQ(impl.leaf_order_hi[d].size(), impl.leaf_order_lo[d].size());
+    for (size_t i = impl.leaf_faces.size(); i < impl.leaf_order_lo[d].size(); ++i) {
+      EXPECT_GT(impl.leaf_order_lo[d][i], impl.leaf_order_hi[d][i]) << i;
+    }
+  }
 }
 
 // Each node's face box is exactly the least and greatest coordinates of
