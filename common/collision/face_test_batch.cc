@@ -478,6 +478,21 @@ void HintedLanes(const PlacedFace* faces_a, const PlacedFace* faces_b, const Tri
       });
 }
 
+// FacePlanesApartBatch's lanes.
+void PlanesApartLanes(const PlacedFace* faces_a, const PlacedFace* faces_b,
+                      const TrianglePair* pairs, size_t n, double margin, uint8_t* apart) {
+  const D d;
+  constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+  HWY_ALIGN double beyond[kMaxLanes];
+  ForEachBatch(
+      faces_a, faces_b, pairs, n, [](size_t k) { return k; },
+      [&](const Faces& a, const Faces& b, size_t first, size_t count) {
+        hn::Store(hn::IfThenElseZero(FacePlanes(d, a, b, margin).beyond, hn::Set(d, 1.0)), d,
+                  beyond);
+        for (size_t j = 0; j < count; ++j) apart[first + j] = beyond[j] != 0;
+      });
+}
+
 // Without `edge_cross`, one pass; with it, two, the planes first. (A
 // static query's pairs mostly lie beyond a plane, and the crossing tests
 // cost several times the planes'; most of a coherent query's cross or
@@ -500,6 +515,7 @@ namespace hs {
 
 HWY_EXPORT(QuickLanes);
 HWY_EXPORT(HintedLanes);
+HWY_EXPORT(PlanesApartLanes);
 
 void QuickTrianglesTestBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
                              std::span<const TrianglePair> pairs, double margin, bool edge_cross,
@@ -513,6 +529,13 @@ void HintedEdgeCrossBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
                           std::span<PairHint> hints, std::span<uint8_t> separated) {
   HWY_DYNAMIC_DISPATCH(HintedLanes)
   (faces_a, faces_b, pairs.data(), pairs.size(), margin, hints.data(), separated.data());
+}
+
+void FacePlanesApartBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
+                          std::span<const TrianglePair> pairs, double margin,
+                          std::span<uint8_t> apart) {
+  HWY_DYNAMIC_DISPATCH(PlanesApartLanes)
+  (faces_a, faces_b, pairs.data(), pairs.size(), margin, apart.data());
 }
 
 }  // namespace hs

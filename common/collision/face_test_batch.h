@@ -25,6 +25,15 @@ void QuickTrianglesTestBatch(const PlacedFace* faces_a, const PlacedFace* faces_
                              std::span<const TrianglePair> pairs, double margin, bool edge_cross,
                              std::span<QuickTriangleTest> out);
 
+/// apart[i]: whether a face's plane keeps faces_a[pairs[i].a] and
+/// faces_b[pairs[i].b] beyond `margin`, bit for bit the plane tests
+/// QuickTrianglesTest starts with (its kApart), for each i; `apart` holds
+/// pairs.size() entries. A region's build keeps as candidates the pairs
+/// no plane keeps apart.
+void FacePlanesApartBatch(const PlacedFace* faces_a, const PlacedFace* faces_b,
+                          std::span<const TrianglePair> pairs, double margin,
+                          std::span<uint8_t> apart);
+
 /// For each i, EdgeCrossSeparates (triangle_sat.h) of the edge cross
 /// hints[i].edge_pair (0-8) of faces_a[pairs[i].a] and faces_b[pairs[i].b]
 /// at `margin`, bit for bit: separated[i] says whether it keeps them apart,

@@ -41,8 +41,8 @@ HWY_INLINE size_t RowOfLane(size_t lane) {
 template <int kGroups, class D>
 HWY_INLINE void LoadColumns(D d, const double* base, const int64_t* offsets, double* soa,
                             size_t stride, hn::Vec<D>* column) {
-  using V = hn::Vec<D>;
 #if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
+  using V = hn::Vec<D>;
   (void)soa;
   (void)stride;
   for (int m = 0; m < kGroups; ++m) {

@@ -250,9 +250,7 @@ class BucketTest {
         if (!skipped.empty() && std::ranges::binary_search(skipped, TrianglePair{a, b.id})) {
           continue;
         }
-        if (candidates_) {
-          if (!PlanesKeepApart(face_a, *b.face)) candidates_->push_back({i, b.id});
-        } else if (sweep_A_) {
+        if (sweep_A_) {
           if (SweptFacesMeet(face_a, *b.face)) pairs.push_back({a, b.id});
         } else {
           buffers_.pending.push_back({i, b.id});
@@ -290,10 +288,15 @@ class BucketTest {
   /// The face tests a static query's Run calls left pending, in the order
   /// they were left: the quick test of them all in batches
   /// (face_test_batch.h), then the full test of those it leaves; the pairs
-  /// that meet go to `pairs` in that order.
+  /// that meet go to `pairs` in that order. A region's build keeps those
+  /// pairs as candidates instead (KeepCandidates).
   void TestPending(std::vector<TrianglePair>& pairs) const {
     std::vector<TrianglePair>& pending = buffers_.pending;
     if (pending.empty()) return;
+    if (candidates_) {
+      KeepCandidates();
+      return;
+    }
     std::vector<QuickTriangleTest>& quick = buffers_.face_tests.quick;
     if (quick.size() < pending.size()) quick.resize(pending.size());
     QuickTrianglesTestBatch(ia_.leaf_order_faces.data(), faces_b_.data(), pending, margin_,
@@ -516,6 +519,7 @@ class BucketTest {
     std::vector<Entry> list_b;
     BucketBoxes boxes_b;
     std::vector<TrianglePair> pending;
+    std::vector<uint8_t> apart;  // KeepCandidates' plane tests
     FaceTests face_tests;
   };
 
@@ -578,12 +582,21 @@ class BucketTest {
     return run ? skip_.subspan(run->begin, run->end - run->begin) : std::span<const TrianglePair>();
   }
 
-  // Building a region: whether either face's plane keeps the other face
-  // beyond the margin (the region's, slack and all). Moved by less than
-  // the slack, the face then stays beyond the query's margin, and the face
-  // test's first plane tests reject the pair: it need not be kept.
-  bool PlanesKeepApart(const PlacedFace& a, const PlacedFace& b) const {
-    return BeyondFacePlane(a, b.triangle, margin_, 0) || BeyondFacePlane(b, a.triangle, margin_, 0);
+  // Building a region: the pending pairs that neither face's plane keeps
+  // beyond the margin (the region's, slack and all) become candidates, in
+  // order; their planes are tested several pairs at a time. A pair left
+  // out stays beyond the query's margin while either face moves less than
+  // the slack, and the face test's plane tests would reject it.
+  void KeepCandidates() const {
+    std::vector<TrianglePair>& pending = buffers_.pending;
+    std::vector<uint8_t>& apart = buffers_.apart;
+    if (apart.size() < pending.size()) apart.resize(pending.size());
+    FacePlanesApartBatch(ia_.leaf_order_faces.data(), faces_b_.data(), pending, margin_,
+                         std::span(apart).first(pending.size()));
+    for (size_t k = 0; k < pending.size(); ++k) {
+      if (!apart[k]) candidates_->push_back({pending[k].a, pending[k].b});
+    }
+    pending.clear();
   }
 
   const CollisionModel::Impl& ia_;

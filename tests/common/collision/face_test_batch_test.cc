@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -47,8 +48,9 @@ using Answers = std::array<int, 4>;  // how many pairs got each answer
 
 // Checks the batch against the scalar test, pair by pair and bit for bit,
 // on every SIMD target built in that this machine runs (SSE2 to AVX2 or
-// AVX-512 on x86-64), with and without the edge cross; returns how many
-// pairs each answer got with it.
+// AVX-512 on x86-64), with and without the edge cross, and the plane
+// tests alone (FacePlanesApartBatch) against its kApart; returns how many
+// pairs each answer got with the edge cross.
 Answers ExpectScalarAnswers(const std::vector<PlacedFace>& a, const std::vector<PlacedFace>& b,
                             double margin) {
   std::vector<TrianglePair> pairs;  // pair i: a[i] and b[i]
@@ -76,6 +78,13 @@ Answers ExpectScalarAnswers(const std::vector<PlacedFace>& a, const std::vector<
             << ", " << int{out[i].edge_pair} << ", " << out[i].gap_m << "; scalar "
             << static_cast<int>(scalar[i].answer) << ", " << int{scalar[i].edge_pair} << ", "
             << scalar[i].gap_m;
+      }
+      // The plane tests alone: the quick test's kApart, and only it.
+      std::vector<uint8_t> apart(b.size(), 7);
+      FacePlanesApartBatch(a.data(), b.data(), pairs, margin, apart);
+      for (size_t i = 0; i < b.size(); ++i) {
+        EXPECT_EQ(apart[i], scalar[i].answer == Answer::kApart ? 1 : 0)
+            << "pair " << i << " of " << b.size() << ": planes apart";
       }
     }
     hwy::SetSupportedTargetsForTest(0);
