@@ -1,7 +1,8 @@
 // BucketBoxes::Meeting and GrownBoxesMeeting (bucket_boxes.h) with Google
 // Highway: written by hand because no library tests a box against a few
-// dozen boxes into a bit mask. Each comparison is the scalar one on the same sums (one addition
-// each, rounded alike in lanes), so the masks are the scalar code's.
+// dozen boxes into a bit mask. Each comparison is the scalar one on the
+// same sums (each addition rounded alike in lanes), so the masks are the
+// scalar code's.
 
 #include "common/collision/bucket_boxes.h"
 

@@ -105,8 +105,10 @@ void PlaceLeafOrderFaces(CollisionModel::Impl& impl) {
   impl.leaf_order_faces.clear();
   impl.leaf_order_faces.reserve(n);
   for (int d = 0; d < 3; ++d) {
-    impl.leaf_order_lo[d].assign(n + BoxColumns::kReadPast, std::numeric_limits<double>::infinity());
-    impl.leaf_order_hi[d].assign(n + BoxColumns::kReadPast, -std::numeric_limits<double>::infinity());
+    impl.leaf_order_lo[d].assign(n + BoxColumns::kReadPast,
+                                 std::numeric_limits<double>::infinity());
+    impl.leaf_order_hi[d].assign(n + BoxColumns::kReadPast,
+                                 -std::numeric_limits<double>::infinity());
   }
   for (size_t i = 0; i < n; ++i) {
     const int f = impl.leaf_faces[i];
