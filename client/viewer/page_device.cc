@@ -11,7 +11,8 @@ namespace hs::cli {
 namespace pb = haptics::v1;
 
 PageDevice::PageDevice(const std::shared_ptr<grpc::Channel>& channel, const std::string& scene,
-                       const std::string& tool, Report report)
+                       const std::string& tool, Report report,
+                       const std::optional<Isometry3d>& X_WD_now)
     : tool_(tool), stub_(pb::SessionService::NewStub(channel)) {
   stream_ = stub_->Interact(&context_);
   pb::InteractRequest open;
@@ -21,6 +22,7 @@ PageDevice::PageDevice(const std::shared_ptr<grpc::Channel>& channel, const std:
   // only the force, the least a device asks.
   SetNeeds(EffectSet{Effect::kForce, Effect::kFriction}, *open.mutable_open());
   stream_->Write(open);
+  if (X_WD_now) SendPose(*X_WD_now);
   reader_ = std::thread([this, report = std::move(report)] {
     pb::Frame frame;
     bool held = false;

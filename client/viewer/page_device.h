@@ -24,9 +24,15 @@ class PageDevice {
   /// "refused" with a message.
   using Report = std::function<void(const std::string& state, const std::string& message)>;
 
-  /// Opens the stream for `tool` of `scene`.
+  /// Opens the stream for `tool` of `scene`, and sends `X_WD_now`, the
+  /// tool's device pose as last watched, when given: the server then has
+  /// the device's first pose at once, not after the page's own, which a
+  /// page slowed by a loaded machine may send after the server's device
+  /// timeout has released the tool. KeepAlive resends it until the page
+  /// sends another.
   PageDevice(const std::shared_ptr<grpc::Channel>& channel, const std::string& scene,
-             const std::string& tool, Report report);
+             const std::string& tool, Report report,
+             const std::optional<Isometry3d>& X_WD_now = std::nullopt);
   /// Ends the stream (the tool is released).
   ~PageDevice();
   PageDevice(const PageDevice&) = delete;

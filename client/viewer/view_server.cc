@@ -20,6 +20,7 @@
 #include "client/viewer/viewer_json.h"
 #include "client/viewer/web_assets.h"
 #include "client/viewer/ws_admission.h"
+#include "common/api/proto_convert.h"
 
 namespace hs::cli {
 namespace {
@@ -29,6 +30,7 @@ namespace http = beast::http;
 namespace websocket = beast::websocket;
 namespace net = boost::asio;
 namespace ssl = net::ssl;
+namespace pb = haptics::v1;
 using tcp = net::ip::tcp;
 using TlsStream = beast::ssl_stream<beast::tcp_stream>;
 using nlohmann::json;
@@ -245,7 +247,20 @@ class Page : public std::enable_shared_from_this<Page> {
           net::post(io, [weak, tool, stream, state, why] {
             if (auto self = weak.lock()) self->Reported(stream, tool, state, why);
           });
-        });
+        },
+        WatchedDevicePose(tool));
+  }
+
+  // `tool`'s device pose in the latest frame watched, if it has one.
+  std::optional<Isometry3d> WatchedDevicePose(const std::string& tool) const {
+    const std::shared_ptr<const pb::Frame> frame = server_.link.latest().frame;
+    if (!frame) return std::nullopt;
+    for (const pb::ToolState& state : frame->tools()) {
+      if (state.tool() != tool || !state.has_device_pose()) continue;
+      absl::StatusOr<Isometry3d> X_WD = PoseFromProto(state.device_pose(), "watched pose");
+      if (X_WD.ok()) return *X_WD;
+    }
+    return std::nullopt;
   }
 
   // Stream `stream`'s word on `tool`, on the io thread. A stream released or

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <thread>
 
 #include "absl/strings/match.h"
 #include "tests/server/test_server.h"
@@ -99,6 +100,35 @@ TEST_F(PageDeviceTest, MissingToolIsRefused) {
   PageDevice device(server_.channel(), "pages", "scalpel", reports.Sink());
   EXPECT_EQ(reports.State(1), "refused");
   EXPECT_TRUE(absl::StrContains(reports.Message(1), "NOT_FOUND")) << reports.Message(1);
+}
+
+// A device opened with the tool's pose holds the tool while the page
+// sends nothing, kept alive as the view server keeps it (KeepAlive); one
+// opened without waits for the page's first pose, and a server whose
+// device timeout passes first releases the tool. A page slowed by a
+// loaded machine is such a page.
+TEST(PageDeviceTimeoutTest, APoseAtOpenHoldsTheToolBeforeThePageSendsOne) {
+  ServerLimits limits;
+  limits.device_timeout_s = 0.3;
+  hs::testing::TestServer server(limits);
+  server.Create(hs::testing::SmallScene("pages", /*second_tool=*/true));
+  Reports with_pose, without;
+  PageDevice posed(server.channel(), "pages", "probe", with_pose.Sink(),
+                   Isometry3d(Eigen::Translation3d(0, 0, 0.05)));
+  PageDevice silent(server.channel(), "pages", "stylus", without.Sink());
+  ASSERT_EQ(with_pose.State(1), "held") << with_pose.Message(1);
+  for (int i = 0; i < 20; ++i) {  // a second: three device timeouts
+    posed.KeepAlive(std::chrono::milliseconds(100));
+    silent.KeepAlive(std::chrono::milliseconds(100));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_EQ(without.State(2), "refused") << without.Message(2);
+  EXPECT_TRUE(absl::StrContains(without.Message(2), "no pose came")) << without.Message(2);
+  // Still held: no second report, and the server still has the probe held.
+  EXPECT_EQ(with_pose.Message(2), "");
+  const pb::SceneInfo info = server.Get("pages");
+  ASSERT_EQ(info.claimed_tools_size(), 1) << info.DebugString();
+  EXPECT_EQ(info.claimed_tools(0), "probe");
 }
 
 }  // namespace
