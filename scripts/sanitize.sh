@@ -32,7 +32,8 @@ clang_build=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=cla
              -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON)
 cmake -S . -B build-asan "${clang_build[@]}" -DHS_SANITIZE=address,undefined -DHS_FUZZ=ON \
   -DHS_TIMING_BENCHMARKS=OFF >/dev/null
-phase "asan build" cmake --build build-asan -j2 --target engine_tests import_fuzzer requests_fuzzer contact_fuzzer
+phase "asan build" cmake --build build-asan -j2 --target engine_tests import_fuzzer requests_fuzzer contact_fuzzer \
+  kernels_fuzzer
 export ASAN_OPTIONS="detect_leaks=1:suppressions=$here/scripts/sanitizers/asan.supp"
 export LSAN_OPTIONS="suppressions=$here/scripts/sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
@@ -49,7 +50,7 @@ phase "asan tests" ctest --test-dir build-asan --output-on-failure -j2 --timeout
 # (docs/security.md lists those found). Any other crash, leak or undefined
 # behaviour fails the run.
 fuzz() {
-for target in import requests contact; do
+for target in import requests contact kernels; do
   corpus=build-asan/fuzz/corpus-$target
   log=build-asan/fuzz/$target.log
   mkdir -p "$corpus"

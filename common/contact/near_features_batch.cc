@@ -96,13 +96,17 @@ void NearFeaturesLanes(const MovingFaceCorners* moving, const FixedFaceEdges* fi
           hn::And(hn::And(hn::Le(f[j].x, hi_x), hn::Le(f[j].y, hi_y)), hn::Le(f[j].z, hi_z)));
       result = hn::Add(result, Bit(d, inside, 64 << j));
     }
-    // F's edges M's face does not lie beside.
+    // F's edges M's face does not lie beside: beside, every corner is more
+    // than twice the tolerance on one side (a NaN distance on neither,
+    // wherever it is among the three).
     for (int j = 0; j < 3; ++j) {
       const V d0 = Dot(across[j], Minus(m[0], f[j]));
       const V d1 = Dot(across[j], Minus(m[1], f[j]));
       const V d2 = Dot(across[j], Minus(m[2], f[j]));
-      const M beside = hn::Or(hn::Gt(MinOf(MinOf(d0, d1), d2), twice_tol),
-                              hn::Lt(MaxOf(MaxOf(d0, d1), d2), neg_twice_tol));
+      const M beside = hn::Or(
+          hn::And(hn::And(hn::Gt(d0, twice_tol), hn::Gt(d1, twice_tol)), hn::Gt(d2, twice_tol)),
+          hn::And(hn::And(hn::Lt(d0, neg_twice_tol), hn::Lt(d1, neg_twice_tol)),
+                  hn::Lt(d2, neg_twice_tol)));
       result = hn::Add(result, Bit(d, hn::AndNot(beside, any_edge_near), 512 << j));
     }
     hn::Store(result, d, bits);

@@ -5,39 +5,15 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <memory>
 
 #include "common/collision/collision_model.h"
 #include "common/contact/contact_query.h"
+#include "tests/fuzz/fuzz_bytes.h"
 
 namespace {
 
-// Reads doubles and small integers off the input, zeros once it runs out.
-class Bytes {
- public:
-  Bytes(const uint8_t* data, size_t size) : data_(data), size_(size) {}
-  double Number() {
-    double value = 0;
-    if (size_ >= sizeof value) {
-      std::memcpy(&value, data_, sizeof value);
-      data_ += sizeof value;
-      size_ -= sizeof value;
-    }
-    return value;
-  }
-  int Small(int below) {
-    if (size_ == 0) return 0;
-    const int value = data_[0] % below;
-    ++data_;
-    --size_;
-    return value;
-  }
-
- private:
-  const uint8_t* data_;
-  size_t size_;
-};
+using hs::fuzz::Bytes;
 
 // A mesh of up to 8 vertices and 8 faces over them, or nullptr when
 // HapticObject refuses it (that refusal is the edge's check).

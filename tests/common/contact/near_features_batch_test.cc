@@ -1,5 +1,5 @@
 // The contact locator's first tests in lanes give the scalar comparisons'
-// answers (their definition, written out below as the oracle) pair by pair
+// answers (their definition, near_features_oracle.h) pair by pair
 // on every SIMD target built in, and tell what a hand-placed pair has near.
 
 #include "common/contact/near_features_batch.h"
@@ -8,56 +8,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
 #include "hwy/targets.h"
 #include "tests/common/collision/sample_triangles.h"
+#include "tests/common/contact/near_features_oracle.h"
 
 namespace hs {
 namespace {
 
-// NearFeatures as the definitions say, with Eigen, a comparison at a time.
-NearFeatures Oracle(const Triangle3d& m, const FixedFaceEdges& f, double tol, double slack) {
-  NearFeatures out;
-  double off[3];
-  for (int i = 0; i < 3; ++i) {
-    off[i] = f.unit_normal.dot(m[i] - f.corners[0]);
-    if (!(std::abs(off[i]) > tol)) out.moving_corners |= 1 << i;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const int k = (i + 1) % 3;
-    const bool beyond = (off[i] > tol && off[k] > tol) || (off[i] < -tol && off[k] < -tol);
-    if (!beyond) out.moving_edges |= 1 << i;
-  }
-  Vector3d lo, hi;
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = std::min(std::min(m[0][d], m[1][d]), m[2][d]);
-    hi[d] = std::max(std::max(m[0][d], m[1][d]), m[2][d]);
-  }
-  for (int j = 0; j < 3; ++j) {
-    const Vector3d& p = f.corners[j];
-    if ((p.array() >= lo.array() - slack).all() && (p.array() <= hi.array() + slack).all()) {
-      out.fixed_corners |= 1 << j;
-    }
-  }
-  if (out.moving_edges == 0) return out;
-  for (int j = 0; j < 3; ++j) {
-    double dmin = std::numeric_limits<double>::infinity(), dmax = -dmin;
-    for (int i = 0; i < 3; ++i) {
-      const double d = f.across[j].dot(m[i] - f.corners[j]);
-      dmin = std::min(dmin, d);
-      dmax = std::max(dmax, d);
-    }
-    if (!(dmin > 2 * tol || dmax < -2 * tol)) out.fixed_edges |= 1 << j;
-  }
-  return out;
-}
-
-bool Same(const NearFeatures& x, const NearFeatures& y) {
-  return x.moving_corners == y.moving_corners && x.moving_edges == y.moving_edges &&
-         x.fixed_corners == y.fixed_corners && x.fixed_edges == y.fixed_edges;
-}
+using testing::NearFeaturesOracle;
+using testing::SameNearFeatures;
 
 std::string Bits(const NearFeatures& x) {
   return std::to_string(x.moving_corners) + " " + std::to_string(x.moving_edges) + " " +
@@ -81,7 +44,7 @@ std::vector<NearFeatures> ExpectOracleAnswers(const std::vector<Triangle3d>& mov
     const auto m = static_cast<int32_t>(i % moving.size()),
                f = static_cast<int32_t>(i % fixed.size());
     pairs.push_back({m, f});
-    oracle.push_back(Oracle(moving[m].corners, fixed[f], tol, slack));
+    oracle.push_back(NearFeaturesOracle(moving[m].corners, fixed[f], tol, slack));
   }
   for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
@@ -89,8 +52,9 @@ std::vector<NearFeatures> ExpectOracleAnswers(const std::vector<Triangle3d>& mov
     std::vector<NearFeatures> out(n, {7, 7, 7, 7});
     NearFeaturesBatch(moving.data(), fixed.data(), pairs, tol, slack, out);
     for (size_t i = 0; i < n; ++i) {
-      EXPECT_TRUE(Same(out[i], oracle[i])) << "pair " << i << " of " << n << ": batch "
-                                           << Bits(out[i]) << "; oracle " << Bits(oracle[i]);
+      EXPECT_TRUE(SameNearFeatures(out[i], oracle[i]))
+          << "pair " << i << " of " << n << ": batch " << Bits(out[i]) << "; oracle "
+          << Bits(oracle[i]);
     }
   }
   hwy::SetSupportedTargetsForTest(0);
@@ -150,6 +114,32 @@ TEST(NearFeaturesBatchTest, GridAndDegenerateFacesGiveTheOracleAnswers) {
   for (int round = 0; round < 200; ++round) {
     const testing::GridPairs grid = testing::GridAndDegeneratePairs(rng);
     for (const double tol : {0.01, 0.0}) ExpectOracleAnswers(grid.a, grid.b, tol, 2 * tol);
+  }
+}
+
+// A moving face with a NaN coordinate, in each corner in turn, or an
+// infinite one: an edge of the floor is beside it only when every corner
+// is clearly on one side (a NaN distance is on neither), wherever the NaN
+// is, as the definition says. The other two corners lie far across the
+// floor's edges, so the NaN decides; the lanes once folded the distances
+// with std::min's order, which kept a NaN only in the first corner.
+TEST(NearFeaturesBatchTest, NonFiniteCornersGiveTheDefinitionsAnswers) {
+  const Triangle3d floor = {Vector3d(0, 0, 0), Vector3d(10, 0, 0), Vector3d(0, 10, 0)};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<Triangle3d> moving;
+  for (const double bad : {nan, inf, -inf}) {
+    for (int corner = 0; corner < 3; ++corner) {
+      Triangle3d m = {Vector3d(-5, -5, 0), Vector3d(-6, -5, 0), Vector3d(-5, -6, 0.001)};
+      m[corner].y() = bad;
+      moving.push_back(m);
+    }
+  }
+  const std::vector<NearFeatures> answers = ExpectOracleAnswers(moving, {floor}, 0.01, 0.02);
+  for (int corner = 0; corner < 3; ++corner) {
+    // Floor edges 0 (y = 0) and 2 (x = 0): the NaN corner's distance across
+    // edge 0 is NaN (across edge 2 it is -5 or -6, beside with the others).
+    EXPECT_EQ(answers[corner].fixed_edges & 1, 1) << "NaN in corner " << corner;
   }
 }
 
