@@ -9,7 +9,10 @@
 //    FacePlanesApartBatch against QuickTrianglesTest (face_test_batch.h);
 //  - HintedEdgeCrossBatch against EdgeCrossSeparates;
 //  - SweptPlaneBoundsBatch against SweptPlaneBounds (plane_bounds_batch.h);
-//  - NearFeaturesBatch against its definition (near_features_oracle.h).
+//  - NearFeaturesBatch against its definition (near_features_oracle.h);
+//  - KeepEdgesWhoseLinesMayMeet against EdgeLinesMayMeet (the tool
+//    stage's edge search, edge_pairs_batch.h): the first face's edges as
+//    the tool's, each against every edge of the batch's second faces.
 // A difference prints both answers and aborts: libFuzzer keeps the input.
 // NaNs count as the same whatever their bits (a kernel and the scalar code
 // may carry different payloads); every other double must match to the bit,
@@ -29,6 +32,7 @@
 #include "common/collision/plane_bounds_batch.h"
 #include "common/collision/triangle_sat.h"
 #include "common/contact/near_features_batch.h"
+#include "common/sim/edge_pairs_batch.h"
 #include "hwy/targets.h"
 #include "tests/common/contact/near_features_oracle.h"
 #include "tests/fuzz/fuzz_bytes.h"
@@ -195,6 +199,40 @@ void NearFeatureTests(const Batch& batch, double tolerance, double slack, int64_
   }
 }
 
+void EdgeLines(const Batch& batch, Bytes& in, double margin, int64_t target) {
+  const EdgeMove move(margin, Margin(in), Margin(in), Margin(in));
+  EdgeColumns columns;
+  std::vector<WorldEdge> edges;
+  for (const Triangle3d& face : batch.b) {
+    for (int k = 0; k < 3; ++k) {
+      edges.push_back({face[k], face[(k + 1) % 3], Vector3d::Zero()});
+      columns.Add(edges.back(), (edges.back().to - edges.back().from).norm());
+    }
+  }
+  // Every row, last first (a search hands rows in its own order).
+  std::vector<int> candidates;
+  for (int row = static_cast<int>(edges.size()) - 1; row >= 0; --row) candidates.push_back(row);
+  std::vector<int> kept(candidates.size());
+  for (int k = 0; k < 3; ++k) {
+    const Vector3d& from = batch.a[0][k];
+    const Vector3d u = batch.a[0][(k + 1) % 3] - from;
+    const double lu = u.norm();
+    const size_t n =
+        KeepEdgesWhoseLinesMayMeet(from, u, lu, columns, candidates, move, kept.data());
+    size_t scalar = 0;
+    for (const int row : candidates) {
+      const WorldEdge& e = edges[row];
+      const Vector3d v = e.to - e.from;
+      if (!EdgeLinesMayMeet(from, u, lu, e.from, v, v.norm(), move)) continue;
+      if (scalar >= n || kept[scalar] != row) {
+        Differ("KeepEdgesWhoseLinesMayMeet", target, batch.a[0], batch.b[row / 3], row / 3);
+      }
+      ++scalar;
+    }
+    if (scalar != n) Differ("KeepEdgesWhoseLinesMayMeet", target, batch.a[0], batch.b[0], 0);
+  }
+}
+
 }  // namespace
 }  // namespace hs
 
@@ -212,6 +250,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     hs::HintedEdgeCrosses(batch, target_in, margin, target);
     hs::PlaneBounds(batch, target_in, margin, target);
     hs::NearFeatureTests(batch, margin, slack, target);
+    hs::EdgeLines(batch, target_in, margin, target);
   }
   hwy::SetSupportedTargetsForTest(0);
   return 0;
