@@ -684,16 +684,23 @@ async function main() {
   });
   check(exited, `haptic-server did not exit within 10 s of SIGTERM (last lines: ` +
         `${server.log.slice(-3).join(' | ')})`);
-  await a.waitForFunction(() => !window.viewerState.connected, null, { timeout: 10_000 })
-    .catch(() => {});
-  const gone = await state(a);
+  // Polled from here, each reading kept: a wait in the page that ends
+  // early (its error swallowed) once left the check to a single reading.
+  const readings = [];
+  let gone = await state(a);
+  for (const until = Date.now() + 10_000; gone?.connected && Date.now() < until;) {
+    readings.push(`${Date.now() - termAt} ms: ${gone.status}`);
+    await sleep(50);
+    gone = await state(a);
+  }
   // Which side held on, when it does: the server (still running, or how
   // long it took to exit) or the bridge's view of it.
   check(gone && !gone.connected,
         `page A still shows a connection ${Date.now() - termAt} ms after SIGTERM: ${brief(gone)}; ` +
         `haptic-server ${exitedAfterMs === null ? 'still running' : `exited after ${exitedAfterMs} ms`}` +
         ` (last lines: ${server.log.slice(-3).join(' | ')}); ` +
-        `bridge's last lines: ${bridge.log.slice(-3).join(' | ')}`);
+        `bridge's last lines: ${bridge.log.slice(-3).join(' | ')}; ` +
+        `page A's readings: ${readings.slice(0, 3).join(' | ')} ... ${readings.slice(-3).join(' | ')}`);
   check(alive(bridge.proc), 'the bridge ended with the server');
   log(`server gone: page A says "${gone.status}"`);
 

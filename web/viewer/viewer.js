@@ -157,9 +157,11 @@ function checkRevision(frame) {
 function handleMessage(message) {
   switch (message.type) {
     case 'hello':
+      // The scene and its tools only: whether the bridge reaches the server
+      // is the status message's to say (a page opening while the server is
+      // away gets a hello, then the status that says so).
       state.scene = String(message.scene ?? '');
       helloTools = Array.isArray(message.tools) ? message.tools.map(String) : [];
-      setServerConnected(true, '');
       refreshToolNames();
       break;
     case 'frame':
