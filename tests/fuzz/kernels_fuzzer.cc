@@ -13,7 +13,8 @@
 //  - KeepEdgesWhoseLinesMayMeet against EdgeLinesMayMeet (the tool
 //    stage's edge search, edge_pairs_batch.h): the first face's edges as
 //    the tool's, each against every edge of the batch's second faces.
-// A difference prints both answers and aborts: libFuzzer keeps the input.
+// A difference prints the kernel, the target and the pair's faces (the
+// locator's tests both answers too) and aborts: libFuzzer keeps the input.
 // NaNs count as the same whatever their bits (a kernel and the scalar code
 // may carry different payloads); every other double must match to the bit,
 // signed zeros included.
