@@ -153,9 +153,11 @@ struct LineCrossing {
 std::optional<LineCrossing> CrossingOnLine(const Triangle3d& t, const std::array<double, 3>& d,
                                            double clear_sq, const Vector3d& line,
                                            const Vector3d& origin) {
-  if (!((d[0] * d[0] > clear_sq) & (d[1] * d[1] > clear_sq) & (d[2] * d[2] > clear_sq))) {
-    return std::nullopt;
-  }
+  // All three compares, with no branch between them.
+  const int clear = static_cast<int>(d[0] * d[0] > clear_sq) &
+                    static_cast<int>(d[1] * d[1] > clear_sq) &
+                    static_cast<int>(d[2] * d[2] > clear_sq);
+  if (clear == 0) return std::nullopt;
   // The corner alone on its side, and the other two, in turn after it.
   const bool above[3] = {d[0] > 0, d[1] > 0, d[2] > 0};
   if (above[0] == above[1] && above[1] == above[2]) return std::nullopt;

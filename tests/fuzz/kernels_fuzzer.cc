@@ -19,6 +19,7 @@
 // may carry different payloads); every other double must match to the bit,
 // signed zeros included.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -86,108 +87,167 @@ double Margin(Bytes& in) {
   const double x = in.Number();
   return std::isfinite(x) && x >= 0 ? x : 0.0;
 }
-
-struct Batch {
+// Everything the kernels are given, read off the input once.
+struct Input {
   std::vector<Triangle3d> a, b;  // pair i: a[i] and b[i]
   std::vector<PlacedFace> placed_a, placed_b;
   std::vector<TrianglePair> pairs;  // {i, i}
+  double margin = 0;
+  double slack = 0;  // the locator's: twice its tolerance and more (Locator::CornerSlack)
+  std::vector<PairHint> hints;  // the edge cross each pair kept apart by last time
+  Vector3d direction;           // the sweep's
+  Interval within;
+  std::vector<TriangleCorners> corners_a, corners_b;
+  std::vector<MovingFaceCorners> moving;
+  std::vector<FixedFaceEdges> fixed;
+  std::vector<FaceRecordPair> records;  // {i, i}
+  EdgeMove move{0, 0, 0, 0};            // the tool stage's
+  std::vector<WorldEdge> edges;         // every edge of the second faces
+  EdgeColumns columns;
+  std::vector<int> rows;  // every row of `columns`, last first (a search hands rows in its order)
 };
 
 // One to 19 pairs (every short last batch of every lane count), some
 // sharing their first face as a region's or a sweep's run of pairs does.
-Batch Pairs(Bytes& in) {
-  Batch batch;
+Input Read(Bytes& in) {
+  Input input;
   const int n = 1 + in.Small(19);
   for (int i = 0; i < n; ++i) {
-    batch.a.push_back(i > 0 && in.Small(3) == 0 ? batch.a.back() : Face(in));
-    batch.b.push_back(Face(in));
-    batch.placed_a.push_back(PlaceFace(batch.a.back()));
-    batch.placed_b.push_back(PlaceFace(batch.b.back()));
-    batch.pairs.push_back({i, i});
+    input.a.push_back(i > 0 && in.Small(3) == 0 ? input.a.back() : Face(in));
+    input.b.push_back(Face(in));
+    input.pairs.push_back({i, i});
+    input.records.push_back({i, i});
   }
-  return batch;
+  for (int i = 0; i < n; ++i) {
+    input.placed_a.push_back(PlaceFace(input.a[i]));
+    input.placed_b.push_back(PlaceFace(input.b[i]));
+    input.corners_a.push_back({&input.a[i][0], &input.a[i][1], &input.a[i][2]});
+    input.corners_b.push_back({&input.b[i][0], &input.b[i][1], &input.b[i][2]});
+    input.moving.push_back({input.a[i]});
+    input.fixed.emplace_back(input.b[i]);
+  }
+  input.margin = Margin(in);
+  input.slack = 2 * input.margin + Margin(in);
+  for (int i = 0; i < n; ++i) input.hints.push_back({.edge_pair = in.Small(9), .gap_m = 7, .lever_m = 7});
+  const double x = in.Number(), y = in.Number(), z = in.Number();
+  input.direction = {x, y, z};
+  input.within = in.Small(2) == 0 ? Interval{0, kInf} : Interval{-kInf, kInf};
+  const double turn = Margin(in), radius = Margin(in), behind = Margin(in);
+  input.move = EdgeMove(input.margin, turn, radius, behind);
+  for (const Triangle3d& face : input.b) {
+    for (int k = 0; k < 3; ++k) {
+      input.edges.push_back({face[k], face[(k + 1) % 3], Vector3d::Zero()});
+      input.columns.Add(input.edges.back(), (input.edges.back().to - input.edges.back().from).norm());
+    }
+  }
+  for (int row = static_cast<int>(input.edges.size()) - 1; row >= 0; --row) input.rows.push_back(row);
+  return input;
 }
 
-void QuickTests(const Batch& batch, double margin, int64_t target) {
-  const size_t n = batch.pairs.size();
+// The scalar code's answers, which every target's kernels must give.
+struct Answers {
+  std::vector<QuickTriangleTest> quick[2];  // without and with the edge cross
+  std::vector<PairHint> hints;
+  std::vector<uint8_t> hinted_apart;
+  std::vector<SweptIntervals> bounds;
+  std::vector<NearFeatures> near;
+  std::vector<int> kept[3];  // the rows kept for each edge of the first pair's first face
+};
+
+Answers ScalarAnswers(const Input& input) {
+  Answers answers;
+  const size_t n = input.pairs.size();
+  for (const bool edge_cross : {false, true}) {
+    for (size_t i = 0; i < n; ++i) {
+      const PlacedFace &a = input.placed_a[i], &b = input.placed_b[i];
+      answers.quick[edge_cross].push_back(
+          QuickTrianglesTest(a.triangle, a.normal, b.triangle, b.normal, input.margin, edge_cross));
+    }
+  }
+  answers.hints = input.hints;
+  for (size_t i = 0; i < n; ++i) {
+    const int k = input.hints[i].edge_pair;
+    answers.hinted_apart.push_back(EdgeCrossSeparates(input.placed_a[i].triangle,
+                                                      input.placed_b[i].triangle, k / 3, k % 3,
+                                                      input.margin, answers.hints[i]));
+    answers.bounds.push_back(
+        SweptPlaneBounds(input.a[i], input.b[i], input.direction, input.margin, input.within));
+    answers.near.push_back(
+        testing::NearFeaturesOracle(input.a[i], input.fixed[i], input.margin, input.slack));
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Vector3d& from = input.a[0][k];
+    const Vector3d u = input.a[0][(k + 1) % 3] - from;
+    for (const int row : input.rows) {
+      const WorldEdge& e = input.edges[row];
+      const Vector3d v = e.to - e.from;
+      if (EdgeLinesMayMeet(from, u, u.norm(), e.from, v, v.norm(), input.move)) {
+        answers.kept[k].push_back(row);
+      }
+    }
+  }
+  return answers;
+}
+
+void QuickTests(const Input& input, const Answers& answers, int64_t target) {
+  const size_t n = input.pairs.size();
   for (const bool edge_cross : {false, true}) {
     std::vector<QuickTriangleTest> out(n);
-    QuickTrianglesTestBatch(batch.placed_a.data(), batch.placed_b.data(), batch.pairs, margin,
-                            edge_cross, out);
+    QuickTrianglesTestBatch(input.placed_a.data(), input.placed_b.data(), input.pairs,
+                            input.margin, edge_cross, out);
     std::vector<uint8_t> apart(n);
-    FacePlanesApartBatch(batch.placed_a.data(), batch.placed_b.data(), batch.pairs, margin, apart);
+    FacePlanesApartBatch(input.placed_a.data(), input.placed_b.data(), input.pairs, input.margin,
+                         apart);
     for (size_t i = 0; i < n; ++i) {
-      const PlacedFace &a = batch.placed_a[i], &b = batch.placed_b[i];
-      const QuickTriangleTest scalar =
-          QuickTrianglesTest(a.triangle, a.normal, b.triangle, b.normal, margin, edge_cross);
+      const QuickTriangleTest& scalar = answers.quick[edge_cross][i];
       if (out[i].answer != scalar.answer || out[i].edge_pair != scalar.edge_pair ||
           !Same(out[i].gap_m, scalar.gap_m)) {
         Differ(
             edge_cross ? "QuickTrianglesTestBatch with the edge cross" : "QuickTrianglesTestBatch",
-            target, batch.a[i], batch.b[i], i);
+            target, input.a[i], input.b[i], i);
       }
       if ((apart[i] != 0) != (scalar.answer == QuickTriangleTest::Answer::kApart)) {
-        Differ("FacePlanesApartBatch", target, batch.a[i], batch.b[i], i);
+        Differ("FacePlanesApartBatch", target, input.a[i], input.b[i], i);
       }
     }
   }
 }
 
-void HintedEdgeCrosses(const Batch& batch, Bytes& in, double margin, int64_t target) {
-  const size_t n = batch.pairs.size();
-  std::vector<PairHint> hints(n);
-  for (PairHint& hint : hints) hint = {.edge_pair = in.Small(9), .gap_m = 7, .lever_m = 7};
-  std::vector<PairHint> scalar = hints;
-  std::vector<uint8_t> separated(n);
-  HintedEdgeCrossBatch(batch.placed_a.data(), batch.placed_b.data(), batch.pairs, margin, hints,
-                       separated);
-  for (size_t i = 0; i < n; ++i) {
-    const int k = scalar[i].edge_pair;
-    const bool apart = EdgeCrossSeparates(batch.placed_a[i].triangle, batch.placed_b[i].triangle,
-                                          k / 3, k % 3, margin, scalar[i]);
-    if ((separated[i] != 0) != apart || hints[i].edge_pair != scalar[i].edge_pair ||
-        !Same(hints[i].gap_m, scalar[i].gap_m) || !Same(hints[i].lever_m, scalar[i].lever_m)) {
-      Differ("HintedEdgeCrossBatch", target, batch.a[i], batch.b[i], i);
+void HintedEdgeCrosses(const Input& input, const Answers& answers, int64_t target) {
+  std::vector<PairHint> hints = input.hints;
+  std::vector<uint8_t> separated(hints.size());
+  HintedEdgeCrossBatch(input.placed_a.data(), input.placed_b.data(), input.pairs, input.margin,
+                       hints, separated);
+  for (size_t i = 0; i < hints.size(); ++i) {
+    const PairHint& scalar = answers.hints[i];
+    if ((separated[i] != 0) != (answers.hinted_apart[i] != 0) ||
+        hints[i].edge_pair != scalar.edge_pair || !Same(hints[i].gap_m, scalar.gap_m) ||
+        !Same(hints[i].lever_m, scalar.lever_m)) {
+      Differ("HintedEdgeCrossBatch", target, input.a[i], input.b[i], i);
     }
   }
 }
 
-void PlaneBounds(const Batch& batch, Bytes& in, double margin, int64_t target) {
-  const Vector3d direction(in.Number(), in.Number(), in.Number());
-  const Interval within = in.Small(2) == 0 ? Interval{0, kInf} : Interval{-kInf, kInf};
-  const size_t n = batch.pairs.size();
-  std::vector<TriangleCorners> corners_a, corners_b;
-  for (size_t i = 0; i < n; ++i) {
-    corners_a.push_back({&batch.a[i][0], &batch.a[i][1], &batch.a[i][2]});
-    corners_b.push_back({&batch.b[i][0], &batch.b[i][1], &batch.b[i][2]});
-  }
-  std::vector<SweptIntervals> out(n);
-  SweptPlaneBoundsBatch(corners_a, corners_b, direction, margin, within, out);
-  for (size_t i = 0; i < n; ++i) {
-    const SweptIntervals scalar =
-        SweptPlaneBounds(batch.a[i], batch.b[i], direction, margin, within);
+void PlaneBounds(const Input& input, const Answers& answers, int64_t target) {
+  std::vector<SweptIntervals> out(input.pairs.size());
+  SweptPlaneBoundsBatch(input.corners_a, input.corners_b, input.direction, input.margin,
+                        input.within, out);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const SweptIntervals& scalar = answers.bounds[i];
     if (!Same(out[i].exact.lo, scalar.exact.lo) || !Same(out[i].exact.hi, scalar.exact.hi) ||
         !Same(out[i].within_margin.lo, scalar.within_margin.lo) ||
         !Same(out[i].within_margin.hi, scalar.within_margin.hi)) {
-      Differ("SweptPlaneBoundsBatch", target, batch.a[i], batch.b[i], i);
+      Differ("SweptPlaneBoundsBatch", target, input.a[i], input.b[i], i);
     }
   }
 }
 
-void NearFeatureTests(const Batch& batch, double tolerance, double slack, int64_t target) {
-  const size_t n = batch.pairs.size();
-  std::vector<MovingFaceCorners> moving;
-  std::vector<FixedFaceEdges> fixed;
-  std::vector<FaceRecordPair> records;
-  for (size_t i = 0; i < n; ++i) {
-    moving.push_back({batch.a[i]});
-    fixed.emplace_back(batch.b[i]);
-    records.push_back({static_cast<int32_t>(i), static_cast<int32_t>(i)});
-  }
-  std::vector<NearFeatures> out(n);
-  NearFeaturesBatch(moving.data(), fixed.data(), records, tolerance, slack, out);
-  for (size_t i = 0; i < n; ++i) {
-    const NearFeatures scalar = testing::NearFeaturesOracle(batch.a[i], fixed[i], tolerance, slack);
+void NearFeatureTests(const Input& input, const Answers& answers, int64_t target) {
+  std::vector<NearFeatures> out(input.records.size());
+  NearFeaturesBatch(input.moving.data(), input.fixed.data(), input.records, input.margin,
+                    input.slack, out);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const NearFeatures& scalar = answers.near[i];
     if (!testing::SameNearFeatures(out[i], scalar)) {
       std::fprintf(stderr,
                    "lanes %d %d %d %d, definition %d %d %d %d (moving corners and edges, fixed "
@@ -195,42 +255,28 @@ void NearFeatureTests(const Batch& batch, double tolerance, double slack, int64_
                    out[i].moving_corners, out[i].moving_edges, out[i].fixed_corners,
                    out[i].fixed_edges, scalar.moving_corners, scalar.moving_edges,
                    scalar.fixed_corners, scalar.fixed_edges);
-      Differ("NearFeaturesBatch", target, batch.a[i], batch.b[i], i);
+      Differ("NearFeaturesBatch", target, input.a[i], input.b[i], i);
     }
   }
 }
 
-void EdgeLines(const Batch& batch, Bytes& in, double margin, int64_t target) {
-  const EdgeMove move(margin, Margin(in), Margin(in), Margin(in));
-  EdgeColumns columns;
-  std::vector<WorldEdge> edges;
-  for (const Triangle3d& face : batch.b) {
-    for (int k = 0; k < 3; ++k) {
-      edges.push_back({face[k], face[(k + 1) % 3], Vector3d::Zero()});
-      columns.Add(edges.back(), (edges.back().to - edges.back().from).norm());
-    }
-  }
-  // Every row, last first (a search hands rows in its own order).
-  std::vector<int> candidates;
-  for (int row = static_cast<int>(edges.size()) - 1; row >= 0; --row) candidates.push_back(row);
-  std::vector<int> kept(candidates.size());
+// The first pair's first face as the tool's, each of its edges against
+// every edge of the second faces.
+void EdgeLines(const Input& input, const Answers& answers, int64_t target) {
+  std::vector<int> kept(input.rows.size());
   for (int k = 0; k < 3; ++k) {
-    const Vector3d& from = batch.a[0][k];
-    const Vector3d u = batch.a[0][(k + 1) % 3] - from;
-    const double lu = u.norm();
-    const size_t n =
-        KeepEdgesWhoseLinesMayMeet(from, u, lu, columns, candidates, move, kept.data());
-    size_t scalar = 0;
-    for (const int row : candidates) {
-      const WorldEdge& e = edges[row];
-      const Vector3d v = e.to - e.from;
-      if (!EdgeLinesMayMeet(from, u, lu, e.from, v, v.norm(), move)) continue;
-      if (scalar >= n || kept[scalar] != row) {
-        Differ("KeepEdgesWhoseLinesMayMeet", target, batch.a[0], batch.b[row / 3], row / 3);
+    const Vector3d& from = input.a[0][k];
+    const Vector3d u = input.a[0][(k + 1) % 3] - from;
+    const size_t n = KeepEdgesWhoseLinesMayMeet(from, u, u.norm(), input.columns, input.rows,
+                                                input.move, kept.data());
+    const std::vector<int>& scalar = answers.kept[k];
+    for (size_t i = 0; i < std::min(n, scalar.size()); ++i) {
+      if (kept[i] != scalar[i]) {
+        const int row = std::min(kept[i], scalar[i]);
+        Differ("KeepEdgesWhoseLinesMayMeet", target, input.a[0], input.b[row / 3], row / 3);
       }
-      ++scalar;
     }
-    if (scalar != n) Differ("KeepEdgesWhoseLinesMayMeet", target, batch.a[0], batch.b[0], 0);
+    if (n != scalar.size()) Differ("KeepEdgesWhoseLinesMayMeet", target, input.a[0], input.b[0], 0);
   }
 }
 
@@ -239,19 +285,15 @@ void EdgeLines(const Batch& batch, Bytes& in, double margin, int64_t target) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   hs::fuzz::Bytes in(data, size);
-  const hs::Batch batch = hs::Pairs(in);
-  const double margin = hs::Margin(in);
-  // The locator's slack: twice its tolerance and more (Locator::CornerSlack).
-  const double slack = 2 * margin + hs::Margin(in);
-  const hs::fuzz::Bytes rest = in;  // each target reads the same hints and direction
+  const hs::Input input = hs::Read(in);
+  const hs::Answers answers = hs::ScalarAnswers(input);
   for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
-    hs::fuzz::Bytes target_in = rest;
-    hs::QuickTests(batch, margin, target);
-    hs::HintedEdgeCrosses(batch, target_in, margin, target);
-    hs::PlaneBounds(batch, target_in, margin, target);
-    hs::NearFeatureTests(batch, margin, slack, target);
-    hs::EdgeLines(batch, target_in, margin, target);
+    hs::QuickTests(input, answers, target);
+    hs::HintedEdgeCrosses(input, answers, target);
+    hs::PlaneBounds(input, answers, target);
+    hs::NearFeatureTests(input, answers, target);
+    hs::EdgeLines(input, answers, target);
   }
   hwy::SetSupportedTargetsForTest(0);
   return 0;
