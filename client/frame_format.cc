@@ -32,7 +32,10 @@ void PrintFrame(const pb::Frame& frame, bool json, std::ostream& out) {
   for (const pb::ToolClash& clash : frame.clashes()) {
     if (clash.touching()) out << "  clash " << clash.tool_a() << "-" << clash.tool_b();
   }
-  if (frame.dropped_frames() > 0) out << "  (" << frame.dropped_frames() << " frames dropped)";
+  // A count since the stream began, not this frame's.
+  if (frame.dropped_frames() > 0) {
+    out << "  (" << frame.dropped_frames() << " frames dropped so far)";
+  }
   out << "\n";
 }
 

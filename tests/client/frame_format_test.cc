@@ -32,6 +32,20 @@ TEST(FrameFormatTest, NamesHoldersAndClashes) {
   EXPECT_EQ(line.find("scalpel"), std::string::npos) << line;
 }
 
+// The frames the stream dropped are counted since it began, and the line
+// says so; a stream that dropped none says nothing.
+TEST(FrameFormatTest, SaysDroppedFramesAreCountedSoFar) {
+  haptics::v1::Frame frame;
+  frame.set_step(9);
+  std::ostringstream none;
+  PrintFrame(frame, /*json=*/false, none);
+  EXPECT_EQ(none.str().find("dropped"), std::string::npos) << none.str();
+  frame.set_dropped_frames(3);
+  std::ostringstream some;
+  PrintFrame(frame, /*json=*/false, some);
+  EXPECT_NE(some.str().find("(3 frames dropped so far)"), std::string::npos) << some.str();
+}
+
 // The clash totals sum every pair, touching now or not.
 TEST(FrameFormatTest, SumsClashesOverPairs) {
   haptics::v1::Frame frame;
