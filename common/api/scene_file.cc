@@ -11,6 +11,7 @@
 #include "common/api/names.h"
 #include "common/api/proto_convert.h"
 #include "common/api/proto_file.h"
+#include "common/contact/contact_query.h"
 #include "common/core/status_macros.h"
 #include "common/model/import.h"
 #include "common/model/procedural.h"
@@ -111,6 +112,17 @@ absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::stri
       break;
   }
   return InvalidField(where + ".model", "no path or procedural shape");
+}
+
+// A model under what a contact query takes (kMinObjectSizeM across) is
+// refused with the scene, not step after step.
+absl::Status CheckModelSize(const HapticObject& object, const std::string& where) {
+  const double across = object.bounding_box().diagonal().norm();
+  if (!(across >= kMinObjectSizeM)) {
+    return InvalidField(where + ".model", absl::StrCat("is ", across, " m across, under the ",
+                                                       kMinObjectSizeM, " m a model needs"));
+  }
+  return absl::OkStatus();
 }
 
 absl::Status ApplyMaterials(const pb::SceneObject& o, const std::string& where,
@@ -260,6 +272,7 @@ absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const BuildPat
     HS_ASSIGN_OR_RETURN(HapticObject object, LoadModel(o, where, paths));
     HS_RETURN_IF_ERROR(ApplyMaterials(o, where, object));
     HS_RETURN_IF_ERROR(ApplyVertexMoves(o, where, object));
+    HS_RETURN_IF_ERROR(CheckModelSize(object, where));
     loaded.triangles += object.num_faces();
     absl::StatusOr<ObjectId> id = loaded.scene->AddObject(std::move(object), kind, X_WO, body);
     if (!id.ok()) return InvalidField(where, std::string(id.status().message()));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "absl/cleanup/cleanup.h"
@@ -143,12 +144,21 @@ absl::StatusOr<double> PairTolerance(const PosedObject& moving, const PosedObjec
   if (moving.model->bv_type() != fixed.model->bv_type()) {
     return absl::InvalidArgumentError("the two collision models use different bounding volumes");
   }
+  const double moving_across = moving.object->bounding_box().diagonal().norm();
+  const double fixed_across = fixed.object->bounding_box().diagonal().norm();
+  for (const auto& [across, which] :
+       {std::pair{moving_across, "moving"}, std::pair{fixed_across, "fixed"}}) {
+    if (!(across >= kMinObjectSizeM)) {
+      return absl::InvalidArgumentError(absl::StrCat("the ", which, " object is ", across,
+                                                     " m across, under the ", kMinObjectSizeM,
+                                                     " m a contact query takes"));
+    }
+  }
   // The pair's size: the sum of the two objects' box diagonals. Unlike the
   // box around both, it is the same wherever the objects are, so the
   // tolerance is invariant under rigid motion and never outgrows the
   // models' margins when the objects are far apart.
-  const double size = moving.object->bounding_box().diagonal().norm() +
-                      fixed.object->bounding_box().diagonal().norm();
+  const double size = moving_across + fixed_across;
   const double tolerance = relative_tolerance * size;
   if (tolerance > moving.model->margin_m() + fixed.model->margin_m()) {
     return absl::InvalidArgumentError(absl::StrCat(

@@ -20,6 +20,13 @@ struct PosedObject {
   Isometry3d X_WO = Isometry3d::Identity();
 };
 
+/// The smallest object a pair query takes, metres across (its bounding
+/// box's diagonal). The contact methods are tested from there up (their
+/// ScalesLinearly tests, 1e-9 to 1e6); far below, their products of
+/// lengths leave double's range (two cubes 1e-54 m across gave an infinite
+/// depth and a NaN reversing vector).
+inline constexpr double kMinObjectSizeM = 1e-9;
+
 struct ContactQuery {
   /// Direction of the moving object's motion relative to the fixed one over
   /// the last step, world frame. Any length (it is normalized); zero makes
@@ -46,8 +53,9 @@ struct ContactQuery {
 /// Reconstructs the contact of `moving` with `fixed` along the query's
 /// direction. colliding == false when they neither touch nor penetrate.
 /// INVALID_ARGUMENT when a pose or the direction is not finite, a rotation
-/// is not orthonormal, the tolerance is out of range, or the two models do
-/// not share a bounding volume type.
+/// is not orthonormal, the tolerance is out of range, an object is under
+/// kMinObjectSizeM across, or the two models do not share a bounding
+/// volume type.
 absl::StatusOr<ContactSet> ComputeContact(const PosedObject& moving, const PosedObject& fixed,
                                           const ContactQuery& query);
 /// The same, written over `set` (every field; its vectors' storage is kept,

@@ -121,6 +121,42 @@ TEST(SceneFileTest, RejectsBadSpecs) {
   }
 }
 
+// A model under 1 nm across is refused, however it got so small (its size,
+// its unit scale, vertex moves): the contact methods hold from there up
+// (ScalesLinearly in sweep_method_test and paper_method_test) and gave an
+// infinite depth far below it. One just over the limit loads.
+TEST(SceneFileTest, RefusesModelsUnderANanometreAcross) {
+  // A box of side `side` (times `unit_scale`), then the object's `extra`.
+  const auto speck = [](const std::string& side, const std::string& unit_scale = "1",
+                        const std::string& extra = "") {
+    return R"(objects { name: "speck" kind: OBJECT_KIND_FIXED
+                        model { unit_scale: )" +
+           unit_scale + " procedural { box { size_m { x: " + side + " y: " + side +
+           " z: " + side + " } } } } " + extra + " }";
+  };
+  // Every corner of a 1 mm box moved to within 1e-12 m of the origin.
+  std::string gathered;
+  for (int v = 0; v < 8; ++v) {
+    gathered += "vertex_moves { vertex_id: " + std::to_string(v) + " position_m { x: " +
+                std::to_string(v % 2) + "e-12 } } ";
+  }
+  for (const std::string& text :
+       {speck("5e-10"), speck("1e-60"), speck("0.5", "1e-9"), speck("1e-3", "1", gathered),
+        std::string(R"(objects { name: "speck" kind: OBJECT_KIND_FIXED
+                                 model { procedural { sphere { radius_m: 1e-60 } } } })")}) {
+    SCOPED_TRACE(text);
+    const absl::StatusOr<LoadedScene> loaded = BuildScene(Parse(text), ".");
+    ASSERT_FALSE(loaded.ok());
+    EXPECT_EQ(loaded.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_NE(loaded.status().message().find("'speck'.model: is "), std::string::npos)
+        << loaded.status().message();
+    EXPECT_NE(loaded.status().message().find("under the 1e-09 m a model needs"), std::string::npos)
+        << loaded.status().message();
+  }
+  EXPECT_TRUE(BuildScene(Parse(speck("1e-9")), ".").ok());
+  EXPECT_TRUE(BuildScene(Parse(speck("1", "1e-9")), ".").ok());
+}
+
 // A file that is not a SceneSpec, or not there, fails with the file named.
 TEST(SceneFileTest, UnreadableFiles) {
   EXPECT_EQ(ReadSceneFile("/missing.textproto").status().code(), absl::StatusCode::kNotFound);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "common/model/procedural.h"
 #include "tests/common/contact/contact_test_bodies.h"
@@ -108,6 +109,46 @@ TEST(ContactQueryTest, RejectsNonFiniteAndNonRigidInput) {
   EXPECT_EQ(
       ComputeContact(cube->posed(), aabb_floor->posed(), {.direction_W = kDown}).status().code(),
       kInvalid);
+}
+
+// An object under kMinObjectSizeM across is refused by each door, either
+// side: two cubes 1e-54 m across, half into each other, gave an infinite
+// depth and a NaN reversing vector. Cubes at the limit give the depth a
+// hand computes (half their side), and so do they at 1e6 m.
+TEST(ContactQueryTest, RefusesObjectsUnderANanometreAcross) {
+  const auto cube = [](double side, double z) {
+    return MakeBody(MakeBox(Vector3d::Constant(side)), Translation(0, 0, z));
+  };
+  constexpr auto kInvalid = absl::StatusCode::kInvalidArgument;
+  for (const double side : {1e-54, 1e-12, 0.99 * kMinObjectSizeM / std::sqrt(3.0)}) {
+    SCOPED_TRACE(side);
+    const auto speck = cube(side, side / 2);
+    const auto other = cube(side, 0);
+    const auto unit = cube(1, -0.5);
+    for (const auto& [m, f] : {std::pair{&speck, &other}, std::pair{&speck, &unit},
+                               std::pair{&unit, &speck}}) {
+      const absl::StatusOr<ContactSet> set =
+          ComputeContact((*m)->posed(), (*f)->posed(), {.direction_W = kDown});
+      EXPECT_EQ(set.status().code(), kInvalid);
+      EXPECT_NE(set.status().message().find("m a contact query takes"), std::string::npos)
+          << set.status().message();
+      EXPECT_EQ(AreColliding((*m)->posed(), (*f)->posed(), 1e-9).status().code(), kInvalid);
+      EXPECT_EQ(FindFirstTouch((*m)->posed(), (*f)->posed(), kDown, 1e-9).status().code(),
+                kInvalid);
+    }
+  }
+  for (const double side : {1.01 * kMinObjectSizeM / std::sqrt(3.0), 1e6}) {
+    SCOPED_TRACE(side);
+    const auto speck = cube(side, side / 2);
+    const auto other = cube(side, 0);
+    for (const ContactMethod method : {ContactMethod::kSweep3d, ContactMethod::kPaper2d}) {
+      const absl::StatusOr<ContactSet> set =
+          ComputeContact(speck->posed(), other->posed(), {.direction_W = kDown, .method = method});
+      ASSERT_TRUE(set.ok()) << set.status();
+      EXPECT_NEAR(set->depth_m / side, 0.5, 1e-9);
+      EXPECT_TRUE(set->reversing_vector_W.allFinite());
+    }
+  }
 }
 
 }  // namespace

@@ -803,10 +803,12 @@ TEST(PaperMethodTest, ZeroDirectionUsesFallback) {
   EXPECT_EQ(set.moving.faces, (std::vector<FaceId>{0, 1}));
 }
 
-// Depth scales linearly with the scene from 1e-4 to 1e4, with the same features.
+// Depth scales linearly with the scene, from a moving cube 1 nm on a side
+// (the smallest object a query takes is 1 nm across) to a 4e6 m floor,
+// with the same features.
 // Every threshold is relative (the tolerance) or dimensionless (|D_p|).
 TEST(PaperMethodTest, ScalesLinearly) {
-  for (double scale : {1e-4, 1.0, 1e4}) {
+  for (double scale : {2.5e-9, 1e-4, 1.0, 1e4, 1e6}) {
     SCOPED_TRACE(scale);
     const auto f = MakeBody(MakeBox(scale * Vector3d(4, 4, 1)));
     const auto m = MakeBody(MakeBox(Vector3d::Constant(0.4 * scale)));

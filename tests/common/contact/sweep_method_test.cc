@@ -352,9 +352,11 @@ TEST(SweepMethodTest, TinyAndZeroDirection) {
   EXPECT_NEAR(zero.depth_m, 0.01, 1e-12);
 }
 
-// Scaling the whole scene scales the depth linearly, from 1e-4 to 1e4.
+// Scaling the whole scene scales the depth linearly, from a pyramid 3 nm
+// across (the smallest object a query takes is 1 nm across) to a 4e6 m
+// floor.
 TEST(SweepMethodTest, ScalesLinearly) {
-  for (double s : {1e-4, 1.0, 1e4}) {
+  for (double s : {1e-9, 1e-4, 1.0, 1e4, 1e6}) {
     SCOPED_TRACE(s);
     const auto pyramid = MakeBody(TransformMesh(ApexDownPyramid(), Isometry3d(Eigen::Scaling(s))),
                                   Translation(0.3 * s, 0.2 * s, -0.01 * s));
