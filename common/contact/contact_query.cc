@@ -25,6 +25,17 @@
 namespace hs {
 namespace {
 
+// `v`'s length, and `v` over it. From about 1e154 m on, v's squared norm
+// overflows, and norm() would be infinite and normalized() zero, so such a
+// v is scaled down first (Eigen's stable forms); below that, the plain
+// forms' own roundings.
+double LengthOf(const Vector3d& v) {
+  return std::isfinite(v.squaredNorm()) ? v.norm() : v.stableNorm();
+}
+Vector3d UnitAlong(const Vector3d& v) {
+  return std::isfinite(v.squaredNorm()) ? v.normalized() : v.stableNormalized();
+}
+
 // With no motion to reverse, push back against the fixed faces the moving
 // object is in: D points into F, opposite their mean outward normal; failing
 // that, from M's centre toward F's.
@@ -190,7 +201,7 @@ absl::StatusOr<bool> FindFirstTouch(const PosedObject& moving, const PosedObject
   const Vector3d step_F = X_FW.linear() * step_W;
   if (!(step_F.squaredNorm() > 1e-300)) return false;
   ContactContext context{*moving.object,     *moving.model,       *fixed.object, *fixed.model,
-                         X_FW * moving.X_WO, step_F.normalized(), tolerance,     {}};
+                         X_FW * moving.X_WO, UnitAlong(step_F), tolerance,       {}};
   // Buffers reused: a steady stream of queries allocates nothing once they
   // are large enough.
   FirstTouchBuffers& buffers = Scratch<FirstTouchBuffers>();
@@ -264,7 +275,7 @@ absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
   const bool no_direction = !(direction_F.squaredNorm() > 1e-300);
   context.pair_cache = cache;
   if (!cache && query.method == ContactMethod::kSweep3d && !query.continuous && !no_direction) {
-    context.pair_cache = OwnCache(context, direction_F.normalized(), buffers.own_cache);
+    context.pair_cache = OwnCache(context, UnitAlong(direction_F), buffers.own_cache);
   }
   FindIntersectingTriangles(*moving.model, context.X_FM, *fixed.model, Isometry3d::Identity(),
                             tolerance, context.pairs, {}, context.pair_cache);
@@ -289,16 +300,16 @@ absl::Status ComputeContact(const PosedObject& moving, const PosedObject& fixed,
     context.depth_hint_m = query.depth_hint_m;  // taken at this pose
   }
   if (context.pairs.empty()) {
-    set.direction_W = no_direction ? Vector3d::Zero() : query.direction_W.normalized();
+    set.direction_W = no_direction ? Vector3d::Zero() : UnitAlong(query.direction_W);
     return absl::OkStatus();
   }
-  context.direction_F = no_direction ? FallbackDirection(context) : direction_F.normalized();
+  context.direction_F = no_direction ? FallbackDirection(context) : UnitAlong(direction_F);
   if (query.method == ContactMethod::kPaper2d) {
     found = ReconstructByProjection(context);
   } else {
     ReconstructBySweep(context, found);
   }
-  const double extra = back * direction_F.norm();
+  const double extra = back == 0 ? 0.0 : back * LengthOf(direction_F);
   found.depth_m += extra;
   found.reversing_vector_F -= extra * context.direction_F;
   found.penetrating = found.penetrating || extra > tolerance;

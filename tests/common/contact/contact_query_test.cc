@@ -111,6 +111,45 @@ TEST(ContactQueryTest, RejectsNonFiniteAndNonRigidInput) {
       kInvalid);
 }
 
+// A direction's length does not matter, nor a continuous step's beyond
+// where it first touched, up to the largest finite ones: past about 1e154
+// their squared length overflows, and the depth came out NaN. By hand: a
+// 1 m cube half into a floor, pressed down, backs out 0.5 m; one 10 m
+// under a 1 m cube, having come down through it, first touched with its
+// centre 1 m above the other's, 11 m back up.
+TEST(ContactQueryTest, DirectionsOfAnyFiniteLength) {
+  const auto cube = MakeBody(MakeBox(Vector3d(1, 1, 1)));
+  const auto floor = MakeBody(MakeBox(Vector3d(4, 4, 1)), Translation(0, 0, -0.5));
+  const auto fallen = MakeBody(MakeBox(Vector3d(1, 1, 1)), Translation(0, 0, -10));
+  for (const double length : {1e-100, 1.0, 20.0, 1e10, 1e160, 1e300, 1.7e308}) {
+    SCOPED_TRACE(length);
+    const absl::StatusOr<ContactSet> pressed =
+        ComputeContact(cube->posed(), floor->posed(), {.direction_W = length * kDown});
+    ASSERT_TRUE(pressed.ok()) << pressed.status();
+    EXPECT_DOUBLE_EQ(pressed->depth_m, 0.5);
+    EXPECT_TRUE(pressed->reversing_vector_W.isApprox(Vector3d(0, 0, 0.5), 1e-15))
+        << pressed->reversing_vector_W.transpose();
+    EXPECT_EQ(pressed->direction_W, kDown);
+    if (length < 20) continue;  // a step that short never reached the cube
+    const absl::StatusOr<ContactSet> through = ComputeContact(
+        fallen->posed(), cube->posed(), {.direction_W = length * kDown, .continuous = true});
+    ASSERT_TRUE(through.ok()) << through.status();
+    EXPECT_TRUE(through->colliding);
+    EXPECT_NEAR(through->depth_m, 11, 1e-12);
+    EXPECT_TRUE(through->reversing_vector_W.isApprox(Vector3d(0, 0, 11), 1e-12))
+        << through->reversing_vector_W.transpose();
+    ASSERT_TRUE(through->time_of_impact.has_value());
+    EXPECT_NEAR(*through->time_of_impact, 1 - 11 / length, 1e-12);
+    const absl::StatusOr<std::optional<FirstTouch>> touch =
+        FindFirstTouch(fallen->posed(), cube->posed(), length * kDown, 1e-9);
+    ASSERT_TRUE(touch.ok()) << touch.status();
+    ASSERT_TRUE(touch->has_value());
+    EXPECT_NEAR((*touch)->time, 1 - 11 / length, 1e-12);
+    EXPECT_EQ((*touch)->normal_W, -kDown);
+    EXPECT_TRUE(AreColliding(fallen->posed(), cube->posed(), 1e-9, length * kDown).value());
+  }
+}
+
 // An object under kMinObjectSizeM across is refused by each door, either
 // side: two cubes 1e-54 m across, half into each other, gave an infinite
 // depth and a NaN reversing vector. Cubes at the limit give the depth a
