@@ -200,8 +200,8 @@ absl::StatusOr<bool> FindFirstTouch(const PosedObject& moving, const PosedObject
   const Isometry3d X_FW = fixed.X_WO.inverse();
   const Vector3d step_F = X_FW.linear() * step_W;
   if (!(step_F.squaredNorm() > 1e-300)) return false;
-  ContactContext context{*moving.object,     *moving.model,       *fixed.object, *fixed.model,
-                         X_FW * moving.X_WO, UnitAlong(step_F), tolerance,       {}};
+  ContactContext context{*moving.object,     *moving.model,     *fixed.object, *fixed.model,
+                         X_FW * moving.X_WO, UnitAlong(step_F), tolerance,     {}};
   // Buffers reused: a steady stream of queries allocates nothing once they
   // are large enough.
   FirstTouchBuffers& buffers = Scratch<FirstTouchBuffers>();

@@ -68,7 +68,8 @@ void CheckFinite(const absl::Status& status, const hs::ContactSet& set,
                 std::isfinite(set.tolerance_m) && std::isfinite(set.time_of_impact.value_or(0));
   for (const hs::ContactPoint& point : set.points) finite = finite && point.p_WC.allFinite();
   if (!finite) {
-    std::fprintf(stderr, "a contact set within a scene's sizes holds a number not finite: depth %g\n",
+    std::fprintf(stderr,
+                 "a contact set within a scene's sizes holds a number not finite: depth %g\n",
                  set.depth_m);
     std::abort();
   }

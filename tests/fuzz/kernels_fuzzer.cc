@@ -128,7 +128,8 @@ Input Read(Bytes& in) {
   }
   input.margin = Margin(in);
   input.slack = 2 * input.margin + Margin(in);
-  for (int i = 0; i < n; ++i) input.hints.push_back({.edge_pair = in.Small(9), .gap_m = 7, .lever_m = 7});
+  for (int i = 0; i < n; ++i)
+    input.hints.push_back({.edge_pair = in.Small(9), .gap_m = 7, .lever_m = 7});
   const double x = in.Number(), y = in.Number(), z = in.Number();
   input.direction = {x, y, z};
   input.within = in.Small(2) == 0 ? Interval{0, kInf} : Interval{-kInf, kInf};
@@ -137,10 +138,12 @@ Input Read(Bytes& in) {
   for (const Triangle3d& face : input.b) {
     for (int k = 0; k < 3; ++k) {
       input.edges.push_back({face[k], face[(k + 1) % 3], Vector3d::Zero()});
-      input.columns.Add(input.edges.back(), (input.edges.back().to - input.edges.back().from).norm());
+      input.columns.Add(input.edges.back(),
+                        (input.edges.back().to - input.edges.back().from).norm());
     }
   }
-  for (int row = static_cast<int>(input.edges.size()) - 1; row >= 0; --row) input.rows.push_back(row);
+  for (int row = static_cast<int>(input.edges.size()) - 1; row >= 0; --row)
+    input.rows.push_back(row);
   return input;
 }
 
@@ -193,8 +196,8 @@ void QuickTests(const Input& input, const Answers& answers, int64_t target) {
   const size_t n = input.pairs.size();
   for (const bool edge_cross : {false, true}) {
     std::vector<QuickTriangleTest> out(n);
-    QuickTrianglesTestBatch(input.placed_a.data(), input.placed_b.data(), input.pairs,
-                            input.margin, edge_cross, out);
+    QuickTrianglesTestBatch(input.placed_a.data(), input.placed_b.data(), input.pairs, input.margin,
+                            edge_cross, out);
     std::vector<uint8_t> apart(n);
     FacePlanesApartBatch(input.placed_a.data(), input.placed_b.data(), input.pairs, input.margin,
                          apart);

@@ -131,14 +131,14 @@ TEST(SceneFileTest, RefusesModelsUnderANanometreAcross) {
                         const std::string& extra = "") {
     return R"(objects { name: "speck" kind: OBJECT_KIND_FIXED
                         model { unit_scale: )" +
-           unit_scale + " procedural { box { size_m { x: " + side + " y: " + side +
-           " z: " + side + " } } } } " + extra + " }";
+           unit_scale + " procedural { box { size_m { x: " + side + " y: " + side + " z: " + side +
+           " } } } } " + extra + " }";
   };
   // Every corner of a 1 mm box moved to within 1e-12 m of the origin.
   std::string gathered;
   for (int v = 0; v < 8; ++v) {
-    gathered += "vertex_moves { vertex_id: " + std::to_string(v) + " position_m { x: " +
-                std::to_string(v % 2) + "e-12 } } ";
+    gathered += "vertex_moves { vertex_id: " + std::to_string(v) +
+                " position_m { x: " + std::to_string(v % 2) + "e-12 } } ";
   }
   for (const std::string& text :
        {speck("5e-10"), speck("1e-60"), speck("0.5", "1e-9"), speck("1e-3", "1", gathered),

@@ -164,8 +164,8 @@ TEST(ContactQueryTest, RefusesObjectsUnderANanometreAcross) {
     const auto speck = cube(side, side / 2);
     const auto other = cube(side, 0);
     const auto unit = cube(1, -0.5);
-    for (const auto& [m, f] : {std::pair{&speck, &other}, std::pair{&speck, &unit},
-                               std::pair{&unit, &speck}}) {
+    for (const auto& [m, f] :
+         {std::pair{&speck, &other}, std::pair{&speck, &unit}, std::pair{&unit, &speck}}) {
       const absl::StatusOr<ContactSet> set =
           ComputeContact((*m)->posed(), (*f)->posed(), {.direction_W = kDown});
       EXPECT_EQ(set.status().code(), kInvalid);
