@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/api/proto_convert.h"
 #include "common/core/status_macros.h"
+#include "common/hds/material.h"
 
 namespace hs {
 namespace {
@@ -24,13 +25,13 @@ absl::StatusOr<double> NumberIn(double value, double low, double high, const std
 
 absl::StatusOr<ModelMaterial> MaterialFromProto(const pb::Material& m, const std::string& at) {
   ModelMaterial out;
-  HS_ASSIGN_OR_RETURN(out.stiffness_n_per_m,
-                      NumberIn(m.stiffness_n_per_m(), 0, 1e9, at + ".stiffness_n_per_m"));
+  HS_ASSIGN_OR_RETURN(out.stiffness_n_per_m, NumberIn(m.stiffness_n_per_m(), 0, kMaxStiffnessNPerM,
+                                                      at + ".stiffness_n_per_m"));
   if (!(out.stiffness_n_per_m > 0)) return InvalidField(at + ".stiffness_n_per_m", "must be > 0");
-  HS_ASSIGN_OR_RETURN(out.damping_ns_per_m,
-                      NumberIn(m.damping_ns_per_m(), 0, 1e9, at + ".damping_ns_per_m"));
+  HS_ASSIGN_OR_RETURN(out.damping_ns_per_m, NumberIn(m.damping_ns_per_m(), 0, kMaxDampingNsPerM,
+                                                     at + ".damping_ns_per_m"));
   HS_ASSIGN_OR_RETURN(out.static_friction,
-                      NumberIn(m.static_friction(), 0, 1e3, at + ".static_friction"));
+                      NumberIn(m.static_friction(), 0, kMaxFriction, at + ".static_friction"));
   HS_ASSIGN_OR_RETURN(out.dynamic_friction, NumberIn(m.dynamic_friction(), 0, out.static_friction,
                                                      at + ".dynamic_friction"));
   return out;

@@ -1,7 +1,5 @@
 #include "common/hds/material.h"
 
-#include <cmath>
-
 #include "absl/strings/str_cat.h"
 
 namespace hs {
@@ -15,19 +13,17 @@ absl::Status Invalid(const Material& m, const char* field, double value, const c
 }  // namespace
 
 absl::Status ValidateMaterial(const Material& m) {
-  if (!(std::isfinite(m.stiffness_n_per_m) && m.stiffness_n_per_m > 0)) {
-    return Invalid(m, "stiffness_n_per_m", m.stiffness_n_per_m, "finite and > 0");
+  if (!(m.stiffness_n_per_m > 0 && m.stiffness_n_per_m <= kMaxStiffnessNPerM)) {
+    return Invalid(m, "stiffness_n_per_m", m.stiffness_n_per_m, "> 0 and <= 1e9");
   }
-  if (!(std::isfinite(m.damping_ns_per_m) && m.damping_ns_per_m >= 0)) {
-    return Invalid(m, "damping_ns_per_m", m.damping_ns_per_m, "finite and >= 0");
+  if (!(m.damping_ns_per_m >= 0 && m.damping_ns_per_m <= kMaxDampingNsPerM)) {
+    return Invalid(m, "damping_ns_per_m", m.damping_ns_per_m, "in [0, 1e9]");
   }
-  if (!(std::isfinite(m.static_friction) && m.static_friction >= 0)) {
-    return Invalid(m, "static_friction", m.static_friction, "finite and >= 0");
+  if (!(m.static_friction >= 0 && m.static_friction <= kMaxFriction)) {
+    return Invalid(m, "static_friction", m.static_friction, "in [0, 1000]");
   }
-  if (!(std::isfinite(m.dynamic_friction) && m.dynamic_friction >= 0 &&
-        m.dynamic_friction <= m.static_friction)) {
-    return Invalid(m, "dynamic_friction", m.dynamic_friction,
-                   "finite, >= 0 and <= static_friction");
+  if (!(m.dynamic_friction >= 0 && m.dynamic_friction <= m.static_friction)) {
+    return Invalid(m, "dynamic_friction", m.dynamic_friction, ">= 0 and <= static_friction");
   }
   return absl::OkStatus();
 }

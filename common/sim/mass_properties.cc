@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "absl/strings/str_cat.h"
+
 namespace hs {
 namespace {
 
@@ -61,6 +63,10 @@ absl::StatusOr<MassProperties> ComputeMassProperties(const HapticObject& object,
   }
   MassProperties out;
   out.mass_kg = by_mass ? mass_kg : density_kg_per_m3 * m.volume;
+  if (!(out.mass_kg >= kMinBodyMassKg && out.mass_kg <= kMaxBodyMassKg)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("a free body's mass, ", out.mass_kg, " kg, must be in [1e-9, 1e9] kg"));
+  }
   const double density = out.mass_kg / m.volume;
   out.p_OC = m.first / m.volume;
   // Second moment about the centre of mass, then the inertia tensor.

@@ -7,6 +7,13 @@
 
 namespace hs {
 
+/// The lightest and heaviest free body, kilograms: a microgram speck to a
+/// million tonnes. Bodies of 1e-300 and 1e300 kg ended their first steps
+/// with NaN poses; within these bounds every step is finite
+/// (free_bodies_test).
+inline constexpr double kMinBodyMassKg = 1e-9;
+inline constexpr double kMaxBodyMassKg = 1e9;
+
 /// A rigid body's inertia, in its object frame O.
 struct MassProperties {
   /// Mass, kilograms, > 0.
@@ -21,7 +28,8 @@ struct MassProperties {
 /// `mass_kg` > 0 it is the body's mass; otherwise the mass is
 /// `density_kg_per_m3` times the enclosed volume. A mesh that encloses no
 /// volume (open, flat, inside out) is taken as its solid bounding box.
-/// INVALID_ARGUMENT when neither number is finite and > 0.
+/// INVALID_ARGUMENT when neither number is finite and > 0, or the mass
+/// is outside [kMinBodyMassKg, kMaxBodyMassKg].
 absl::StatusOr<MassProperties> ComputeMassProperties(const HapticObject& object, double mass_kg,
                                                      double density_kg_per_m3);
 

@@ -21,6 +21,12 @@ TEST(MaterialTest, DefaultAndBoundaryValuesAreValid) {
                                 .dynamic_friction = 0})
                   .ok());
   EXPECT_TRUE(ValidateMaterial({.static_friction = 0.7, .dynamic_friction = 0.7}).ok());
+  EXPECT_TRUE(ValidateMaterial({.name = "hardest",
+                                .stiffness_n_per_m = kMaxStiffnessNPerM,
+                                .damping_ns_per_m = kMaxDampingNsPerM,
+                                .static_friction = kMaxFriction,
+                                .dynamic_friction = kMaxFriction})
+                  .ok());
 }
 
 // Each field out of its range is INVALID_ARGUMENT naming the material and
@@ -35,6 +41,11 @@ TEST(MaterialTest, EachFieldOutOfRangeIsNamed) {
       {{.stiffness_n_per_m = -5}, "stiffness_n_per_m"},
       {{.stiffness_n_per_m = kInf}, "stiffness_n_per_m"},
       {{.stiffness_n_per_m = kNaN}, "stiffness_n_per_m"},
+      {{.stiffness_n_per_m = 1.000001 * kMaxStiffnessNPerM}, "stiffness_n_per_m"},
+      {{.stiffness_n_per_m = 1e308}, "stiffness_n_per_m"},
+      {{.damping_ns_per_m = 1.000001 * kMaxDampingNsPerM}, "damping_ns_per_m"},
+      {{.damping_ns_per_m = kInf}, "damping_ns_per_m"},
+      {{.static_friction = 1.000001 * kMaxFriction}, "static_friction"},
       {{.damping_ns_per_m = -0.1}, "damping_ns_per_m"},
       {{.damping_ns_per_m = kNaN}, "damping_ns_per_m"},
       {{.static_friction = -1, .dynamic_friction = 0}, "static_friction"},

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/model/procedural.h"
+#include "common/sim/mass_properties.h"
 #include "common/sim/scene.h"
 #include "tests/common/sim/at_pose.h"
 #include "tests/common/sim/pinch_rig.h"
@@ -114,6 +115,29 @@ TEST(FreeBodiesTest, JawsWithLittleFrictionLetTheCubeSlip) {
   EXPECT_NEAR(slipped.X_WO.translation().z(), 0.01, 1e-4);
   EXPECT_NEAR(forces[0].z(), -0.01, 0.002);
   EXPECT_NEAR(forces[1].z(), -0.01, 0.002);
+}
+
+// The lightest and the heaviest body a scene takes (kMinBodyMassKg,
+// kMaxBodyMassKg; bodies of 1e-300 and 1e300 kg ended their first steps
+// with NaN poses) drop 5 mm onto the floor while the probe pushes into
+// them from the side for 60 steps: every step's poses, forces and torques
+// are finite, and each body ends on the floor.
+TEST(FreeBodiesTest, BodiesAtTheMassBoundsStayFinite) {
+  for (const double mass : {kMinBodyMassKg, kMaxBodyMassKg}) {
+    SCOPED_TRACE(mass);
+    Rig rig = MakeRig();
+    AddCube(*rig.scene, 0.005, 0.3, {.mass_kg = mass});
+    for (int i = 0; i <= 300; ++i) {
+      if (i <= 60) {
+        ASSERT_TRUE(rig.scene->SetDevicePose(rig.probe, At(0.27 + 0.001 * i, 0.05, 0.0101)).ok());
+      }
+      const StepFrame& frame = rig.scene->Step();
+      ASSERT_TRUE(frame.bodies[0].X_WO.matrix().allFinite()) << "step " << i;
+      ASSERT_TRUE(frame.tools[0].force_W.allFinite()) << "step " << i;
+      ASSERT_TRUE(frame.tools[0].torque_W.allFinite()) << "step " << i;
+    }
+    EXPECT_NEAR(rig.scene->Step().bodies[0].X_WO.translation().z(), 0.01, 1e-4);
+  }
 }
 
 // Two jaws of friction `friction`, their bottoms `jaw_bottom` above the

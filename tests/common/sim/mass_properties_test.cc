@@ -56,5 +56,25 @@ TEST(MassPropertiesTest, RejectsNoMass) {
             absl::StatusCode::kInvalidArgument);
 }
 
+// A mass outside [kMinBodyMassKg, kMaxBodyMassKg], given or from the
+// density, is an error naming it; the bounds themselves are taken.
+TEST(MassPropertiesTest, RejectsMassesOutsideTheBounds) {
+  const HapticObject box = *HapticObject::Create("box", MakeBox(Vector3d::Ones()));
+  for (const double mass : {1e-300, 0.99 * kMinBodyMassKg, 1.01 * kMaxBodyMassKg, 1e300}) {
+    SCOPED_TRACE(mass);
+    const absl::StatusOr<MassProperties> given = ComputeMassProperties(box, mass, 0);
+    EXPECT_EQ(given.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_NE(given.status().message().find("must be in [1e-9, 1e9] kg"), std::string::npos)
+        << given.status();
+    // The unit box's volume is 1 m^3: the density is the mass.
+    EXPECT_EQ(ComputeMassProperties(box, 0, mass).status().code(),
+              absl::StatusCode::kInvalidArgument);
+  }
+  for (const double mass : {kMinBodyMassKg, kMaxBodyMassKg}) {
+    EXPECT_DOUBLE_EQ(ComputeMassProperties(box, mass, 0)->mass_kg, mass);
+    EXPECT_DOUBLE_EQ(ComputeMassProperties(box, 0, mass)->mass_kg, mass);
+  }
+}
+
 }  // namespace
 }  // namespace hs

@@ -68,6 +68,29 @@ TEST(ToolForceTest, ClampKeepsTheDirection) {
   EXPECT_NEAR(f.torque_W.z(), -0.1 / std::sqrt(2.0), 1e-13);
 }
 
+// The hardest material a face takes (kMaxStiffnessNPerM, kMaxDampingNsPerM)
+// at the widest stretch and speed a scene admits (a device 2e6 m into a
+// floor at 3.5e10 m/s, its 3.5 km move over a 0.1 ms step) gives a finite
+// force: by hand, 1e9 * 2e6 = 2e15 N of spring and 1e9 * 3.5e10 = 3.5e19 N
+// of damping, straight up; clamped to 10 N, (0, 0, 10). A 1e308 N/m face
+// gave a NaN force, and is refused (material_test).
+TEST(ToolForceTest, TheHardestMaterialAtTheWidestMotionStaysFinite) {
+  const Material hardest{.stiffness_n_per_m = kMaxStiffnessNPerM,
+                         .damping_ns_per_m = kMaxDampingNsPerM};
+  const ToolContact contact{.p_WD = {0, 0, -2e6},
+                            .p_WP = {0, 0, 0},
+                            .v_WD = {0, 0, -3.5e10},
+                            .normal_W = {0, 0, 1},
+                            .p_WC = {0, 0, 0}};
+  const ToolForce unclamped = SpringDamperForce(hardest, contact, 1e300);
+  EXPECT_FALSE(unclamped.clamped);
+  EXPECT_DOUBLE_EQ(unclamped.force_W.z(), 2e15 + 3.5e19);
+  const ToolForce clamped = SpringDamperForce(hardest, contact, 10);
+  EXPECT_TRUE(clamped.clamped);
+  EXPECT_EQ(clamped.force_W, Vector3d(0, 0, 10));
+  EXPECT_TRUE(clamped.torque_W.allFinite());
+}
+
 // Device at its proxy and still: no force at all (tiny scales included).
 TEST(ToolForceTest, NoStretchNoMotionNoForce) {
   for (double scale : {1e-6, 1.0, 1e3}) {
