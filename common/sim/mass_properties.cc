@@ -65,7 +65,7 @@ absl::StatusOr<MassProperties> ComputeMassProperties(const HapticObject& object,
   out.mass_kg = by_mass ? mass_kg : density_kg_per_m3 * m.volume;
   if (!(out.mass_kg >= kMinBodyMassKg && out.mass_kg <= kMaxBodyMassKg)) {
     return absl::InvalidArgumentError(
-        absl::StrCat("a free body's mass, ", out.mass_kg, " kg, must be in [1e-9, 1e9] kg"));
+        absl::StrCat("a free body's mass, ", out.mass_kg, " kg, must be in [1e-4, 1e9] kg"));
   }
   const double density = out.mass_kg / m.volume;
   out.p_OC = m.first / m.volume;
