@@ -114,17 +114,6 @@ absl::StatusOr<HapticObject> LoadModel(const pb::SceneObject& o, const std::stri
   return InvalidField(where + ".model", "no path or procedural shape");
 }
 
-// A model under what a contact query takes (kMinObjectSizeM across) is
-// refused with the scene, not step after step.
-absl::Status CheckModelSize(const HapticObject& object, const std::string& where) {
-  const double across = object.bounding_box().diagonal().norm();
-  if (!(across >= kMinObjectSizeM)) {
-    return InvalidField(where + ".model", absl::StrCat("is ", across, " m across, under the ",
-                                                       kMinObjectSizeM, " m a model needs"));
-  }
-  return absl::OkStatus();
-}
-
 absl::Status ApplyMaterials(const pb::SceneObject& o, const std::string& where,
                             HapticObject& object) {
   for (int i = 0; i < o.materials_size(); ++i) {
@@ -272,7 +261,11 @@ absl::StatusOr<LoadedScene> BuildScene(const pb::SceneSpec& spec, const BuildPat
     HS_ASSIGN_OR_RETURN(HapticObject object, LoadModel(o, where, paths));
     HS_RETURN_IF_ERROR(ApplyMaterials(o, where, object));
     HS_RETURN_IF_ERROR(ApplyVertexMoves(o, where, object));
-    HS_RETURN_IF_ERROR(CheckModelSize(object, where));
+    // A model too small for a contact query is refused with the scene,
+    // not step after step.
+    if (absl::Status size = CheckObjectSize(object); !size.ok()) {
+      return InvalidField(where + ".model", std::string(size.message()));
+    }
     loaded.triangles += object.num_faces();
     absl::StatusOr<ObjectId> id = loaded.scene->AddObject(std::move(object), kind, X_WO, body);
     if (!id.ok()) return InvalidField(where, std::string(id.status().message()));

@@ -94,6 +94,15 @@ Vector3d ContactContext::TouchedFixedNormals() const {
   return sum;
 }
 
+absl::Status CheckObjectSize(const HapticObject& object) {
+  const double across = object.bounding_box().diagonal().norm();
+  if (!(across >= kMinObjectSizeM)) {
+    return absl::InvalidArgumentError(absl::StrCat("is ", across, " m across, under the ",
+                                                   kMinObjectSizeM, " m a contact query takes"));
+  }
+  return absl::OkStatus();
+}
+
 namespace {
 
 // Buffers kept from query to query (common/core/scratch.h): FindFirstTouch's,
@@ -155,16 +164,14 @@ absl::StatusOr<double> PairTolerance(const PosedObject& moving, const PosedObjec
   if (moving.model->bv_type() != fixed.model->bv_type()) {
     return absl::InvalidArgumentError("the two collision models use different bounding volumes");
   }
-  const double moving_across = moving.object->bounding_box().diagonal().norm();
-  const double fixed_across = fixed.object->bounding_box().diagonal().norm();
-  for (const auto& [across, which] :
-       {std::pair{moving_across, "moving"}, std::pair{fixed_across, "fixed"}}) {
-    if (!(across >= kMinObjectSizeM)) {
-      return absl::InvalidArgumentError(absl::StrCat("the ", which, " object is ", across,
-                                                     " m across, under the ", kMinObjectSizeM,
-                                                     " m a contact query takes"));
+  for (const auto& [object, which] :
+       {std::pair{moving.object, "moving"}, std::pair{fixed.object, "fixed"}}) {
+    if (absl::Status size = CheckObjectSize(*object); !size.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat("the ", which, " object ", size.message()));
     }
   }
+  const double moving_across = moving.object->bounding_box().diagonal().norm();
+  const double fixed_across = fixed.object->bounding_box().diagonal().norm();
   // The pair's size: the sum of the two objects' box diagonals. Unlike the
   // box around both, it is the same wherever the objects are, so the
   // tolerance is invariant under rigid motion and never outgrows the

@@ -27,6 +27,12 @@ struct PosedObject {
 /// depth and a NaN reversing vector).
 inline constexpr double kMinObjectSizeM = 1e-9;
 
+/// OK when `object` is at least kMinObjectSizeM across, else
+/// INVALID_ARGUMENT "is X m across, under the 1e-09 m a contact query
+/// takes" (callers name the object). Every query checks it; a scene checks
+/// it when built, so that a model too small is refused once, not each step.
+absl::Status CheckObjectSize(const HapticObject& object);
+
 struct ContactQuery {
   /// Direction of the moving object's motion relative to the fixed one over
   /// the last step, world frame. Any length (it is normalized); zero makes

@@ -64,8 +64,9 @@ absl::StatusOr<MassProperties> ComputeMassProperties(const HapticObject& object,
   MassProperties out;
   out.mass_kg = by_mass ? mass_kg : density_kg_per_m3 * m.volume;
   if (!(out.mass_kg >= kMinBodyMassKg && out.mass_kg <= kMaxBodyMassKg)) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("a free body's mass, ", out.mass_kg, " kg, must be in [1e-4, 1e9] kg"));
+    return absl::InvalidArgumentError(absl::StrCat("a free body's mass, ", out.mass_kg,
+                                                   " kg, must be in [", kMinBodyMassKg, ", ",
+                                                   kMaxBodyMassKg, "] kg"));
   }
   const double density = out.mass_kg / m.volume;
   out.p_OC = m.first / m.volume;

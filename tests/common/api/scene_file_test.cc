@@ -150,7 +150,8 @@ TEST(SceneFileTest, RefusesModelsUnderANanometreAcross) {
     EXPECT_EQ(loaded.status().code(), absl::StatusCode::kInvalidArgument);
     EXPECT_NE(loaded.status().message().find("'speck'.model: is "), std::string::npos)
         << loaded.status().message();
-    EXPECT_NE(loaded.status().message().find("under the 1e-09 m a model needs"), std::string::npos)
+    EXPECT_NE(loaded.status().message().find("under the 1e-09 m a contact query takes"),
+              std::string::npos)
         << loaded.status().message();
   }
   EXPECT_TRUE(BuildScene(Parse(speck("1e-9")), ".").ok());

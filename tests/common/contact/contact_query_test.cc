@@ -164,6 +164,8 @@ TEST(ContactQueryTest, RefusesObjectsUnderANanometreAcross) {
     const auto speck = cube(side, side / 2);
     const auto other = cube(side, 0);
     const auto unit = cube(1, -0.5);
+    EXPECT_EQ(CheckObjectSize(speck->object).code(), kInvalid);
+    EXPECT_TRUE(CheckObjectSize(unit->object).ok());
     for (const auto& [m, f] :
          {std::pair{&speck, &other}, std::pair{&speck, &unit}, std::pair{&unit, &speck}}) {
       const absl::StatusOr<ContactSet> set =
@@ -180,6 +182,7 @@ TEST(ContactQueryTest, RefusesObjectsUnderANanometreAcross) {
     SCOPED_TRACE(side);
     const auto speck = cube(side, side / 2);
     const auto other = cube(side, 0);
+    EXPECT_TRUE(CheckObjectSize(speck->object).ok());
     for (const ContactMethod method : {ContactMethod::kSweep3d, ContactMethod::kPaper2d}) {
       const absl::StatusOr<ContactSet> set =
           ComputeContact(speck->posed(), other->posed(), {.direction_W = kDown, .method = method});
