@@ -5,9 +5,38 @@
 #include "client/viewer/page_message.h"
 
 #include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
 
 namespace hs::cli {
 namespace {
+
+// A fixed seed for the properties (RC_PARAMS from the environment wins, to
+// replay a failure).
+const bool kSeeded = setenv("RC_PARAMS", "seed=20261202 max_success=400", /*overwrite=*/0) == 0;
+
+// What every message the parser lets through must satisfy, whatever the
+// page sent: a tool's name of 1-256 bytes, and for a pose a finite
+// position within kMaxPagePositionM and a proper rotation.
+void ExpectSafe(const PageMessage& message) {
+  const std::string& tool =
+      std::visit([](const auto& m) -> const std::string& { return m.tool; }, message);
+  RC_ASSERT(!tool.empty());
+  RC_ASSERT(tool.size() <= 256u);
+  if (const MoveTool* move = std::get_if<MoveTool>(&message)) {
+    RC_ASSERT(move->X_WD.matrix().allFinite());
+    RC_ASSERT(move->X_WD.translation().norm() <= kMaxPagePositionM);
+    const Matrix3d R = move->X_WD.linear();
+    RC_ASSERT((R.transpose() * R - Matrix3d::Identity()).norm() < 1e-12);
+    RC_ASSERT(std::abs(R.determinant() - 1) < 1e-12);
+  }
+}
 
 TEST(PageMessageTest, ReadsTakePoseAndRelease) {
   absl::StatusOr<PageMessage> take = ParsePageMessage(R"({"type":"take","tool":"probe"})");
@@ -53,6 +82,105 @@ TEST(PageMessageTest, RefusesWhatThePageDoesNotSend) {
     EXPECT_EQ(message.status().code(), absl::StatusCode::kInvalidArgument);
   }
   EXPECT_FALSE(ParsePageMessage(R"({"type":"take","tool":")" + std::string(300, 'x') + "\"}").ok());
+}
+
+// JSON nested as deep as a page message may be long (the bridge reads
+// 16 KiB at most) is refused, not a crash in the parser or in freeing what
+// it built.
+TEST(PageMessageTest, RefusesDeeplyNestedJson) {
+  constexpr int kDepth = 8 << 10;
+  for (const std::string& text :
+       {std::string(2 * kDepth, '['), std::string(kDepth, '[') + std::string(kDepth, ']'),
+        R"({"type":"take","tool":"probe","x":)" + std::string(kDepth - 40, '[') +
+            std::string(kDepth - 40, ']') + "}"}) {
+    EXPECT_EQ(ParsePageMessage(text).status().code(), absl::StatusCode::kInvalidArgument);
+  }
+}
+
+// Any bytes at all: refused, or a message that is safe to forward.
+RC_GTEST_PROP(PageMessageTest, AnyBytesAreRefusedOrSafe, (const std::string& text)) {
+  const absl::StatusOr<PageMessage> message = ParsePageMessage(text);
+  if (message.ok()) {
+    ExpectSafe(*message);
+  } else {
+    RC_ASSERT(message.status().code() == absl::StatusCode::kInvalidArgument);
+  }
+}
+
+// Messages shaped like the page's, with hostile parts: other types and
+// tools, numbers of any size or none, arrays of other lengths, extra
+// fields. Refused, or safe to forward; a plain take or release is read.
+RC_GTEST_PROP(PageMessageTest, PageShapedMessagesAreRefusedOrSafe, ()) {
+  const auto text_of = [](double x) {
+    char out[32];
+    std::snprintf(out, sizeof out, "%.17g", x);
+    return std::string(out);
+  };
+  // Mostly numbers the page could send (positions within 600 m a side, one
+  // sometimes up to twice the limit; quaternions up to 1.2e-3 off unit),
+  // sometimes ones it would not.
+  const auto odd = rc::gen::element<std::string>("1e400", "-1e400", "1e-400", "-0", "true", "null",
+                                                 "\"1\"", "[]", "NaN", "18446744073709551616");
+  const auto array = [](const std::vector<std::string>& xs) {
+    std::string out = "[";
+    for (size_t i = 0; i < xs.size(); ++i) out += (i ? "," : "") + xs[i];
+    return out + "]";
+  };
+  std::vector<std::string> p, q;
+  for (int i = 0; i < 3; ++i) p.push_back(text_of(*rc::gen::inRange(-600'000, 600'001) / 1e3));
+  Eigen::Vector4d unit;
+  for (int i = 0; i < 4; ++i) unit[i] = *rc::gen::inRange(-1000, 1001);
+  if (unit.norm() > 0) unit *= (1 + *rc::gen::inRange(-12, 13) * 1e-4) / unit.norm();
+  for (int i = 0; i < 4; ++i) q.push_back(text_of(unit[i]));
+  for (std::vector<std::string>* xs : {&p, &q}) {
+    switch (*rc::gen::inRange(0, 8)) {
+      case 0:
+        (*xs)[*rc::gen::inRange<size_t>(0, xs->size())] = *odd;
+        break;
+      case 1:
+        xs->pop_back();
+        break;
+      case 2:
+        xs->push_back("0");
+        break;
+      case 3:
+        (*xs)[0] = text_of(*rc::gen::inRange(999'000, 2'000'001) / 1e3);
+        break;
+      default:
+        break;
+    }
+  }
+  const std::string type =
+      *rc::gen::element<std::string>("take", "release", "pose", "pose", "pose", "jump");
+  const std::string tool = *rc::gen::weightedOneOf<std::string>(
+      {{3, rc::gen::just<std::string>("probe")},
+       {1, rc::gen::element<std::string>("", "\\u0000", "\\ud800", "caf\\u00e9",
+                                         std::string(256, 'x'), std::string(257, 'x'))},
+       {1, rc::gen::arbitrary<std::string>()}});
+  std::string text = R"({"type":")" + type + R"(","tool":")" + tool + "\"";
+  const bool with_p = type == "pose" || *rc::gen::inRange(0, 8) == 0;
+  const bool with_q = type == "pose" || *rc::gen::inRange(0, 8) == 0;
+  if (with_p) text += R"(,"p":)" + array(p);
+  if (with_q) text += R"(,"q":)" + array(q);
+  const bool extra = *rc::gen::inRange(0, 8) == 0;
+  if (extra) text += R"(,"extra":1)";
+  text += "}";
+  const absl::StatusOr<PageMessage> message = ParsePageMessage(text);
+  RC_CLASSIFY(message.ok() && std::holds_alternative<MoveTool>(*message), "pose read");
+  if ((type == "take" || type == "release") && tool == "probe" && !with_p && !with_q && !extra) {
+    RC_ASSERT(message.ok());
+  }
+  if (message.ok()) {
+    ExpectSafe(*message);
+  } else {
+    RC_ASSERT(message.status().code() == absl::StatusCode::kInvalidArgument);
+  }
+}
+
+// The properties above run with a fixed seed unless RC_PARAMS says otherwise.
+TEST(PageMessageTest, PropertiesAreSeeded) {
+  EXPECT_TRUE(kSeeded);
+  EXPECT_NE(std::getenv("RC_PARAMS"), nullptr);
 }
 
 }  // namespace
