@@ -38,6 +38,15 @@ void ExpectSafe(const PageMessage& message) {
   }
 }
 
+// A message the parser read is safe; one it did not is INVALID_ARGUMENT.
+void ExpectRefusedOrSafe(const absl::StatusOr<PageMessage>& message) {
+  if (message.ok()) {
+    ExpectSafe(*message);
+  } else {
+    RC_ASSERT(message.status().code() == absl::StatusCode::kInvalidArgument);
+  }
+}
+
 TEST(PageMessageTest, ReadsTakePoseAndRelease) {
   absl::StatusOr<PageMessage> take = ParsePageMessage(R"({"type":"take","tool":"probe"})");
   ASSERT_TRUE(take.ok()) << take.status();
@@ -99,12 +108,7 @@ TEST(PageMessageTest, RefusesDeeplyNestedJson) {
 
 // Any bytes at all: refused, or a message that is safe to forward.
 RC_GTEST_PROP(PageMessageTest, AnyBytesAreRefusedOrSafe, (const std::string& text)) {
-  const absl::StatusOr<PageMessage> message = ParsePageMessage(text);
-  if (message.ok()) {
-    ExpectSafe(*message);
-  } else {
-    RC_ASSERT(message.status().code() == absl::StatusCode::kInvalidArgument);
-  }
+  ExpectRefusedOrSafe(ParsePageMessage(text));
 }
 
 // Messages shaped like the page's, with hostile parts: other types and
@@ -170,11 +174,7 @@ RC_GTEST_PROP(PageMessageTest, PageShapedMessagesAreRefusedOrSafe, ()) {
   if ((type == "take" || type == "release") && tool == "probe" && !with_p && !with_q && !extra) {
     RC_ASSERT(message.ok());
   }
-  if (message.ok()) {
-    ExpectSafe(*message);
-  } else {
-    RC_ASSERT(message.status().code() == absl::StatusCode::kInvalidArgument);
-  }
+  ExpectRefusedOrSafe(message);
 }
 
 // The properties above run with a fixed seed unless RC_PARAMS says otherwise.
