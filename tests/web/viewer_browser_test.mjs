@@ -70,9 +70,10 @@ import { parseArgs } from 'node:util';
 
 const TEST_BUDGET_MS = 240_000;  // generous: a loaded machine takes it past twice its time
 const SKIP = 77;
-// waitForFunction re-checks at this interval, not at each animation frame
-// (its default): a page behind another gets few frames or none, so under
-// load page A, opened first, could miss being connected for 20 s.
+// waitUntil re-checks at this interval, not at each animation frame
+// (waitForFunction's default): a page behind another gets few frames or
+// none, so under load page A, opened first, could miss being connected
+// for 20 s.
 const kPollMs = 100;
 
 /** A test failure with a message that says it all (no stack trace printed). */
@@ -255,6 +256,10 @@ function check(condition, message) {
 
 // ---- the page --------------------------------------------------------------
 
+/** Waits until `predicate(arg)` holds in `page`, re-checking every kPollMs. */
+const waitUntil = (page, predicate, timeout, arg = null) =>
+  page.waitForFunction(predicate, arg, { polling: kPollMs, timeout });
+
 const state = (page) => page.evaluate(() => JSON.parse(JSON.stringify(window.viewerState ?? null)));
 
 /** The numbers of a position, whether [x, y, z] or {x, y, z}. */
@@ -359,9 +364,8 @@ async function main() {
   const { a, b } = pages;
   for (const [key, page] of Object.entries(pages)) {
     try {
-      await page.waitForFunction(
-        () => window.viewerState?.connected && window.viewerState.frames > 0,
-        null, { polling: kPollMs, timeout: 20_000 });
+      await waitUntil(page, () => window.viewerState?.connected && window.viewerState.frames > 0,
+                      20_000);
     } catch {
       throw new Failure(`page ${key} is not connected with frames within 20 s: ` +
                         `viewerState = ${brief(await state(page))}`);
@@ -406,7 +410,7 @@ async function main() {
   step = 'page A takes the probe';
   await a.evaluate(() => window.viewerTest.take('probe'));
   try {
-    await a.waitForFunction(() => window.viewerState.heldTool === 'probe', null, { polling: kPollMs, timeout: 15_000 });
+    await waitUntil(a, () => window.viewerState.heldTool === 'probe', 15_000);
   } catch {
     throw new Failure(`heldTool is not 'probe' 15 s after take('probe'): ${brief(await state(a))}`);
   }
@@ -422,7 +426,7 @@ async function main() {
   await a.mouse.move(x0 + 40, y0 - 20, { steps: 10 });
   await a.mouse.up();
   try {
-    await a.waitForFunction((n) => window.viewerState.posesSent > n, posesBefore, { polling: kPollMs, timeout: 10_000 });
+    await waitUntil(a, (n) => window.viewerState.posesSent > n, 10_000, posesBefore);
   } catch {
     throw new Failure(`posesSent did not grow after a mouse drag (was ${posesBefore}): ` +
                       brief(await state(a)));
@@ -438,8 +442,8 @@ async function main() {
   let contact = false;
   for (let i = 0; i < 10 && !contact; i++) {
     await a.evaluate(() => window.viewerTest.moveBy([0, 0, -0.01]));
-    contact = await a.waitForFunction(() => window.viewerState.contacts?.length > 0, null,
-      { polling: kPollMs, timeout: 1500 }).then(() => true, () => false);
+    contact = await waitUntil(a, () => window.viewerState.contacts?.length > 0, 1500)
+      .then(() => true, () => false);
   }
   check(contact, `no contact after lowering the probe 10 cm: ${brief(await state(a))}`);
   // The first contact may be a bare touch (no depth, no force): press 5 mm in.
@@ -447,13 +451,13 @@ async function main() {
 
   step = 'checking page A';
   // Frames keep coming: give the arrows and highlights a moment to catch up.
-  await a.waitForFunction(() => {
+  await waitUntil(a, () => {
     const s = window.viewerState;
     const sum = (p) => Object.entries(s.highlighted ?? {})
       .filter(([k, v]) => k.startsWith(p) && v > 0).length;
     return s.contacts?.length > 0 && sum('tool_') > 0 && sum('object_') > 0 &&
            s.arrows?.force && s.arrows?.reversing_vector && s.tools?.probe?.force_magnitude_n > 0;
-  }, null, { timeout: 15_000 }).catch(() => {});
+  }, 15_000).catch(() => {});
   const sa = await state(a);
   const problems = [];
   if (!(sa.contacts?.length > 0)) problems.push('no contacts');
@@ -502,10 +506,10 @@ async function main() {
      '--box', '0.01,0.01,0.01', '--pose', '0.05,0,0.15,0,0,0']);
   const addStatus = await new Promise((resolve) => add.proc.on('exit', resolve));
   check(addStatus === 0, `hapticctl objects add exited with ${addStatus}`);
-  await b.waitForFunction(() => window.viewerState.tools?.stylus, null, { polling: kPollMs, timeout: 15_000 });
+  await waitUntil(b, () => window.viewerState.tools?.stylus, 15_000);
   const taken = await b.evaluate(() => window.viewerTest.take('stylus'));
   // Up to 15 s: on a loaded machine the bridge's device stream takes seconds to start.
-  await b.waitForFunction(() => window.viewerState.heldTool === 'stylus', null, { polling: kPollMs, timeout: 15_000 })
+  await waitUntil(b, () => window.viewerState.heldTool === 'stylus', 15_000)
     .catch(() => {});
   const sbTake = await state(b);
   const driveText = await b.evaluate(() => document.getElementById('drive-state')?.textContent);
@@ -532,7 +536,7 @@ async function main() {
   // R, then T at once: the released stream's end must not cost the new one.
   await a.evaluate(() => window.viewerTest.release());
   await a.evaluate(() => window.viewerTest.take('probe'));
-  await a.waitForFunction(() => window.viewerState.heldTool === 'probe', null, { polling: kPollMs, timeout: 15_000 });
+  await waitUntil(a, () => window.viewerState.heldTool === 'probe', 15_000);
   await sleep(500);
   check((await state(a)).heldTool === 'probe', 'page A lost the probe it took again');
 
@@ -666,14 +670,14 @@ async function main() {
   const lostUrl = (await waitForLine(lost, /viewer on (http:\/\/127\.0\.0\.1:\d+\/\S*)/, 15_000))[1];
   const c = await context.newPage();
   await c.goto(lostUrl, { timeout: 10_000 });
-  await c.waitForFunction(() => /no scene 'no such scene'/.test(document.body.innerText), null,
-    { polling: kPollMs, timeout: 15_000 }).catch(() => {});
+  await waitUntil(c, () => /no scene 'no such scene'/.test(document.body.innerText), 15_000)
+    .catch(() => {});
   check(/no scene 'no such scene'/.test(await c.evaluate(() => document.body.innerText)),
         `the page of an unknown scene does not say so: ${brief(await state(c))}`);
   // A reload finds the token the page kept (its address no longer has it).
   await c.reload({ timeout: 10_000 });
-  await c.waitForFunction(() => /no scene 'no such scene'/.test(document.body.innerText), null,
-    { polling: kPollMs, timeout: 15_000 }).catch(() => {});
+  await waitUntil(c, () => /no scene 'no such scene'/.test(document.body.innerText), 15_000)
+    .catch(() => {});
   check(/no scene 'no such scene'/.test(await c.evaluate(() => document.body.innerText)),
         `after a reload the page of an unknown scene does not say so: ${brief(await state(c))}`);
   check(alive(lost.proc), 'the bridge of an unknown scene ended');
